@@ -1,0 +1,210 @@
+"""Analytic viscoelastic models: a constant complex modulus and the generalized Maxwell (Prony) solid with WLF.
+
+Each material exposes ``E(omega, T)``: the complex Young's modulus at angular frequency ``omega`` (rad/s,
+any sign, Im E odd in omega) and temperature ``T`` (deg C), vectorized, plus ``thermal`` properties.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from frictioncite import doi
+
+from .errors import InputError
+
+__all__ = ["WLF", "Thermal", "ConstantModulus", "Prony"]
+
+
+@doi("10.1021/ja01619a008")
+@dataclass(frozen=True)
+class WLF:
+    r"""Williams-Landel-Ferry shift factor.
+
+    .. math:: \log_{10} a_T = -\frac{C_1 (T - T_{ref})}{C_2 + T - T_{ref}}
+
+    (Williams, Landel & Ferry, J. Am. Chem. Soc. 77, 3701 (1955), Eq. 7), so that
+    :math:`E(\omega, T) = b_T E(\omega a_T, T_{ref})`.
+
+    Parameters
+    ----------
+    C1 : float
+        Dimensionless WLF constant (> 0).
+    C2 : float
+        WLF constant, K (> 0).
+    T_ref : float
+        Reference temperature, deg C.
+    """
+
+    C1: float
+    C2: float
+    T_ref: float
+
+    def __post_init__(self):
+        for name in ("C1", "C2", "T_ref"):
+            v = getattr(self, name)
+            if not isinstance(v, (int, float, np.floating, np.integer)) or not math.isfinite(v):
+                raise InputError(f"WLF.{name}: expected a finite number, got {v!r}")
+        if self.C1 <= 0 or self.C2 <= 0:
+            raise InputError(f"WLF: expected C1 > 0 and C2 > 0 K, got C1={self.C1}, C2={self.C2}")
+
+    def log10_aT(self, T):
+        """log10 of the shift factor at temperature(s) ``T`` (deg C). Raises below the WLF singularity."""
+        dT = np.asarray(T, dtype=float) - self.T_ref
+        if np.any(self.C2 + dT <= 0):
+            raise InputError(f"temperature: WLF (C2={self.C2} K, T_ref={self.T_ref} C) is singular at or below "
+                             f"T = {self.T_ref - self.C2:g} C")
+        return -self.C1 * dT / (self.C2 + dT)
+
+    def aT(self, T):
+        """Shift factor a_T (dimensionless)."""
+        return 10.0 ** self.log10_aT(T)
+
+    @classmethod
+    def from_mapping(cls, m) -> "WLF":
+        """Build from a mapping with keys ``C1``, ``C2`` and ``T_ref_C`` (or ``T_ref``)."""
+        try:
+            T_ref = m["T_ref_C"] if "T_ref_C" in m else m["T_ref"]
+            return cls(C1=float(m["C1"]), C2=float(m["C2"]), T_ref=float(T_ref))
+        except KeyError as exc:
+            raise InputError(f"wlf: missing key {exc.args[0]!r} (expected C1, C2, T_ref_C)") from None
+
+
+@dataclass(frozen=True)
+class Thermal:
+    """Thermal properties of the rubber (used by the flash temperature).
+
+    Parameters
+    ----------
+    density : float
+        Mass density rho, kg/m^3.
+    specific_heat : float
+        Specific heat c_p, J/(kg K).
+    conductivity : float
+        Thermal conductivity lambda, W/(m K).
+    """
+
+    density: float = 1200.0
+    specific_heat: float = 1500.0
+    conductivity: float = 0.25
+
+    def __post_init__(self):
+        for name in ("density", "specific_heat", "conductivity"):
+            v = getattr(self, name)
+            if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
+                raise InputError(f"thermal.{name}: expected a positive number, got {v!r}")
+
+    @property
+    def diffusivity(self) -> float:
+        """Thermal diffusivity D = lambda / (rho c_p), m^2/s."""
+        return self.conductivity / (self.density * self.specific_heat)
+
+    @property
+    def heat_capacity(self) -> float:
+        """Volumetric heat capacity rho c_p, J/(m^3 K)."""
+        return self.density * self.specific_heat
+
+
+@dataclass(frozen=True)
+class ConstantModulus:
+    """Frequency- and temperature-independent complex modulus, E = E' + i E'' sign(omega).
+
+    Parameters
+    ----------
+    E_storage : float
+        Storage modulus E', Pa (> 0).
+    E_loss : float
+        Loss modulus E'' at omega > 0, Pa (>= 0). Im E is odd in omega (zero at omega = 0).
+    thermal : Thermal
+        Thermal properties.
+    """
+
+    E_storage: float
+    E_loss: float
+    thermal: Thermal = field(default_factory=Thermal)
+
+    def __post_init__(self):
+        if not (math.isfinite(self.E_storage) and self.E_storage > 0):
+            raise InputError(f"E_storage: expected a positive modulus in Pa, got {self.E_storage!r}")
+        if not (math.isfinite(self.E_loss) and self.E_loss >= 0):
+            raise InputError(f"E_loss: expected a non-negative modulus in Pa, got {self.E_loss!r}")
+
+    def E(self, omega, T=None):
+        """Complex Young's modulus, Pa, at ``omega`` (rad/s); ``T`` is ignored."""
+        omega = np.asarray(omega, dtype=float)
+        return self.E_storage + 1j * self.E_loss * np.sign(omega)
+
+
+@dataclass(frozen=True, eq=False)
+class Prony:
+    r"""Generalized Maxwell solid (Prony series) with WLF time-temperature superposition.
+
+    .. math::
+        E(\omega, T_{ref}) = E_\infty + \sum_i E_i \frac{i\omega\tau_i}{1 + i\omega\tau_i},
+        \qquad E(\omega, T) = E(\omega a_T, T_{ref})
+
+    Causal by construction (each term is a Debye relaxation); Im E is odd in omega.
+
+    Parameters
+    ----------
+    E_inf : float
+        Relaxed (rubbery) modulus, Pa (>= 0).
+    E_i : array_like
+        Relaxation strengths, Pa (>= 0).
+    tau_i : array_like
+        Relaxation times at T_ref, s (> 0).
+    wlf : WLF or mapping, optional
+        Shift factor; ``None`` makes the material temperature-independent.
+    thermal : Thermal
+        Thermal properties.
+    """
+
+    E_inf: float
+    E_i: np.ndarray
+    tau_i: np.ndarray
+    wlf: WLF | None = None
+    thermal: Thermal = field(default_factory=Thermal)
+
+    def __post_init__(self):
+        E_i = np.array(self.E_i, dtype=float, copy=True).ravel()
+        tau_i = np.array(self.tau_i, dtype=float, copy=True).ravel()
+        if E_i.size != tau_i.size or E_i.size == 0:
+            raise InputError(f"Prony: E_i and tau_i must have the same non-zero length, got {E_i.size}, {tau_i.size}")
+        if not (np.all(np.isfinite(E_i)) and np.all(E_i >= 0)):
+            raise InputError("Prony.E_i: expected finite non-negative moduli in Pa")
+        if not (np.all(np.isfinite(tau_i)) and np.all(tau_i > 0)):
+            raise InputError("Prony.tau_i: expected finite positive relaxation times in s")
+        if not (math.isfinite(self.E_inf) and self.E_inf >= 0):
+            raise InputError(f"Prony.E_inf: expected a non-negative modulus in Pa, got {self.E_inf!r}")
+        E_i.setflags(write=False)
+        tau_i.setflags(write=False)
+        object.__setattr__(self, "E_i", E_i)
+        object.__setattr__(self, "tau_i", tau_i)
+        if self.wlf is not None and not isinstance(self.wlf, WLF):
+            object.__setattr__(self, "wlf", WLF.from_mapping(self.wlf))
+
+    def log10_aT(self, T):
+        """log10 of the WLF shift factor (0 when no WLF is set or T is None)."""
+        if self.wlf is None or T is None:
+            return np.zeros_like(np.asarray(0.0 if T is None else T, dtype=float))
+        return self.wlf.log10_aT(T)
+
+    def E_reference(self, omega):
+        """Complex modulus at the reference temperature, Pa."""
+        w = np.asarray(omega, dtype=float)[..., None]
+        wt = w * self.tau_i
+        terms = self.E_i * (wt * wt + 1j * wt) / (1.0 + wt * wt)
+        return self.E_inf + terms.sum(axis=-1)
+
+    def E(self, omega, T=None):
+        """Complex Young's modulus, Pa, at ``omega`` (rad/s) and temperature ``T`` (deg C)."""
+        omega = np.asarray(omega, dtype=float)
+        shift = 10.0 ** self.log10_aT(T)
+        return self.E_reference(omega * shift)
+
+    @property
+    def E_glassy(self) -> float:
+        """High-frequency limit E_inf + sum E_i, Pa."""
+        return float(self.E_inf + self.E_i.sum())
