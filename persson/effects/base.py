@@ -1,0 +1,239 @@
+"""The effects API: baseline physics plus a list of effects, each a small frozen dataclass.
+
+An effect has a ``name``, documented ``parameters`` (:class:`Parameter`: default, bounds, unit, doc) stored as
+dataclass fields, and overrides one or more hooks:
+
+``transform_conditions(conditions)``
+    change the operating conditions (e.g. load carried by a water film).
+``transform_surface(surface, conditions)``
+    change the PSD (e.g. extrapolate the tail to q1).
+``transform_material(material, conditions)``
+    change the modulus (e.g. large-strain softening).
+``solver_role = "temperature"`` with ``temperature_solver_options()``
+    take part in the solver (the flash temperature).
+``friction_term(state)``
+    add a friction contribution per speed (e.g. adhesion), given the solved :class:`SolverState`.
+``transform_result(result)``
+    post-process the finished :class:`~persson.results.FrictionResult`.
+
+A user effect is written in a script with no change to the package::
+
+    from dataclasses import dataclass
+    from persson.effects import Effect, Parameter
+
+    @dataclass(frozen=True)
+    class Ploughing(Effect):
+        name = "ploughing"
+        parameters = (Parameter("k", 0.01, (0.0, 0.5), "1", "friction per decade of speed"),)
+        k: float = 0.01
+
+        def friction_term(self, state):
+            return self.k * np.log10(state.conditions.speed / 1e-3).clip(0)
+
+Defining the class registers it, so :func:`available` and :func:`validation.diagnose` see it.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass, field
+from typing import Any, ClassVar
+
+import numpy as np
+
+from ..errors import InputError
+
+__all__ = ["Effect", "Parameter", "Conditions", "SolverState", "available", "get", "effect_class"]
+
+_REGISTRY: dict[str, type] = {}
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """Specification of one effect parameter.
+
+    Parameters
+    ----------
+    name : str
+        Field name on the effect.
+    default : float
+        Default value.
+    bounds : (float, float)
+        Physically sensible range; refits stay inside.
+    unit : str
+        SI unit (``"1"`` for dimensionless).
+    doc : str
+        One-line meaning.
+    log_scale : bool
+        Whether fits should vary the parameter in log space (positive, spans decades).
+    """
+
+    name: str
+    default: float
+    bounds: tuple[float, float]
+    unit: str
+    doc: str
+    log_scale: bool = False
+
+
+@dataclass(frozen=True)
+class Conditions:
+    """Operating conditions of one friction evaluation.
+
+    Parameters
+    ----------
+    speed : ndarray
+        Sliding speeds, m/s, shape (n_speed,).
+    temperature : float
+        Background (bulk) temperature T0, deg C.
+    pressure : float
+        Nominal contact pressure sigma0 carried by the asperity contact, Pa.
+    nominal_pressure : float
+        Total nominal pressure on the contact, Pa (differs from ``pressure`` when a fluid film carries load).
+    wet : bool
+        Whether the interface is wet (adhesion off).
+    extra : dict
+        Free-form values effects pass to one another (read-only by convention).
+    """
+
+    speed: np.ndarray
+    temperature: float
+    pressure: float
+    nominal_pressure: float
+    wet: bool = False
+    extra: dict = field(default_factory=dict)
+
+    def replace(self, **changes) -> "Conditions":
+        """Copy with some fields changed."""
+        return dataclasses.replace(self, **changes)
+
+
+@dataclass(frozen=True, eq=False)
+class SolverState:
+    """What the solver found, handed to ``friction_term`` hooks.
+
+    Attributes
+    ----------
+    conditions : Conditions
+    surface, material : objects
+        After the transform hooks.
+    q : ndarray (n_q,)
+        Wavevector nodes, rad/m.
+    area_q : ndarray (n_speed, n_q)
+        P(q) = A(q)/A0.
+    G_q : ndarray (n_speed, n_q)
+        Persson's G(q).
+    temperature_q : ndarray (n_speed, n_q)
+        Temperature seen at scale q, deg C.
+    mu_hysteresis : ndarray (n_speed,)
+    nu, gamma : float
+    """
+
+    conditions: Conditions
+    surface: Any
+    material: Any
+    q: np.ndarray
+    area_q: np.ndarray
+    G_q: np.ndarray
+    temperature_q: np.ndarray
+    mu_hysteresis: np.ndarray
+    nu: float
+    gamma: float
+
+    @property
+    def contact_area(self) -> np.ndarray:
+        """A/A0 at the largest wavevector q1, per speed."""
+        return self.area_q[:, -1]
+
+    @property
+    def contact_temperature(self) -> np.ndarray:
+        """Temperature at the smallest scale (q1), per speed, deg C."""
+        return self.temperature_q[:, -1]
+
+
+@dataclass(frozen=True)
+class Effect:
+    """Base class of effects. Subclasses are frozen dataclasses with a class attribute ``name``."""
+
+    name: ClassVar[str] = ""
+    parameters: ClassVar[tuple[Parameter, ...]] = ()
+    #: ``"temperature"`` for an effect that takes part in the solver by setting the temperature at each scale.
+    solver_role: ClassVar[str | None] = None
+    #: Key under which ``friction_term`` is reported; ``"adhesion"`` feeds ``FrictionResult.mu_adhesion``.
+    term_kind: ClassVar[str | None] = None
+
+    def __init_subclass__(cls, **kwargs):
+        super().__init_subclass__(**kwargs)
+        if cls.__dict__.get("name"):
+            _REGISTRY[cls.__dict__["name"]] = cls
+
+    def __post_init__(self):
+        for p in self.parameters:
+            v = getattr(self, p.name)
+            if isinstance(v, bool) or not isinstance(v, (int, float, np.integer, np.floating)):
+                continue
+            if not math.isfinite(v):
+                raise InputError(f"{self.name}.{p.name}: expected a finite number, got {v!r}")
+            lo, hi = p.bounds
+            if not lo <= v <= hi:
+                raise InputError(f"{self.name}.{p.name}: expected a value in [{lo:g}, {hi:g}] {p.unit}, got {v:g}")
+
+    # --- hooks (identity by default) -------------------------------------------------------------------
+    def transform_conditions(self, conditions: Conditions) -> Conditions:
+        """Return changed operating conditions."""
+        return conditions
+
+    def transform_surface(self, surface, conditions: Conditions):
+        """Return a changed surface PSD."""
+        return surface
+
+    def transform_material(self, material, conditions: Conditions):
+        """Return a changed material."""
+        return material
+
+    def friction_term(self, state: SolverState):
+        """Return an additional friction coefficient per speed (shape (n_speed,)) or None."""
+        return None
+
+    def transform_result(self, result):
+        """Return a post-processed result."""
+        return result
+
+    # --- parameters --------------------------------------------------------------------------------------
+    def parameter_values(self) -> dict[str, float]:
+        """Current values of the documented parameters."""
+        return {p.name: getattr(self, p.name) for p in self.parameters}
+
+    def with_parameters(self, **values) -> "Effect":
+        """Copy with some parameters changed (validated against their bounds)."""
+        names = {f.name for f in dataclasses.fields(self)}
+        unknown = sorted(set(values) - names)
+        if unknown:
+            raise InputError(f"{self.name}: unknown parameter(s) {unknown}; known: {sorted(names)}")
+        return dataclasses.replace(self, **values)
+
+    @property
+    def citations(self) -> tuple[str, ...]:
+        """References of the physics this effect implements."""
+        return tuple(getattr(type(self), "__citations__", ()))
+
+
+def available() -> dict[str, type]:
+    """Registered effect classes by name (built-in and user-defined), sorted by name."""
+    from . import builtin  # noqa: F401  (registers the built-in effects)
+
+    return dict(sorted(_REGISTRY.items()))
+
+
+def effect_class(name: str) -> type:
+    """The effect class registered under ``name``."""
+    reg = available()
+    if name not in reg:
+        raise InputError(f"effect: unknown effect {name!r}; available: {sorted(reg)}")
+    return reg[name]
+
+
+def get(name: str, **parameters) -> Effect:
+    """An instance of the effect ``name`` with the given parameters (others at their defaults)."""
+    return effect_class(name)(**parameters)

@@ -1,0 +1,2 @@
+"""Built-in effects (being written)."""
+Adhesion = FlashTemperature = Microtexture = StrainSoftening = Wet = None

@@ -1,0 +1,318 @@
+r"""The Persson friction model: surface + material + conditions + effects -> :class:`FrictionResult`.
+
+Physics (Persson, J. Chem. Phys. 115, 3840 (2001); Persson et al., J. Phys.: Condens. Matter 17, R1 (2005)):
+
+.. math::
+    \mu_{visc} = \frac12 \int_{q_0}^{q_1} dq\, q^3 C(q) S(q) P(q) \int_0^{2\pi} d\phi \cos\phi\,
+        \frac{\mathrm{Im}\, E(q v \cos\phi, T_q)}{(1-\nu^2)\sigma_0}
+
+.. math::
+    P(q) = \mathrm{erf}\left(\frac{1}{2\sqrt{G(q)}}\right),\quad
+    G(q) = \frac18 \int_{q_0}^{q} dq' q'^3 C(q') \int_0^{2\pi} d\phi
+        \left|\frac{E(q' v\cos\phi, T_{q'})}{(1-\nu^2)\sigma_0}\right|^2
+
+with :math:`S(q) = \gamma + (1-\gamma) P(q)^2` (Yang & Persson, J. Phys.: Condens. Matter 20, 215214 (2008)).
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from frictioncite import citations_of, doi
+
+from . import _kernels
+from .effects.base import Conditions, Effect, SolverState
+from .errors import ConvergenceWarning, InputError
+from .grid import GridSettings
+from .results import FrictionResult
+from .tabulate import modulus_table, shift_table
+
+__all__ = ["Model"]
+
+_PAD_DECADES = 0.5
+
+
+@doi("10.1063/1.1388626", "10.1088/0953-8984/17/1/R01", "10.1088/0953-8984/20/21/215214")
+@dataclass(frozen=True, eq=False)
+class Model:
+    """Persson rubber-friction model.
+
+    Parameters
+    ----------
+    surface : surfaces.SelfAffine or surfaces.PSD or any object with ``C(q)`` and ``q_range``
+        Isotropic 2D PSD (Persson convention); the integrals run over ``surface.q_range``.
+    material : materials.ConstantModulus, materials.Prony, materials.MasterCurve, ...
+        Any object with ``E(omega, T)`` (complex Young's modulus, Pa); ``log10_aT(T)`` for temperature shifts
+        and ``thermal`` for the flash temperature.
+    nu : float
+        Poisson ratio, 0 <= nu <= 0.5 (default 0.5).
+    gamma : float
+        Parameter of S(q) = gamma + (1 - gamma) P^2, 0 <= gamma <= 1 (default 0.5; 1 gives S = 1).
+    effects : sequence of Effect
+        Effects switched on (see :mod:`persson.effects`).
+    grid : GridSettings
+        Numerical resolution (defaults meet 0.1 % on the closed-form benchmark).
+
+    Examples
+    --------
+    >>> import surfaces, materials, persson
+    >>> s = surfaces.SelfAffine(hurst=0.8, q0=1e3, q1=1e7, hrms=20e-6)
+    >>> m = materials.ConstantModulus(E_storage=5e6, E_loss=2e6)
+    >>> r = persson.Model(s, m, gamma=1.0).friction(1.0, temperature=20.0, pressure=0.3e6)
+    >>> round(float(r.contact_area), 3)
+    0.263
+    """
+
+    surface: object
+    material: object
+    nu: float = 0.5
+    gamma: float = 0.5
+    effects: tuple = ()
+    grid: GridSettings = field(default_factory=GridSettings)
+
+    def __post_init__(self):
+        nu = _finite(self.nu, "nu")
+        if not 0.0 <= nu <= 0.5:
+            raise InputError(f"nu: expected a Poisson ratio in [0, 0.5], got {nu}")
+        gamma = _finite(self.gamma, "gamma")
+        if not 0.0 <= gamma <= 1.0:
+            raise InputError(f"gamma: expected a value in [0, 1], got {gamma}")
+        if not (hasattr(self.surface, "C") and hasattr(self.surface, "q_range")):
+            raise InputError("surface: expected a PSD object with C(q) and q_range (e.g. surfaces.SelfAffine)")
+        q_lo, q_hi = (float(x) for x in self.surface.q_range)
+        if not (math.isfinite(q_lo) and math.isfinite(q_hi) and 0 < q_lo < q_hi):
+            raise InputError(f"surface: expected 0 < q0 < q1, got q_range = ({q_lo:g}, {q_hi:g}) rad/m")
+        if not hasattr(self.material, "E"):
+            raise InputError("material: expected an object with E(omega, T) (e.g. materials.ConstantModulus)")
+        effects = tuple(self.effects)
+        names = [getattr(e, "name", None) for e in effects]
+        for e, n in zip(effects, names):
+            if not isinstance(e, Effect):
+                raise InputError(f"effects: expected persson.effects.Effect instances, got {e!r}")
+        dup = sorted({n for n in names if names.count(n) > 1})
+        if dup:
+            raise InputError(f"effects: effect(s) {dup} given more than once")
+        if sum(1 for e in effects if e.solver_role == "temperature") > 1:
+            raise InputError("effects: at most one effect may set the temperature at each scale")
+        if not isinstance(self.grid, GridSettings):
+            raise InputError(f"grid: expected persson.GridSettings, got {self.grid!r}")
+        object.__setattr__(self, "nu", nu)
+        object.__setattr__(self, "gamma", gamma)
+        object.__setattr__(self, "effects", effects)
+
+    # ----------------------------------------------------------------------------------------------------
+    def friction(self, speed, temperature: float = 20.0, pressure: float = 0.3e6) -> FrictionResult:
+        """Friction, contact area and per-scale detail at the sliding speed(s) ``speed``.
+
+        Parameters
+        ----------
+        speed : float or array_like
+            Sliding speed(s), m/s, > 0.
+        temperature : float
+            Background temperature T0, deg C.
+        pressure : float
+            Nominal contact pressure sigma0, Pa, > 0.
+
+        Returns
+        -------
+        FrictionResult
+        """
+        v, scalar = _speeds(speed)
+        T0 = _finite(temperature, "temperature")
+        sigma0 = _finite(pressure, "pressure")
+        if sigma0 <= 0:
+            raise InputError(f"pressure: expected a nominal pressure > 0 Pa, got {sigma0:g}")
+        cond = Conditions(speed=v, temperature=T0, pressure=sigma0, nominal_pressure=sigma0)
+        for e in self.effects:
+            cond = e.transform_conditions(cond)
+        surface, material = self.surface, self.material
+        for e in self.effects:
+            surface = e.transform_surface(surface, cond)
+            material = e.transform_material(material, cond)
+        thermal = next((e for e in self.effects if e.solver_role == "temperature"), None)
+
+        solved = _solve(surface, material, cond, self.grid, self.nu, self.gamma, thermal)
+        state = SolverState(conditions=cond, surface=surface, material=material, q=solved.q,
+                            area_q=solved.P, G_q=solved.G, temperature_q=solved.T_q,
+                            mu_hysteresis=solved.mu, nu=self.nu, gamma=self.gamma)
+        terms: dict[str, np.ndarray] = {}
+        for e in self.effects:
+            t = e.friction_term(state)
+            if t is None:
+                continue
+            t = np.broadcast_to(np.asarray(t, dtype=float), v.shape).copy()
+            if not np.all(np.isfinite(t)):
+                raise InputError(f"effect {e.name!r}: friction_term returned non-finite values")
+            terms[e.term_kind or e.name] = terms.get(e.term_kind or e.name, 0.0) + t
+        mu_adh = terms.get("adhesion", np.zeros_like(v))
+        # The hysteresis acts on the load the asperities carry; normalise by the total nominal load.
+        load_share = cond.pressure / cond.nominal_pressure
+        mu_hys = solved.mu * load_share
+        mu_total = mu_hys + sum(terms.values(), np.zeros_like(v))
+
+        notes = list(_surface_notes(surface))
+        if not solved.converged:
+            bad = np.flatnonzero(~solved.converged_each)
+            msg = (f"flash temperature did not converge at {bad.size} of {v.size} speeds "
+                   f"(max residual {np.max(solved.residual):.3g} K)")
+            notes.append(msg)
+            warnings.warn(msg, ConvergenceWarning, stacklevel=2)
+        out = _shape
+
+        result = FrictionResult(
+            speed=v, temperature=T0, pressure=cond.nominal_pressure,
+            mu=out(mu_total, scalar), mu_hysteresis=out(mu_hys, scalar), mu_adhesion=out(mu_adh, scalar),
+            mu_terms={k: out(t, scalar) for k, t in terms.items()},
+            contact_area=out(solved.P[:, -1], scalar),
+            q=solved.q, area_q=solved.P, G_q=solved.G, temperature_q=solved.T_q, dmu_dlnq=solved.dmu,
+            max_flash_temperature=out(np.max(solved.T_q, axis=1) - T0, scalar),
+            effects=tuple(e.name for e in self.effects), converged=bool(solved.converged),
+            iterations=solved.iterations, residual=solved.residual, notes=tuple(notes),
+            citations=citations_of(type(self), surface, material, *self.effects,
+                                   *(type(e) for e in self.effects)),
+            scalar=scalar,
+        )
+        for e in self.effects:
+            result = e.transform_result(result)
+        return result
+
+    # ----------------------------------------------------------------------------------------------------
+    def with_effect(self, effect: Effect) -> "Model":
+        """A copy with ``effect`` added (replacing an effect of the same name)."""
+        if not isinstance(effect, Effect):
+            raise InputError(f"effect: expected a persson.effects.Effect, got {effect!r}")
+        kept = tuple(e for e in self.effects if e.name != effect.name)
+        return self.replace(effects=kept + (effect,))
+
+    def without(self, name: str) -> "Model":
+        """A copy without the effect called ``name``."""
+        if name not in self.effect_names:
+            raise InputError(f"without: no effect named {name!r} in the model (has {list(self.effect_names)})")
+        return self.replace(effects=tuple(e for e in self.effects if e.name != name))
+
+    def effect(self, name: str) -> Effect:
+        """The effect called ``name``."""
+        for e in self.effects:
+            if e.name == name:
+                return e
+        raise InputError(f"effect: no effect named {name!r} in the model (has {list(self.effect_names)})")
+
+    @property
+    def effect_names(self) -> tuple[str, ...]:
+        """Names of the effects switched on."""
+        return tuple(e.name for e in self.effects)
+
+    def replace(self, **changes) -> "Model":
+        """Copy with fields changed (surface, material, nu, gamma, effects, grid)."""
+        import dataclasses
+
+        return dataclasses.replace(self, **changes)
+
+
+# ---------------------------------------------------------------------------------------------------------
+@dataclass(frozen=True, eq=False)
+class _Solved:
+    q: np.ndarray
+    G: np.ndarray
+    P: np.ndarray
+    T_q: np.ndarray
+    dmu: np.ndarray
+    loss: np.ndarray
+    mu: np.ndarray
+    converged: bool
+    converged_each: np.ndarray
+    iterations: np.ndarray
+    residual: np.ndarray
+
+
+def _solve(surface, material, cond: Conditions, grid: GridSettings, nu: float, gamma: float,
+           thermal) -> _Solved:
+    """Prepare the arrays and run the kernels (plain or with the scale-dependent temperature)."""
+    q_lo, q_hi = (float(x) for x in surface.q_range)
+    if not (0 < q_lo < q_hi):
+        raise InputError(f"surface: expected 0 < q0 < q1 after the effects, got ({q_lo:g}, {q_hi:g}) rad/m")
+    q = grid.q_nodes(q_lo, q_hi)
+    C = np.asarray(surface.C(q), dtype=float)
+    if C.shape != q.shape or not np.all(np.isfinite(C)) or np.any(C < 0):
+        raise InputError("surface: C(q) must return finite values >= 0 m^4 of the shape of q")
+    lq10 = np.log10(q)
+    q4C = q**4 * C
+    wq = _kernels.trapezoid_weights_ln(lq10)
+    phi, wphi = grid.angle_nodes()
+    cphi = np.cos(phi)
+    lcphi = np.log10(cphi)
+    v = cond.speed
+    lv10 = np.log10(v)
+    T0 = cond.temperature
+    nv, nq = v.size, q.size
+    scale = 1.0 / ((1.0 - nu * nu) * cond.pressure)
+
+    if thermal is None:
+        shifts = np.zeros((nv, nq))
+        s_lo = s_hi = 0.0
+        stab = None
+    else:
+        stab = shift_table(material, T0, T0 + grid.max_temperature_rise, grid.temperature_step)
+        s_lo, s_hi = float(stab.shift.min()), float(stab.shift.max())
+    lw_min = lq10[0] + lv10.min() + lcphi.min() + s_lo - _PAD_DECADES
+    lw_max = lq10[-1] + lv10.max() + s_hi + _PAD_DECADES
+    table = modulus_table(material, T0, lw_min, lw_max, grid.omega_per_decade)
+
+    G = np.empty((nv, nq))
+    P = np.empty((nv, nq))
+    loss = np.empty((nv, nq))
+    dmu = np.empty((nv, nq))
+    mu = np.empty(nv)
+    if thermal is None:
+        _kernels.friction_kernel(lq10, lv10, q4C, wq, shifts, lcphi, cphi, wphi, table.lw0, 1.0 / table.dlw,
+                                 table.ln_re, table.ln_im, scale, gamma, G, P, loss, dmu, mu)
+        T_q = np.full((nv, nq), T0)
+        ones = np.ones(nv, dtype=bool)
+        return _Solved(q, G, P, T_q, dmu, loss, mu, True, ones, np.zeros(nv, dtype=np.int64), np.zeros(nv))
+    return thermal.solve_temperature(
+        q=q, C=C, lq10=lq10, lv10=lv10, q4C=q4C, wq=wq, lcphi=lcphi, cphi=cphi, wphi=wphi, table=table,
+        shift_table=stab, scale=scale, gamma=gamma, nu=nu, conditions=cond, material=material,
+        out=(G, P, loss, dmu, mu), solved_type=_Solved)
+
+
+def _surface_notes(surface):
+    q_r = getattr(surface, "q_r", None)
+    q_hi = float(surface.q_range[1])
+    if getattr(surface, "extrapolated", False) or (q_r is not None and q_hi > q_r * (1 + 1e-9)):
+        yield (f"PSD tail extrapolated past the instrument reliability limit q_r = {q_r:g} rad/m "
+               f"to q1 = {q_hi:g} rad/m" if q_r is not None else "PSD tail extrapolated")
+
+
+def _shape(a: np.ndarray, scalar: bool):
+    return float(a[0]) if scalar else a
+
+
+def _speeds(speed) -> tuple[np.ndarray, bool]:
+    try:
+        v = np.asarray(speed, dtype=float)
+    except (TypeError, ValueError):
+        raise InputError(f"speed: expected a number or an array of numbers in m/s, got {speed!r}") from None
+    scalar = v.ndim == 0
+    v = np.atleast_1d(v).ravel()
+    if v.size == 0:
+        raise InputError("speed: expected at least one speed")
+    if not np.all(np.isfinite(v)):
+        raise InputError(f"speed: NaN or infinite value at index {int(np.argmax(~np.isfinite(v)))}")
+    if np.any(v <= 0):
+        raise InputError(f"speed: expected speeds > 0 m/s, got {v[np.argmax(v <= 0)]:g} at index "
+                         f"{int(np.argmax(v <= 0))}")
+    return np.ascontiguousarray(v), scalar
+
+
+def _finite(value, name: str) -> float:
+    try:
+        x = float(value)
+    except (TypeError, ValueError):
+        raise InputError(f"{name}: expected a number, got {value!r}") from None
+    if not math.isfinite(x):
+        raise InputError(f"{name}: expected a finite number, got {x}")
+    return x

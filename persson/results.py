@@ -1,0 +1,104 @@
+"""Result objects of the friction engine."""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass, field
+
+import numpy as np
+
+__all__ = ["FrictionResult"]
+
+
+@dataclass(frozen=True, eq=False)
+class FrictionResult:
+    """Friction, contact and per-scale detail for an array of sliding speeds.
+
+    Scalar outputs (``mu``, ``mu_hysteresis``, ``mu_adhesion``, ``contact_area``, ``mean_separation``,
+    ``penetration_depth``, ``max_flash_temperature``) have the shape of the ``speed`` argument (a float for a
+    scalar speed). Per-scale arrays have shape (n_speed, n_q).
+
+    Attributes
+    ----------
+    speed : ndarray
+        Sliding speeds, m/s, shape (n_speed,).
+    temperature : float
+        Background temperature T0, deg C.
+    pressure : float
+        Nominal pressure sigma0, Pa.
+    mu : float or ndarray
+        Total friction coefficient: hysteresis + every effect's friction term.
+    mu_hysteresis : float or ndarray
+        Viscoelastic (hysteresis) contribution (Persson 2001, Eq. 1 of DESIGN.md "Physics").
+    mu_adhesion : float or ndarray
+        Adhesive (contact-area shear) contribution; 0 without the adhesion effect.
+    mu_terms : dict
+        Every additional friction term by effect name.
+    contact_area : float or ndarray
+        Real contact area ratio A/A0 = P(q1).
+    mean_separation : float or ndarray or None
+        Average interfacial separation u_bar, m (None when not computed).
+    penetration_depth : float or ndarray or None
+        Penetration depth of the road asperities into the rubber, m (None when not computed).
+    max_flash_temperature : float or ndarray
+        Largest temperature over the scales minus T0, K (0 without flash temperature).
+    q : ndarray (n_q,)
+        Wavevector nodes, rad/m.
+    area_q, G_q, temperature_q, dmu_dlnq : ndarray (n_speed, n_q)
+        P(q), Persson's G(q), the temperature at scale q (deg C) and the hysteresis integrand d mu / d ln q.
+    effects : tuple of str
+        Names of the effects switched on.
+    converged : bool
+        Whether every self-consistent iteration converged (always True without flash temperature).
+    iterations, residual : ndarray (n_speed,)
+        Iterations and final max |Delta T| (K) of the flash-temperature iteration per speed.
+    notes : tuple of str
+        Facts a reader must know (e.g. "PSD tail extrapolated past q_r").
+    citations : tuple of str
+        References (DOIs) of the physics used.
+    """
+
+    speed: np.ndarray
+    temperature: float
+    pressure: float
+    mu: np.ndarray
+    mu_hysteresis: np.ndarray
+    mu_adhesion: np.ndarray
+    contact_area: np.ndarray
+    q: np.ndarray
+    area_q: np.ndarray
+    G_q: np.ndarray
+    temperature_q: np.ndarray
+    dmu_dlnq: np.ndarray
+    mu_terms: dict = field(default_factory=dict)
+    mean_separation: np.ndarray | None = None
+    penetration_depth: np.ndarray | None = None
+    excited_layer_thickness: np.ndarray | None = None
+    max_flash_temperature: np.ndarray | float = 0.0
+    effects: tuple = ()
+    converged: bool = True
+    iterations: np.ndarray | None = None
+    residual: np.ndarray | None = None
+    notes: tuple = ()
+    citations: tuple = ()
+    scalar: bool = False
+
+    def replace(self, **changes) -> "FrictionResult":
+        """Copy with fields changed (for effects' ``transform_result``)."""
+        return dataclasses.replace(self, **changes)
+
+    def as_table(self) -> dict[str, np.ndarray]:
+        """Columns ``speed_m_s, mu, mu_hysteresis, mu_adhesion, contact_area`` (+ separation, flash) per speed."""
+        cols = {
+            "speed_m_s": self.speed,
+            "mu": np.atleast_1d(self.mu),
+            "mu_hysteresis": np.atleast_1d(self.mu_hysteresis),
+            "mu_adhesion": np.atleast_1d(self.mu_adhesion),
+            "contact_area": np.atleast_1d(self.contact_area),
+            "max_flash_temperature_K": np.broadcast_to(np.atleast_1d(self.max_flash_temperature), self.speed.shape),
+        }
+        if self.mean_separation is not None:
+            cols["mean_separation_m"] = np.atleast_1d(self.mean_separation)
+        if self.penetration_depth is not None:
+            cols["penetration_depth_m"] = np.atleast_1d(self.penetration_depth)
+        return cols

@@ -1,0 +1,202 @@
+"""Specification of the baseline Persson solver: hysteresis friction and real contact area.
+
+References: Persson, J. Chem. Phys. 115, 3840 (2001); Persson et al., J. Phys.: Condens. Matter 17, R1 (2005).
+"""
+
+import math
+
+import numpy as np
+import pytest
+from scipy import integrate
+from scipy.special import erf, erfc
+
+import materials
+import persson
+import surfaces
+
+SIGMA0 = 0.3e6
+
+
+def closed_form_constant_modulus(E_storage, E_loss, nu, sigma0, H, q0, q1, hrms):
+    r"""A/A0 and mu for a frequency-independent modulus on a self-affine PSD, gamma = 1 (S = 1).
+
+    With E constant, G(q) = (pi/4) (|E|/((1-nu^2) sigma0))^2 int_{q0}^{q} q'^3 C dq' does not depend on v,
+    and q^3 C dq = (4 sigma0^2 / (pi E*^2)) dG, so
+    mu = (8 E''_* sigma0 / (pi E*^2)) int_0^{G1} erf(1/(2 sqrt G)) dG, with (derived by parts)
+    int_0^X erf(1/(2 sqrt G)) dG = X erf(u) + sqrt(X/pi) exp(-u^2) - erfc(u)/2,  u = 1/(2 sqrt X).
+    The angular integral of cos(phi) Im E = E'' |cos phi| over [0, 2 pi] is 4 E''.
+    """
+    C0 = hrms**2 / (2 * math.pi * (q0 ** (-2 * H) - q1 ** (-2 * H)) / (2 * H))
+    Es = abs(complex(E_storage, E_loss)) / (1 - nu**2)
+    El = E_loss / (1 - nu**2)
+    a = (math.pi / 4) * (Es / sigma0) ** 2 * C0 / (2 - 2 * H)
+    X = a * (q1 ** (2 - 2 * H) - q0 ** (2 - 2 * H))
+    u = 1 / (2 * math.sqrt(X))
+    integral = X * erf(u) + math.sqrt(X / math.pi) * math.exp(-u * u) - 0.5 * erfc(u)
+    return erf(u), 8 * El * sigma0 / (math.pi * Es**2) * integral
+
+
+@pytest.fixture(scope="module")
+def benchmark_model():
+    s = surfaces.SelfAffine(hurst=0.8, q0=1e3, q1=1e7, hrms=20e-6)
+    m = materials.ConstantModulus(E_storage=5e6, E_loss=2e6)
+    return persson.Model(s, m, nu=0.5, gamma=1.0)
+
+
+def test_closed_form_reproduces_published_benchmark_numbers():
+    area, mu = closed_form_constant_modulus(5e6, 2e6, 0.5, SIGMA0, 0.8, 1e3, 1e7, 20e-6)
+    assert area == pytest.approx(0.26263, abs=5e-6)
+    assert mu == pytest.approx(0.076014, abs=5e-7)
+
+
+def test_default_grid_meets_closed_form_within_0p1_percent(benchmark_model):
+    area, mu = closed_form_constant_modulus(5e6, 2e6, 0.5, SIGMA0, 0.8, 1e3, 1e7, 20e-6)
+    r = benchmark_model.friction(np.array([1e-6, 1e-2, 1.0, 10.0]), temperature=20.0, pressure=SIGMA0)
+    np.testing.assert_allclose(r.contact_area, area, rtol=1e-3)
+    np.testing.assert_allclose(r.mu_hysteresis, mu, rtol=1e-3)
+    # frequency-independent modulus: nothing depends on speed
+    assert np.ptp(r.mu) < 1e-12
+
+
+def test_trapezoid_error_falls_as_h_squared(benchmark_model):
+    area, mu = closed_form_constant_modulus(5e6, 2e6, 0.5, SIGMA0, 0.8, 1e3, 1e7, 20e-6)
+    errs = []
+    for ppd in (8, 16, 32):
+        r = benchmark_model.replace(grid=persson.GridSettings(q_per_decade=ppd)).friction(1.0, pressure=SIGMA0)
+        errs.append(abs(r.mu / mu - 1))
+    assert errs[0] / errs[1] == pytest.approx(4.0, rel=0.15)
+    assert errs[1] / errs[2] == pytest.approx(4.0, rel=0.15)
+
+
+def test_scalar_speed_gives_scalars_and_per_scale_rows(benchmark_model):
+    r = benchmark_model.friction(0.5, pressure=SIGMA0)
+    assert isinstance(r.mu, float) and isinstance(r.contact_area, float)
+    assert r.area_q.shape == (1, r.q.size) and r.G_q.shape == (1, r.q.size)
+    assert r.area_q[0, 0] == 1.0 and np.all(np.diff(r.area_q[0]) <= 0)
+    assert r.q[0] == pytest.approx(1e3) and r.q[-1] == pytest.approx(1e7)
+
+
+def test_small_load_limit_area_proportional_to_pressure():
+    """A/A0 -> sqrt(8/pi) sigma0 / (E* h'_rms) when G(q1) >> 1 (Persson 2001, Eq. 21 limit)."""
+    s = surfaces.SelfAffine(hurst=0.8, q0=1e3, q1=1e7, hrms=20e-6)
+    m = materials.ConstantModulus(E_storage=5e6, E_loss=0.0)
+    Es = 5e6 / 0.75
+    for sigma0 in (1e2, 1e3):
+        r = persson.Model(s, m, gamma=1.0).friction(1.0, pressure=sigma0)
+        expected = math.sqrt(8 / math.pi) * sigma0 / (Es * s.rms_slope())
+        assert r.contact_area == pytest.approx(expected, rel=2e-3)
+
+
+def test_elastic_material_has_no_hysteresis_friction():
+    s = surfaces.SelfAffine(hurst=0.7, q0=1e3, q1=1e6, hrms=10e-6)
+    r = persson.Model(s, materials.ConstantModulus(5e6, 0.0)).friction([0.1, 1.0], pressure=SIGMA0)
+    np.testing.assert_allclose(r.mu, 0.0, atol=1e-20)
+
+
+# --- viscoelastic case against a slow independent quadrature ----------------------------------------------
+PRONY = dict(E_inf=2e6, E_i=[5e6, 4e7, 3e8], tau_i=[1e-2, 1e-4, 1e-6])
+
+
+def slow_reference(surface, material, v, sigma0, nu, gamma, n_q=601):
+    """Direct evaluation: adaptive quad over the angle at each q of a fine log grid, Simpson in ln q."""
+    q = np.geomspace(*surface.q_range, n_q)
+    Es_scale = 1 / ((1 - nu**2) * sigma0)
+
+    def ang(qq, f):
+        return 4 * integrate.quad(lambda p: f(material.E(qq * v * math.cos(p))), 0, math.pi / 2,
+                                  epsabs=0, epsrel=1e-10, limit=200)[0]
+
+    abs2 = np.array([ang(qq, lambda E: abs(E) ** 2) for qq in q])
+    loss = np.array([4 * integrate.quad(lambda p: math.cos(p) * material.E(qq * v * math.cos(p)).imag,
+                                        0, math.pi / 2, epsabs=0, epsrel=1e-10, limit=200)[0] for qq in q])
+    C = surface.C(q)
+    x = np.log(q)
+    gint = 0.125 * q**4 * C * abs2 * Es_scale**2
+    G = integrate.cumulative_simpson(gint, x=x, initial=0.0)
+    P = np.where(G > 0, erf(0.5 / np.sqrt(np.maximum(G, 1e-300))), 1.0)
+    S = gamma + (1 - gamma) * P**2
+    mu = integrate.simpson(0.5 * q**4 * C * S * P * loss * Es_scale, x=x)
+    return mu, P[-1]
+
+
+@pytest.mark.parametrize("v", [1e-4, 1e-2, 1.0])
+def test_viscoelastic_default_grid_matches_slow_quadrature(v):
+    s = surfaces.SelfAffine(hurst=0.75, q0=2e3, q1=1e6, hrms=30e-6)
+    m = materials.Prony(**PRONY)
+    mu_ref, area_ref = slow_reference(s, m, v, SIGMA0, 0.5, 0.5)
+    r = persson.Model(s, m, nu=0.5, gamma=0.5).friction(v, pressure=SIGMA0)
+    assert r.mu_hysteresis == pytest.approx(mu_ref, rel=1e-3)
+    assert r.contact_area == pytest.approx(area_ref, rel=1e-3)
+
+
+def test_viscoelastic_grid_convergence_is_monotone_towards_reference():
+    s = surfaces.SelfAffine(hurst=0.75, q0=2e3, q1=1e6, hrms=30e-6)
+    m = materials.Prony(**PRONY)
+    mu_ref, _ = slow_reference(s, m, 1e-2, SIGMA0, 0.5, 0.5)
+    errs = []
+    for k in (1, 2, 4):
+        g = persson.GridSettings(q_per_decade=8 * k, n_phi=6 * k, omega_per_decade=10 * k)
+        errs.append(abs(persson.Model(s, m, grid=g).friction(1e-2, pressure=SIGMA0).mu / mu_ref - 1))
+    assert errs[0] > errs[1] > errs[2]
+    assert errs[2] < 1e-3
+
+
+def test_temperature_shifts_the_curve_by_wlf():
+    """E(omega, T) = E(omega a_T, T_ref): mu(v, T) = mu(v a_T, T_ref) (time-temperature superposition)."""
+    s = surfaces.SelfAffine(hurst=0.8, q0=1e3, q1=1e6, hrms=20e-6)
+    wlf = materials.WLF(C1=8.86, C2=101.6, T_ref=20.0)
+    m = materials.Prony(wlf=wlf, **PRONY)
+    model = persson.Model(s, m)
+    aT = float(wlf.aT(50.0))
+    v = np.array([1e-3, 1e-1])
+    hot = model.friction(v, temperature=50.0, pressure=SIGMA0)
+    ref = model.friction(v * aT, temperature=20.0, pressure=SIGMA0)
+    np.testing.assert_allclose(hot.mu, ref.mu, rtol=2e-3)
+
+
+def test_results_cite_the_physics(benchmark_model):
+    r = benchmark_model.friction(1.0, pressure=SIGMA0)
+    assert "10.1063/1.1388626" in r.citations
+
+
+# --- bad input ----------------------------------------------------------------------------------------------
+@pytest.mark.parametrize("kwargs, word", [
+    (dict(speed=0.0), "speed"), (dict(speed=-1.0), "speed"), (dict(speed=[1.0, np.nan]), "speed"),
+    (dict(speed=1.0, pressure=0.0), "pressure"), (dict(speed=1.0, pressure=-1e5), "pressure"),
+    (dict(speed=1.0, pressure=np.nan), "pressure"), (dict(speed=1.0, temperature=np.nan), "temperature"),
+    (dict(speed="fast"), "speed"),
+])
+def test_bad_conditions_raise_input_error_naming_the_argument(benchmark_model, kwargs, word):
+    with pytest.raises(persson.InputError, match=word):
+        benchmark_model.friction(**kwargs)
+
+
+@pytest.mark.parametrize("kwargs, word", [
+    (dict(nu=0.6), "nu"), (dict(nu=-0.1), "nu"), (dict(nu=np.nan), "nu"),
+    (dict(gamma=1.5), "gamma"), (dict(gamma=-0.1), "gamma"), (dict(gamma=np.nan), "gamma"),
+])
+def test_bad_model_parameters_raise(kwargs, word):
+    s = surfaces.SelfAffine(hurst=0.8, q0=1e3, q1=1e7, hrms=20e-6)
+    with pytest.raises(persson.InputError, match=word):
+        persson.Model(s, materials.ConstantModulus(5e6, 2e6), **kwargs)
+
+
+def test_bad_cutoffs_and_nan_surface_raise():
+    with pytest.raises(surfaces.InputError, match="q1"):
+        surfaces.SelfAffine(hurst=0.8, q0=1e7, q1=1e3, hrms=20e-6)
+    with pytest.raises(surfaces.InputError, match="q1"):
+        surfaces.SelfAffine(hurst=0.8, q0=1e3, q1=1e3, hrms=20e-6)
+    with pytest.raises(surfaces.InputError, match="hrms"):
+        surfaces.SelfAffine(hurst=0.8, q0=1e3, q1=1e7, hrms=np.nan)
+    with pytest.raises(surfaces.InputError, match="row"):
+        surfaces.PSD([1e3, 1e4, 1e5], [1e-20, np.nan, 1e-24])
+
+
+def test_material_returning_nan_is_refused():
+    class Broken:
+        def E(self, omega, T=None):
+            return np.full(np.shape(omega), np.nan + 0j)
+
+    s = surfaces.SelfAffine(hurst=0.8, q0=1e3, q1=1e7, hrms=20e-6)
+    with pytest.raises(persson.InputError, match="material"):
+        persson.Model(s, Broken()).friction(1.0, pressure=SIGMA0)
