@@ -94,6 +94,8 @@ def citations_of(*objects: object) -> tuple[str, ...]:
             keys = citations_of(*obj)
         else:
             keys = getattr(obj, "__citations__", None) or getattr(obj, "citations", None) or ()
+            if not isinstance(keys, (tuple, list)):
+                keys = ()  # e.g. a property object looked up on a class
         for k in keys:
             if k not in seen:
                 seen.append(k)

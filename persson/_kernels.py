@@ -62,7 +62,6 @@ def _scale_pass(iv, lq10, lv10, q4C, wq, shift, lcphi, cphi, wphi, lw0, inv_dlw,
         a2, al = _angular(lq10[iq] + lv10[iv] + shift[iq], lcphi, cphi, wphi, lw0, inv_dlw, ln_re, ln_im)
         g_here = 0.125 * q4C[iq] * a2 * scale * scale
         if iq > 0:
-            # trapezoid in ln q: wq[iq] holds the half-step for the interval ending at iq
             G += 0.5 * (g_prev + g_here) * (lq10[iq] - lq10[iq - 1]) * 2.302585092994046
         g_prev = g_here
         if G > 0.0:
@@ -85,11 +84,12 @@ def friction_kernel(lq10, lv10, q4C, wq, shift, lcphi, cphi, wphi, lw0, inv_dlw,
     """Hysteresis friction and contact area for every speed (prange over speeds).
 
     Parameters are documented in the module docstring; ``shift`` has shape (n_speed, n_q) and holds
-    log10 a_T(T_q) relative to the table temperature; outputs have shape (n_speed, n_q) and (n_speed,).
+    log10 a_T(T_q) relative to the table temperature; ``scale`` = 1/((1-nu^2) sigma0) per speed;
+    outputs have shape (n_speed, n_q) and (n_speed,).
     """
     for iv in prange(lv10.shape[0]):
         mu_out[iv] = _scale_pass(iv, lq10, lv10, q4C, wq, shift[iv], lcphi, cphi, wphi, lw0, inv_dlw,
-                                 ln_re, ln_im, scale, gamma, G_out, P_out, loss_out, dmu_out)
+                                 ln_re, ln_im, scale[iv], gamma, G_out, P_out, loss_out, dmu_out)
 
 
 def trapezoid_weights_ln(lq10: np.ndarray) -> np.ndarray:
@@ -100,3 +100,121 @@ def trapezoid_weights_ln(lq10: np.ndarray) -> np.ndarray:
     w[:-1] += 0.5 * dx
     w[1:] += 0.5 * dx
     return w
+
+
+# --- flash temperature (Persson, J. Phys.: Condens. Matter 18, 7789 (2006)) -----------------------------------
+@njit(cache=True)
+def heat_kernel(qi, qj, a, D, ex_i, ex_j):
+    r"""Closed form of Persson's heat kernel g(q_i, q_j), s.
+
+    .. math::
+        g(q, q') = \frac{1}{\pi}\int_0^\infty dk\, \frac{1 - e^{-D k^2 t_0}}{D k^2}
+                   \frac{4q'}{k^2 + 4q'^2}\frac{4q^2}{k^2 + 4q^2}
+
+    With :math:`\alpha = 2q'`, :math:`\beta = 2q`, :math:`a = D t_0` and partial fractions of
+    :math:`1/(k^2 (k^2+\alpha^2)(k^2+\beta^2))`, using
+    :math:`\int_0^\infty (1-e^{-ak^2})k^{-2} dk = \sqrt{\pi a}` and
+    :math:`\int_0^\infty (1-e^{-ak^2})(k^2+c^2)^{-1} dk = \frac{\pi}{2c}(1 - \mathrm{erfcx}(c\sqrt a))`.
+    ``ex_i`` = erfcx(2 q_i sqrt(a)), ``ex_j`` = erfcx(2 q_j sqrt(a)) are precomputed (scipy.special.erfcx).
+    For alpha = beta (the diagonal) the double pole gives
+    :math:`\int_0^\infty (1-e^{-ak^2})(k^2+c^2)^{-2}dk = \frac{\pi}{4c^3}(1-\mathrm{erfcx}(x))
+    + \frac{\pi\sqrt a}{4c^2}(2x\,\mathrm{erfcx}(x) - 2/\sqrt\pi)`, :math:`x = c\sqrt a`.
+    """
+    al = 2.0 * qj
+    be = 2.0 * qi
+    sa = math.sqrt(a)
+    pi = math.pi
+    pre = 2.0 * al * be * be / (pi * D)
+    base = math.sqrt(pi * a) / (al * al * be * be)
+    rel = abs(al - be) / be
+    if rel > 1e-5:
+        B = 1.0 / (al * al * (al * al - be * be))
+        Cc = 1.0 / (be * be * (be * be - al * al))
+        I1 = base + B * (pi / (2.0 * al)) * (1.0 - ex_j) + Cc * (pi / (2.0 * be)) * (1.0 - ex_i)
+    else:
+        c = 0.5 * (al + be)
+        ex = 0.5 * (ex_i + ex_j)
+        x = c * sa
+        J1 = (pi / (2.0 * c)) * (1.0 - ex)
+        J2 = (pi / (4.0 * c**3)) * (1.0 - ex) + (pi * sa / (4.0 * c * c)) * (2.0 * x * ex - 2.0 / math.sqrt(pi))
+        I1 = math.sqrt(pi * a) / c**4 - J1 / c**4 - J2 / (c * c)
+    return pre * I1
+
+
+@njit(cache=True)
+def _shift_at(T, T_lo, inv_dT, shift_tab):
+    return _lookup(T, T_lo, inv_dT, shift_tab)
+
+
+@njit(cache=True, parallel=True)
+def flash_kernel(q, lq10, lv10, v, q4C, wq, lcphi, cphi, wphi, lw0, inv_dlw, ln_re, ln_im, scale, gamma,
+                 T0, T_lo, inv_dT, shift_tab, EX, a_t0, D, heat_factor, i_m, tol, max_iter,
+                 G_out, P_out, loss_out, dmu_out, mu_out, T_out, it_out, res_out):
+    r"""Hysteresis friction with Persson's self-consistent flash temperature, per speed in parallel.
+
+    .. math::
+        T_q = T_0 + \int_{q_0}^{q} dq'\, g(q, q') f(q'),\quad
+        f(q) = \frac{v q^4 C(q)}{\rho c_p} \frac{P(q)}{P(q_m)} \int_0^{2\pi} d\phi \cos\phi
+               \frac{\mathrm{Im}\,E(q v\cos\phi, T_q)}{1-\nu^2}
+
+    Fixed-point iteration with adaptive under-relaxation: the relaxation factor halves whenever the residual
+    max |T_new - T| grows, and recovers slowly while it falls. ``heat_factor`` = sigma0 / (rho c_p) per speed
+    turns the loss integral held by ``loss_out`` (divided by (1-nu^2) sigma0) into the temperature source.
+    """
+    nq = q.shape[0]
+    for iv in prange(lv10.shape[0]):
+        g = np.zeros((nq, nq))
+        for i in range(nq):
+            for j in range(i + 1):
+                g[i, j] = heat_kernel(q[i], q[j], a_t0[iv], D, EX[iv, i], EX[iv, j])
+        T = np.full(nq, T0)
+        Tn = np.empty(nq)
+        shift = np.empty(nq)
+        f = np.empty(nq)
+        relax = 1.0
+        res_prev = 1e300
+        res = 0.0
+        it = 0
+        for it in range(1, max_iter + 1):
+            for i in range(nq):
+                shift[i] = _shift_at(T[i], T_lo, inv_dT, shift_tab)
+            _scale_pass(iv, lq10, lv10, q4C, wq, shift, lcphi, cphi, wphi, lw0, inv_dlw, ln_re, ln_im,
+                        scale[iv], gamma, G_out, P_out, loss_out, dmu_out)
+            Pm = P_out[iv, i_m]
+            for j in range(nq):
+                f[j] = v[iv] * q4C[j] * heat_factor[iv] * P_out[iv, j] / Pm * loss_out[iv, j]
+            res = 0.0
+            for i in range(nq):
+                acc = 0.0
+                if i > 0:
+                    for j in range(i + 1):
+                        # trapezoid in q on [q_0, q_i]
+                        if j == 0:
+                            wj = 0.5 * (q[1] - q[0])
+                        elif j == i:
+                            wj = 0.5 * (q[i] - q[i - 1])
+                        else:
+                            wj = 0.5 * (q[j + 1] - q[j - 1])
+                        acc += wj * g[i, j] * f[j]
+                Tn[i] = T0 + acc
+                d = abs(Tn[i] - T[i])
+                if d > res:
+                    res = d
+            if res < tol:
+                for i in range(nq):
+                    T[i] = Tn[i]
+                break
+            if res > res_prev:
+                relax = max(0.5 * relax, 1.0 / 64.0)
+            else:
+                relax = min(1.0, 1.25 * relax)
+            res_prev = res
+            for i in range(nq):
+                T[i] = T[i] + relax * (Tn[i] - T[i])
+        for i in range(nq):
+            shift[i] = _shift_at(T[i], T_lo, inv_dT, shift_tab)
+            T_out[iv, i] = T[i]
+        mu_out[iv] = _scale_pass(iv, lq10, lv10, q4C, wq, shift, lcphi, cphi, wphi, lw0, inv_dlw, ln_re, ln_im,
+                                 scale[iv], gamma, G_out, P_out, loss_out, dmu_out)
+        it_out[iv] = it
+        res_out[iv] = res

@@ -24,7 +24,9 @@ import numpy as np
 
 from frictioncite import citations_of, doi
 
-from . import _kernels
+from scipy import integrate
+
+from . import _kernels, separation
 from .effects.base import Conditions, Effect, SolverState
 from .errors import ConvergenceWarning, InputError
 from .grid import GridSettings
@@ -150,7 +152,7 @@ class Model:
             terms[e.term_kind or e.name] = terms.get(e.term_kind or e.name, 0.0) + t
         mu_adh = terms.get("adhesion", np.zeros_like(v))
         # The hysteresis acts on the load the asperities carry; normalise by the total nominal load.
-        load_share = cond.pressure / cond.nominal_pressure
+        load_share = np.asarray(cond.pressure, dtype=float) / cond.nominal_pressure
         mu_hys = solved.mu * load_share
         mu_total = mu_hys + sum(terms.values(), np.zeros_like(v))
 
@@ -162,6 +164,9 @@ class Model:
             notes.append(msg)
             warnings.warn(msg, ConvergenceWarning, stacklevel=2)
         out = _shape
+        C_nodes = np.asarray(surface.C(solved.q), dtype=float)
+        u_bar = separation.mean_separation(solved.q, C_nodes, solved.G, self.gamma)
+        hrms = math.sqrt(2 * math.pi * integrate.trapezoid(solved.q**2 * C_nodes, x=np.log(solved.q)))
 
         result = FrictionResult(
             speed=v, temperature=T0, pressure=cond.nominal_pressure,
@@ -170,9 +175,12 @@ class Model:
             contact_area=out(solved.P[:, -1], scalar),
             q=solved.q, area_q=solved.P, G_q=solved.G, temperature_q=solved.T_q, dmu_dlnq=solved.dmu,
             max_flash_temperature=out(np.max(solved.T_q, axis=1) - T0, scalar),
+            mean_separation=out(u_bar, scalar),
+            penetration_depth=out(separation.penetration_depth(u_bar, hrms), scalar),
+            excited_layer_thickness=out(separation.excited_layer_thickness(solved.q, solved.dmu), scalar),
             effects=tuple(e.name for e in self.effects), converged=bool(solved.converged),
             iterations=solved.iterations, residual=solved.residual, notes=tuple(notes),
-            citations=citations_of(type(self), surface, material, *self.effects,
+            citations=citations_of(type(self), separation.mean_separation, surface, material,
                                    *(type(e) for e in self.effects)),
             scalar=scalar,
         )
@@ -249,7 +257,10 @@ def _solve(surface, material, cond: Conditions, grid: GridSettings, nu: float, g
     lv10 = np.log10(v)
     T0 = cond.temperature
     nv, nq = v.size, q.size
-    scale = 1.0 / ((1.0 - nu * nu) * cond.pressure)
+    pressure = np.broadcast_to(np.asarray(cond.pressure, dtype=float), v.shape)
+    if not np.all(np.isfinite(pressure)) or np.any(pressure <= 0):
+        raise InputError("pressure: the pressure on the asperity contact must stay > 0 Pa after the effects")
+    scale = np.ascontiguousarray(1.0 / ((1.0 - nu * nu) * pressure))
 
     if thermal is None:
         shifts = np.zeros((nv, nq))
