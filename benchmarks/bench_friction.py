@@ -1,0 +1,81 @@
+"""Timing of the friction engine: 100-speed curves, compile time and start-up with a warm numba cache.
+
+Run ``python benchmarks/bench_friction.py``. Prints a small table:
+
+* warm 100-speed curve (1e-8 .. 10 m/s, default grid), baseline and with flash temperature (median of repeats);
+* first call in a fresh process with an *empty* numba cache (compilation included);
+* first result in a fresh process with the numba cache warm (import + first call), which users see
+  on every run after the first.
+"""
+
+from __future__ import annotations
+
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+import textwrap
+import time
+
+SNIPPET = textwrap.dedent("""
+    import time
+    t0 = time.perf_counter()
+    import numpy as np
+    import materials, persson, surfaces
+    s = surfaces.SelfAffine(hurst=0.8, q0=2 * np.pi / 5e-3, q1=1e6, hrms=0.3e-3, qL=2 * np.pi / 0.05)
+    m = materials.example_tread()
+    effects = [persson.effects.FlashTemperature()] if {flash} else []
+    r = persson.Model(s, m, effects=effects).friction(np.geomspace(1e-8, 10.0, 100), temperature=20.0, pressure=0.3e6)
+    print(time.perf_counter() - t0)
+""")
+
+
+def warm_curve(flash: bool, repeats: int = 20) -> float:
+    """Median wall time, s, of a 100-speed curve after warm-up."""
+    import numpy as np
+
+    import materials
+    import persson
+    import surfaces
+
+    s = surfaces.SelfAffine(hurst=0.8, q0=2 * np.pi / 5e-3, q1=1e6, hrms=0.3e-3, qL=2 * np.pi / 0.05)
+    model = persson.Model(s, materials.example_tread(),
+                          effects=[persson.effects.FlashTemperature()] if flash else [])
+    v = np.geomspace(1e-8, 10.0, 100)
+    model.friction(v, temperature=20.0, pressure=0.3e6)
+    times = []
+    for _ in range(repeats):
+        t = time.perf_counter()
+        model.friction(v, temperature=20.0, pressure=0.3e6)
+        times.append(time.perf_counter() - t)
+    return statistics.median(times)
+
+
+def fresh_process(flash: bool, cache_dir: str) -> float:
+    """Wall time, s, from interpreter start to the first result in a new process using ``cache_dir``."""
+    env = dict(os.environ, NUMBA_CACHE_DIR=cache_dir)
+    t = time.perf_counter()
+    subprocess.run([sys.executable, "-c", SNIPPET.format(flash=flash)], check=True, env=env,
+                   capture_output=True, text=True)
+    return time.perf_counter() - t
+
+
+def main() -> None:
+    rows = []
+    with tempfile.TemporaryDirectory() as cache:
+        for flash in (False, True):
+            label = "flash temperature" if flash else "baseline"
+            cold = fresh_process(flash, cache)  # empty cache: compiles and writes it
+            warm_start = fresh_process(flash, cache)  # cache warm
+            rows.append((label, warm_curve(flash), cold, warm_start))
+    print(f"{'100-speed curve':<20} {'warm call (ms)':>15} {'first process, cold cache (s)':>31} "
+          f"{'new process, warm cache (s)':>29}")
+    for label, warm, cold, start in rows:
+        print(f"{label:<20} {warm * 1e3:>15.1f} {cold:>31.2f} {start:>29.2f}")
+    print(f"(numba {__import__('numba').__version__}, {os.cpu_count()} cores, "
+          f"NUMBA_NUM_THREADS={os.environ.get('NUMBA_NUM_THREADS', 'default')})")
+
+
+if __name__ == "__main__":
+    main()

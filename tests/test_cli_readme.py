@@ -1,0 +1,94 @@
+"""The command line and the README's promises."""
+
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from persson.cli import main
+
+ROOT = Path(__file__).resolve().parents[1]
+
+CASE = """
+name = "cli-test"
+[surface]
+example = "road"
+[material]
+example = "tread"
+[model]
+gamma = 0.5
+effects = ["flash_temperature", "adhesion"]
+[model.adhesion]
+tau_f0 = 1.0e6
+[conditions]
+speed_range_m_s = [1e-4, 1.0, 5]
+temperature_C = 25.0
+pressure_Pa = 0.4e6
+"""
+
+
+def test_help_lists_the_commands(capsys):
+    with pytest.raises(SystemExit) as exc:
+        main(["--help"])
+    assert exc.value.code == 0
+    out = capsys.readouterr().out
+    for name in ("demo", "friction"):
+        assert name in out
+
+
+def test_python_dash_m_runs_the_cli():
+    out = subprocess.run([sys.executable, "-m", "persson", "--help"], capture_output=True, text=True, check=True)
+    assert "friction" in out.stdout
+
+
+def test_friction_command_writes_csv_matching_the_api(tmp_path, capsys):
+    case = tmp_path / "case.toml"
+    case.write_text(CASE)
+    out = tmp_path / "out.csv"
+    assert main(["friction", str(case), "-o", str(out), "--plot"]) == 0
+    printed = capsys.readouterr().out
+    assert str(out.resolve()) in printed and out.with_suffix(".png").is_file()
+    lines = [ln for ln in out.read_text().splitlines() if not ln.startswith("#")]
+    data = np.genfromtxt(lines, delimiter=",", names=True)
+    import materials
+    import persson
+    import surfaces
+
+    model = persson.Model(surfaces.example_road(), materials.example_tread(), gamma=0.5,
+                          effects=[persson.effects.FlashTemperature(), persson.effects.Adhesion(tau_f0=1e6)])
+    r = model.friction(np.geomspace(1e-4, 1.0, 5), temperature=25.0, pressure=0.4e6)
+    np.testing.assert_allclose(data["mu"], r.mu, rtol=1e-12)
+    np.testing.assert_allclose(data["contact_area"], r.contact_area, rtol=1e-12)
+    assert np.all(data["mu_adhesion"] > 0)
+
+
+@pytest.mark.parametrize("text, word", [
+    ("name='x'\n[material]\nexample='tread'\n", "surface"),
+    ("[surface]\npsd='missing.csv'\n[material]\nexample='tread'\n", "missing.csv"),
+    ("[surface]\nexample='road'\n[material]\nexample='tread'\n[model]\neffects=['nonsense']\n", "nonsense"),
+    ("[surface\nexample='road'\n", "TOML"),
+])
+def test_bad_case_files_give_a_clear_error(tmp_path, capsys, text, word):
+    case = tmp_path / "case.toml"
+    case.write_text(text)
+    assert main(["friction", str(case), "-o", str(tmp_path / "o.csv")]) == 2
+    err = capsys.readouterr().err
+    assert word in err and "case.toml" in err
+    assert not (tmp_path / "o.csv").exists()
+
+
+def test_readme_script_runs():
+    text = (ROOT / "README.md").read_text()
+    block = re.search(r"```python\n(.*?)```", text, re.S).group(1)
+    exec(compile(block, "README.md", "exec"), {})
+
+
+def test_readme_quick_start_commands_are_what_ci_runs():
+    text = (ROOT / "README.md").read_text()
+    ci = (ROOT / ".ci" / "run").read_text()
+    assert 'pip install -e . && persson demo' in text and 'pip install -e ".[test]" && pytest' in text
+    assert "pip install -e . && (cd \"$workdir\" && persson demo)" in ci
+    assert 'pip install -e ".[test]" && pytest' in ci
