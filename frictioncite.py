@@ -43,8 +43,27 @@ REFERENCES: dict[str, str] = {
     "10.1021/ja01619a008": "M. L. Williams, R. F. Landel, J. D. Ferry, The temperature dependence of "
     "relaxation mechanisms in amorphous polymers and other glass-forming liquids, J. Am. Chem. Soc. 77, "
     "3701 (1955).",
-    "10.1007/s11249-016-0665-z": "T. D. B. Jacobs, T. Junge, L. Pastewka, Quantitative characterization of "
+    "10.1088/2051-672X/aa51f8": "T. D. B. Jacobs, T. Junge, L. Pastewka, Quantitative characterization of "
     "surface topography using spectral analysis, Surf. Topogr.: Metrol. Prop. 5, 013001 (2017).",
+    "10.1016/j.apsadv.2021.100190": "A. Sanner, W. G. Nöhring, L. A. Thimons, T. D. B. Jacobs, L. Pastewka, "
+    "Scale-dependent roughness parameters for topography analysis, Appl. Surf. Sci. Adv. 7, 100190 (2022).",
+    "10.5254/1.3547607": "M. Klüppel, G. Heinrich, Rubber friction on self-affine road tracks, Rubber Chem. "
+    "Technol. 73, 578 (2000).",
+    "iso:13473-1:2019": "ISO 13473-1:2019, Characterization of pavement texture by use of surface profiles - "
+    "Part 1: Determination of mean profile depth.",
+    "isbn:9780080970165": "H. B. Pacejka, Tire and Vehicle Dynamics, 3rd ed., Butterworth-Heinemann, Oxford "
+    "(2012): brush model (ch. 3), Magic Formula (ch. 4).",
+    "10.1080/00423119208969994": "H. B. Pacejka, E. Bakker, The Magic Formula tyre model, Vehicle System "
+    "Dynamics 21 (sup1), 1 (1992).",
+    "sakai:ijvd-1981": "H. Sakai, Theoretical and experimental studies on the dynamic properties of tyres, "
+    "Parts 1-4, Int. J. Vehicle Design 2 (1981).",
+    "piarc:01.04.T-1995": "PIARC, International PIARC Experiment to Compare and Harmonize Texture and Skid "
+    "Resistance Measurements, report 01.04.T, Paris (1995).",
+    "hal:hal-00851262": "M.-T. Do, P. Marsac, A. Mosset, Tribology approach to predict the variation of "
+    "tire/wet road friction with slip speed, 5th Symposium on Pavement Surface Characteristics (SURF 2004), "
+    "Toronto (2004), HAL hal-00851262.",
+    "rado:psu-phd-1994": "Z. Rado, A study of road surface texture and its relationship to friction, PhD "
+    "thesis, The Pennsylvania State University (1994).",
 }
 
 

@@ -29,7 +29,8 @@ with :math:`\mu(v_s)` the local sliding friction at the sliding speed :math:`v_s
 :math:`T_0` and the nominal pressure :math:`\sigma_0` (computed by a :class:`persson.Model` with its effects, or
 given as a function). Limits: for :math:`s \to 0`, :math:`\mu \approx k l s/(2\sigma_0)` (initial slope
 :math:`k l/(2\sigma_0)`); :math:`s = 1` gives pure sliding :math:`\mu(V)`. For a constant local friction and the
-parabolic pressure the closed form is :math:`\mu(s) = \mu\,(1 - \lambda^3)`, :math:`\lambda = \max(0, 1 - \theta/\theta_{sl})`,
+parabolic pressure the closed form is :math:`\mu(s) = \mu\,(1 - \lambda^3)`,
+:math:`\lambda = \max(0, 1 - \theta/\theta_{sl})`,
 :math:`\theta_{sl} = 6\mu\sigma_0/(k l)` (Pacejka's brush-model result; used by the tests as the reference).
 
 Numerics: the patch is discretised on ``Contact.n_points`` nodes. The stick/slide boundary :math:`x_c` is the first
@@ -151,6 +152,9 @@ class Contact:
         object.__setattr__(self, "_g", g / G[-1])
         object.__setattr__(self, "_G", G / G[-1])
         object.__setattr__(self, "_shape", shape)
+
+    def __hash__(self):
+        return hash((self.length, self.width, self.stiffness, repr(self.pressure_distribution), self.n_points))
 
     # ------------------------------------------------------------------------------------------------------
     @property
@@ -414,13 +418,17 @@ class SlipResult:
         return 1.0 - self.stick_fraction
 
     def peak(self, axis: int = 0):
-        """(peak mu, slip at peak) along ``axis`` (the axis over which the slip varies); see :func:`persson.tire.peak`."""
+        """(peak mu, slip at peak) along ``axis`` (the axis over which the slip varies).
+
+        See :func:`persson.tire.peak`.
+        """
         from .tire import peak
 
         return peak(np.asarray(self.slip), np.asarray(self.mu), axis=axis)
 
     def as_table(self) -> dict[str, np.ndarray]:
-        """Flat columns ``slip, speed_m_s, sliding_speed_m_s, mu, mu_local, stick_fraction, stick_length_m, force_N``."""
+        """Flat columns ``slip, speed_m_s, sliding_speed_m_s, mu, mu_local, stick_fraction, stick_length_m,
+        force_N``."""
         cols = {
             "slip": self.slip, "speed_m_s": self.speed, "sliding_speed_m_s": self.sliding_speed, "mu": self.mu,
             "mu_local": self.mu_local, "stick_fraction": self.stick_fraction, "stick_length_m": self.stick_length,
@@ -505,7 +513,7 @@ def mu_slip(model, slip, speed, *, temperature: float = 20.0, pressure: float = 
         slip=out(s_f), speed=out(V_f), sliding_speed=out(vs), mu=out(mu), mu_local=out(mu_loc),
         stick_length=out(xc * contact.length), stick_fraction=out(xc), force=out(mu * load), load=load,
         temperature=T0, pressure=sigma0, contact=contact, friction=fr, converged=converged, notes=notes,
-        citations=citations_of(mu_slip, contact, fr if fr is not None else ()),
+        citations=citations_of(mu_slip, contact.citations, fr if fr is not None else ()),
     )
 
 
@@ -665,8 +673,10 @@ def two_coefficient_map(n1, n2, *, sakai_n: float = 4.0, n_slip: int = 400, n_po
 
     With :math:`\mu_s = 1` the curve is :math:`n_2\theta\xi_c^2 + n_1[1 - G(\xi_c)]`, where the stick length
     :math:`\xi_c` (and the load fraction :math:`G(\xi_c)` ahead of it) depends on :math:`n_2\theta` only; the
-    maximum over s is searched on ``n_slip`` log-spaced slips in [1e-4, 1] and refined locally (41 slips, then a
-    parabola).
+    maximum over s is searched on ``n_slip`` log-spaced slips in [1e-4, 1] and refined locally (41 slips; the slip
+    of the peak then by a parabola through the three best). Because the curve depends on :math:`n_2\theta`
+    only, the peak ratio depends on :math:`n_1` (and n) alone and :math:`\theta_{peak} \propto 1/n_2`
+    (:math:`\theta = s/(1-s)`); the map shows it over the grid all the same.
 
     Parameters
     ----------
@@ -716,8 +726,8 @@ def two_coefficient_map(n1, n2, *, sakai_n: float = 4.0, n_slip: int = 400, n_po
     x = np.log(np.stack([np.take_along_axis(sf, (jm + d)[..., None], -1)[..., 0] for d in (-1, 0, 1)]))
     y = np.stack([np.take_along_axis(fine, (jm + d)[..., None], -1)[..., 0] for d in (-1, 0, 1)])
     xv, yv, ok = _parabola_vertex(x, y)
-    ok &= (jf >= 1) & (jf <= t.size - 2) & (yv >= best) & (yv <= best + 1e-6)
-    peak_ratio = np.where(ok, yv, best)
+    ok &= (jf >= 1) & (jf <= t.size - 2)
+    peak_ratio = best  # the curve is flat at its maximum: the fine-grid value is exact to ~(ds)^2
     slip_at_peak = np.where(ok, np.exp(xv), sbest)
     return BrushMap(n1=n1, n2=n2, peak_ratio=peak_ratio, slip_at_peak=np.minimum(slip_at_peak, 1.0),
                     locked_ratio=n1.copy(), sakai_n=float(sakai_n))

@@ -527,7 +527,9 @@ def piarc(speed, mu0, Sp):
 
 @doi(PIARC_1995)
 def piarc_ifi(S_km_h, F60, Sp_km_h):
-    r"""PIARC / IFI form :math:`F(S) = F_{60}\,e^{(60 - S)/S_p}`, slip speed S and Sp in km/h (F60: friction at 60 km/h).
+    r"""PIARC / IFI form :math:`F(S) = F_{60}\,e^{(60 - S)/S_p}`, slip speed S and Sp in km/h.
+
+    F60 is the friction at 60 km/h.
 
     Equal to :func:`piarc` with :math:`\mu_0 = F_{60} e^{60/S_p}` after converting the speeds to m/s.
     """

@@ -8,20 +8,57 @@ Two objects share one small interface used by the friction engine:
 
 Both expose ``C(q)``, ``hrms()``, ``rms_slope()``, ``moment(n)``, ``with_cutoff(...)`` and the support
 ``q_range = (q_start, q_end)`` over which the physics integrals run. ``C`` is zero outside the support.
+Both carry their cut-offs (:class:`Cutoffs`: qL, roll-off q0, reliability limit q_r, q1) and say whether the
+tail past q_r is measured or extrapolated. :func:`read_psd` and :meth:`PSD.to_csv` read and write the
+DESIGN.md PSD table (columns ``q`` in rad/m and ``C`` in m^4, ``#`` comments).
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
 from frictioncite import doi
 
+from ._util import atomic_write_text
 from .errors import InputError
 
-__all__ = ["SelfAffine", "PSD"]
+__all__ = ["SelfAffine", "PSD", "Cutoffs", "read_psd"]
+
+
+@dataclass(frozen=True)
+class Cutoffs:
+    """The cut-offs of a PSD (DESIGN.md), all in rad/m.
+
+    Attributes
+    ----------
+    qL : float or None
+        2 pi / L, L the longest wavelength measured (or the plateau start of a model).
+    q0 : float or None
+        Roll-off: the PSD is flat below q0 (None when unknown).
+    q_r : float or None
+        Reliability limit of the instrument (resolution, tip radius); None for an analytic model.
+    q1 : float
+        Short-distance cut-off used in the physics: the end of the support.
+    extrapolated : bool
+        True when the part of the PSD beyond ``q_r`` up to ``q1`` is an extrapolation, not a measurement.
+    """
+
+    qL: float | None
+    q0: float | None
+    q_r: float | None
+    q1: float
+    extrapolated: bool
+
+    def describe(self) -> str:
+        """One line for reports, e.g. ``qL=62.8, q0=1e3, q_r=8.4e4, q1=1e7 rad/m (tail extrapolated past q_r)``."""
+        parts = [f"{k}={v:.4g}" for k, v in (("qL", self.qL), ("q0", self.q0), ("q_r", self.q_r), ("q1", self.q1))
+                 if v is not None]
+        tail = " (tail extrapolated past q_r)" if self.extrapolated else " (tail measured)"
+        return ", ".join(parts) + " rad/m" + tail
 
 
 @doi("10.1088/0953-8984/17/1/R01")
@@ -111,6 +148,36 @@ class SelfAffine:
         return SelfAffine(self.hurst, self.q0 if q0 is None else q0, self.q1 if q1 is None else q1,
                           C0=self.C0, qL=self.qL if (q0 is None or self.qL is None or self.qL <= q0) else None)
 
+    @property
+    def q_r(self) -> None:
+        """Reliability limit: None, an analytic model has no instrument."""
+        return None
+
+    @property
+    def extrapolated(self) -> bool:
+        """False: the analytic power law is the model itself, nothing is extrapolated."""
+        return False
+
+    @property
+    def source(self) -> str:
+        """Short description of the model."""
+        return f"SelfAffine(H={self.hurst:g}, q0={self.q0:g}, q1={self.q1:g}, C0={self.C0:.4g}, qL={self.qL})"
+
+    @property
+    def cutoffs(self) -> Cutoffs:
+        """The cut-offs (qL, roll-off q0, q_r = None, q1)."""
+        return Cutoffs(qL=self.qL, q0=self.q0, q_r=None, q1=self.q1, extrapolated=False)
+
+    def extrapolate(self, q1: float, hurst: float | None = None) -> "SelfAffine":
+        """The same model up to ``q1`` (an analytic power law extends itself; ``hurst`` must match if given)."""
+        if hurst is not None and abs(float(hurst) - self.hurst) > 1e-12:
+            raise InputError(f"hurst: a SelfAffine extends with its own H = {self.hurst:g}, got {hurst!r}")
+        return self.with_cutoff(q1=q1)
+
+    def to_csv(self, path, n_per_decade: int = 64) -> "Path":
+        """Write the tabulated model as a PSD table (see :meth:`PSD.to_csv`)."""
+        return self.tabulate(n_per_decade).to_csv(path)
+
     def tabulate(self, n_per_decade: int = 64) -> "PSD":
         """Tabulated copy on a log grid over the support (the power-law part exactly interpolated)."""
         lo, hi = self.q_range
@@ -118,7 +185,7 @@ class SelfAffine:
         q = np.geomspace(lo, hi, n)
         if self.qL is not None and self.qL < self.q0:
             q = np.union1d(q, [self.q0])
-        return PSD(q, self.C(q))
+        return PSD(q, self.C(q), source=self.source, qL=self.qL, q_rolloff=self.q0, hurst=self.hurst)
 
 
 @dataclass(frozen=True, eq=False)
@@ -135,6 +202,20 @@ class PSD:
         Reliability limit of the instrument, rad/m; past it the tail is extrapolated.
     extrapolated : bool
         True when part of the table beyond ``q_r`` is an extrapolation, not a measurement.
+    source : str
+        Where the table comes from (file, measurement, model), for messages and reports.
+    qL : float, optional
+        2 pi / L of the measurement (longest wavelength measured), rad/m.
+    q_rolloff : float, optional
+        Roll-off wavevector (PSD flat below), rad/m, when known (e.g. from :func:`surfaces.fit_rolloff`).
+        Not to be confused with :attr:`q0`, the first q of the table.
+    hurst : float, optional
+        Hurst exponent of the tail (the one used to extrapolate, when ``extrapolated``).
+
+    Notes
+    -----
+    The moments are exact for the log-log interpolant:
+    :math:`m_n = 2\pi\int q^n C(q)\,dq`, :math:`h_{rms}^2 = m_1`, rms slope :math:`\xi^2 = m_3`.
     """
 
     q: np.ndarray
@@ -142,8 +223,12 @@ class PSD:
     q_r: float | None = None
     extrapolated: bool = False
     source: str = ""
+    qL: float | None = None
+    q_rolloff: float | None = None
+    hurst: float | None = None
 
-    def __init__(self, q, C, q_r: float | None = None, extrapolated: bool = False, source: str = ""):
+    def __init__(self, q, C, q_r: float | None = None, extrapolated: bool = False, source: str = "", *,
+                 qL: float | None = None, q_rolloff: float | None = None, hurst: float | None = None):
         q = np.array(q, dtype=float, copy=True).ravel()
         C = np.array(C, dtype=float, copy=True).ravel()
         where = f" ({source})" if source else ""
@@ -155,9 +240,14 @@ class PSD:
         if (q <= 0).any():
             raise InputError(f"PSD{where}: column q must be > 0 rad/m (row {int(np.argmax(q <= 0))})")
         if (np.diff(q) <= 0).any():
-            raise InputError(f"PSD{where}: column q must be strictly increasing (row {int(np.argmax(np.diff(q) <= 0)) + 1})")
+            row = int(np.argmax(np.diff(q) <= 0)) + 1
+            raise InputError(f"PSD{where}: column q must be strictly increasing (row {row})")
         if (C <= 0).any():
             raise InputError(f"PSD{where}: column C must be > 0 m^4 (row {int(np.argmax(C <= 0))})")
+        if hurst is not None:
+            hurst = _finite_float(hurst, "hurst")
+            if not 0.0 < hurst < 1.0 + 1e-12:
+                raise InputError(f"hurst: expected 0 < H <= 1, got {hurst:g}")
         q.setflags(write=False)
         C.setflags(write=False)
         object.__setattr__(self, "q", q)
@@ -165,6 +255,9 @@ class PSD:
         object.__setattr__(self, "q_r", None if q_r is None else _positive(q_r, "q_r"))
         object.__setattr__(self, "extrapolated", bool(extrapolated))
         object.__setattr__(self, "source", str(source))
+        object.__setattr__(self, "qL", None if qL is None else _positive(qL, "qL"))
+        object.__setattr__(self, "q_rolloff", None if q_rolloff is None else _positive(q_rolloff, "q_rolloff"))
+        object.__setattr__(self, "hurst", hurst)
 
     @property
     def q0(self) -> float:
@@ -180,6 +273,11 @@ class PSD:
     def q_range(self) -> tuple[float, float]:
         """Support (q_start, q_end), rad/m."""
         return (self.q0, self.q1)
+
+    @property
+    def cutoffs(self) -> Cutoffs:
+        """The cut-offs: qL, roll-off (``q_rolloff``), reliability limit q_r, q1 = last q, and ``extrapolated``."""
+        return Cutoffs(qL=self.qL, q0=self.q_rolloff, q_r=self.q_r, q1=self.q1, extrapolated=self.extrapolated)
 
     def C(self, q):
         """PSD at ``q`` (rad/m), log-log interpolation, zero outside the table."""
@@ -203,7 +301,7 @@ class PSD:
 
     def with_cutoff(self, q0: float | None = None, q1: float | None = None) -> "PSD":
         """The table restricted to ``[q0, q1]`` (end points interpolated). Extending past the table is not
-        done here; see the surfaces cut-off tools for tail extrapolation."""
+        done here; see :meth:`extrapolate` for tail extrapolation."""
         lo = self.q0 if q0 is None else _positive(q0, "q0")
         hi = self.q1 if q1 is None else _positive(q1, "q1")
         if not hi > lo:
@@ -213,7 +311,157 @@ class PSD:
                              "extrapolate the tail explicitly")
         inner = self.q[(self.q > lo) & (self.q < hi)]
         q = np.concatenate([[lo], inner, [hi]])
-        return PSD(q, self.C(q), q_r=self.q_r, extrapolated=self.extrapolated, source=self.source)
+        # The extrapolated part lies past q_r: cutting below q_r leaves only measured data.
+        still_extrapolated = self.extrapolated and (self.q_r is None or hi > self.q_r * (1 + 1e-9))
+        return PSD(q, self.C(q), q_r=self.q_r, extrapolated=still_extrapolated, source=self.source,
+                   qL=self.qL, q_rolloff=self.q_rolloff, hurst=self.hurst)
+
+    @doi("10.1088/0953-8984/17/1/R01")
+    def extrapolate(self, q1: float, hurst: float | None = None, fit_band: tuple[float, float] | None = None,
+                    n_per_decade: int = 32) -> "PSD":
+        r"""Extend the self-affine tail past the reliability limit to ``q1``.
+
+        Beyond :math:`q_s` (``q_r`` when the table reaches past it, else the last q of the table) the
+        table is replaced by the power law of a self-affine fractal (Persson et al. 2005, Eq. 10)
+
+        .. math:: C(q) = C(q_s)\,(q/q_s)^{-2(1+H)}, \qquad q_s < q \le q_1 .
+
+        Parameters
+        ----------
+        q1 : float
+            New short-distance cut-off, rad/m. If ``q1`` is not past ``q_s`` this is :meth:`with_cutoff`.
+        hurst : float, optional
+            Hurst exponent of the tail. Default: fitted (log-log least squares) on ``fit_band``.
+        fit_band : (float, float), optional
+            Band (rad/m) for the fit of H; default the last decade below ``q_s``.
+        n_per_decade : int
+            Points per decade of the new tail.
+
+        Returns
+        -------
+        PSD
+            With ``q_r`` = ``q_s``, ``extrapolated=True`` and ``hurst`` recorded.
+        """
+        q1 = _positive(q1, "q1")
+        q_s = self.q1 if self.q_r is None else min(self.q_r, self.q1)
+        if q1 <= q_s * (1 + 1e-9):
+            return self.with_cutoff(q1=q1)
+        if hurst is None:
+            lo, hi = fit_band if fit_band is not None else (q_s / 10.0, q_s)
+            from .cutoffs import fit_self_affine  # cutoffs imports this module: import on use
+
+            hurst = fit_self_affine(self, q_min=max(lo, self.q0), q_max=min(hi, q_s)).hurst
+        H = _finite_float(hurst, "hurst")
+        if not 0.0 < H <= 1.0:
+            raise InputError(f"hurst: expected 0 < H <= 1 for the extrapolated tail, got {H:g}")
+        measured = self.with_cutoff(q1=q_s) if q_s < self.q1 else self
+        n = max(2, int(math.ceil(n_per_decade * math.log10(q1 / q_s))) + 1)
+        q_tail = np.geomspace(q_s, q1, n)[1:]
+        C_tail = measured.C_values[-1] * (q_tail / q_s) ** (-2.0 * (1.0 + H))
+        return PSD(np.concatenate([measured.q, q_tail]), np.concatenate([measured.C_values, C_tail]), q_r=q_s,
+                   extrapolated=True, source=self.source, qL=self.qL, q_rolloff=self.q_rolloff, hurst=H)
+
+    def to_csv(self, path) -> Path:
+        """Write the DESIGN.md PSD table (``q,C`` with ``#`` metadata comments), atomically.
+
+        The comments record ``source``, ``q_r``, ``extrapolated``, ``qL``, ``q_rolloff`` and ``hurst``;
+        :func:`read_psd` reads them back.
+
+        Returns
+        -------
+        pathlib.Path
+            The path written.
+        """
+        meta = {"source": self.source.replace("\n", " "), "q_r": self.q_r, "extrapolated": self.extrapolated,
+                "qL": self.qL, "q_rolloff": self.q_rolloff, "hurst": self.hurst}
+        lines = ["# surfaces PSD table: 2D isotropic, Persson convention; q in rad/m, C in m^4"]
+        lines += [f"# {k}: {v}" for k, v in meta.items() if v is not None and v != ""]
+        lines.append("q,C")
+        lines += [f"{a:.17g},{b:.17g}" for a, b in zip(self.q, self.C_values)]
+        return atomic_write_text(path, "\n".join(lines) + "\n")
+
+
+def read_psd(path) -> PSD:
+    """Read a PSD table (DESIGN.md): CSV with columns ``q`` (rad/m) and ``C`` (m^4), ``#`` comments.
+
+    Comments of the form ``# key: value`` written by :meth:`PSD.to_csv` (``q_r``, ``extrapolated``, ``qL``,
+    ``q_rolloff``, ``hurst``, ``source``) are read back; other comments and extra columns are ignored.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The CSV file.
+
+    Returns
+    -------
+    PSD
+
+    Raises
+    ------
+    InputError
+        Missing file, no header, missing column ``q`` or ``C``, a non-numeric or non-positive value,
+        q not strictly increasing: the message names the file, column and line.
+    """
+    path = Path(path)
+    if not path.is_file():
+        raise InputError(f"{path}: PSD table not found")
+    meta: dict[str, str] = {}
+    header: list[str] | None = None
+    rows: list[tuple[int, list[str]]] = []
+    with open(path, encoding="utf-8", errors="replace") as fh:
+        for lineno, line in enumerate(fh, start=1):
+            text = line.strip()
+            if not text:
+                continue
+            if text.startswith("#"):
+                key, sep, value = text[1:].partition(":")
+                if sep:
+                    meta[key.strip()] = value.strip()
+                continue
+            fields = [f.strip() for f in text.split(",")]
+            if header is None:
+                header = fields
+            else:
+                rows.append((lineno, fields))
+    if header is None:
+        raise InputError(f"{path}: empty PSD table (no header row; expected columns q, C)")
+    cols = {}
+    for name in ("q", "C"):
+        if name not in header:
+            raise InputError(f"{path}: missing column {name!r} (found {header}); expected columns q (rad/m), C (m^4)")
+        cols[name] = header.index(name)
+    if len(rows) < 2:
+        raise InputError(f"{path}: expected at least 2 data rows, found {len(rows)}")
+    values = {}
+    for name, j in cols.items():
+        out = np.empty(len(rows))
+        for i, (lineno, fields) in enumerate(rows):
+            try:
+                out[i] = float(fields[j])
+            except (IndexError, ValueError):
+                got = fields[j] if j < len(fields) else "<missing>"
+                raise InputError(f"{path}, line {lineno}, column {name}: expected a number, got {got!r}") from None
+            if not (math.isfinite(out[i]) and out[i] > 0):
+                unit = "rad/m" if name == "q" else "m^4"
+                raise InputError(f"{path}, line {lineno}, column {name}: expected a finite value > 0 {unit}, "
+                                 f"got {fields[j]!r}")
+        values[name] = out
+    bad = np.flatnonzero(np.diff(values["q"]) <= 0)
+    if bad.size:
+        raise InputError(f"{path}, line {rows[bad[0] + 1][0]}, column q: q must be strictly increasing")
+
+    def num(key):
+        if key not in meta or meta[key] in ("", "None"):
+            return None
+        try:
+            return float(meta[key])
+        except ValueError:
+            raise InputError(f"{path}: comment '# {key}: {meta[key]}' is not a number") from None
+
+    extrapolated = meta.get("extrapolated", "False").strip().lower() in ("true", "1", "yes")
+    return PSD(values["q"], values["C"], q_r=num("q_r"), extrapolated=extrapolated,
+               source=meta.get("source") or str(path), qL=num("qL"), q_rolloff=num("q_rolloff"),
+               hurst=num("hurst"))
 
 
 def _powerlaw_segments_integral(q: np.ndarray, C: np.ndarray, n: int) -> np.ndarray:

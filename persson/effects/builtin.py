@@ -162,9 +162,9 @@ class Microtexture(Effect):
 
     .. math:: C(q) = C(q_r) (q / q_r)^{-2(1 + H)},\qquad q_r < q \le q_1
 
-    (self-affine fractal PSD, Persson et al., J. Phys.: Condens. Matter 17, R1 (2005), Eq. 10). H is
-    fitted on the last decade below q_r (or the table end) by least squares in log-log, unless given.
-    For a :class:`surfaces.SelfAffine` the power law is simply continued.
+    (self-affine fractal PSD, Persson et al., J. Phys.: Condens. Matter 17, R1 (2005), Eq. 10), through
+    :meth:`surfaces.PSD.extrapolate`: H is fitted on the last decade below q_r (or the table end) by least
+    squares in log-log, unless given. A :class:`surfaces.SelfAffine` continues its own power law.
 
     Parameters
     ----------
@@ -184,42 +184,15 @@ class Microtexture(Effect):
     hurst: float = 0.0
 
     def transform_surface(self, surface, conditions):
-        import surfaces
-
         lo, hi = (float(x) for x in surface.q_range)
         if self.q1 <= hi * (1 + 1e-12):
             return surface.with_cutoff(q1=self.q1) if self.q1 > lo else surface
-        if isinstance(surface, surfaces.SelfAffine) and self.hurst == 0.0:
-            return surface.with_cutoff(q1=self.q1)
-        if isinstance(surface, surfaces.SelfAffine):
-            surface = surface.tabulate()
-        q = np.asarray(surface.q, dtype=float)
-        Cq = np.asarray(surface.C_values, dtype=float)
-        q_r = getattr(surface, "q_r", None) or hi
-        q_r = min(q_r, hi)
-        H = self.hurst if self.hurst > 0 else fit_tail_hurst(q, Cq, q_r)
-        keep = q <= q_r * (1 + 1e-12)
-        C_r = float(surface.C(q_r))
-        n_new = max(2, int(math.ceil(16 * math.log10(self.q1 / q_r))) + 1)
-        q_new = np.geomspace(q_r, self.q1, n_new)[1:]
-        C_new = C_r * (q_new / q_r) ** (-2 * (1 + H))
-        q_all = np.concatenate([q[keep], q_new])
-        C_all = np.concatenate([Cq[keep], C_new])
-        return surfaces.PSD(q_all, C_all, q_r=q_r, extrapolated=True,
-                            source=f"{getattr(surface, 'source', '')} + microtexture tail H={H:.3f}")
-
-
-def fit_tail_hurst(q: np.ndarray, C: np.ndarray, q_r: float) -> float:
-    """Hurst exponent from a log-log least-squares fit of C(q) on the decade below ``q_r``."""
-    sel = (q >= q_r / 10) & (q <= q_r * (1 + 1e-12))
-    if sel.sum() < 3:
-        sel = np.arange(q.size) >= max(0, q.size - 5)
-    slope = np.polyfit(np.log(q[sel]), np.log(C[sel]), 1)[0]
-    H = -slope / 2.0 - 1.0
-    if not 0.0 < H < 1.0:
-        raise InputError(f"microtexture: the fitted tail slope {slope:.3g} gives H = {H:.3g} outside (0, 1); "
-                         "give hurst= explicitly")
-    return float(H)
+        if not hasattr(surface, "extrapolate"):
+            raise InputError(f"microtexture: the surface {type(surface).__name__} cannot extrapolate its tail")
+        try:
+            return surface.extrapolate(self.q1, hurst=self.hurst if self.hurst > 0 else None)
+        except ValueError as exc:
+            raise InputError(f"microtexture: {exc}; give hurst= explicitly") from None
 
 
 @dataclass(frozen=True)
