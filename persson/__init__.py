@@ -6,7 +6,7 @@ Effects (:mod:`persson.effects`) add physics on top of the baseline; :mod:`perss
 into friction vs slip ratio; :mod:`persson.sweeps` runs band and parameter studies.
 """
 
-from . import effects, slip, tire
+from . import effects, slip, sweeps, tire
 from .errors import ConvergenceWarning, InputError
 from .grid import GridSettings
 from .model import Model
@@ -15,4 +15,4 @@ from .results import FrictionResult
 __version__ = "0.1.0"
 
 __all__ = ["Model", "FrictionResult", "GridSettings", "InputError", "ConvergenceWarning", "effects", "slip",
-           "tire", "__version__"]
+           "sweeps", "tire", "__version__"]

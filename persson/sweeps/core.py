@@ -4,8 +4,10 @@ from __future__ import annotations
 
 import itertools
 import math
+import threading
 import time
-from dataclasses import dataclass, field
+import warnings
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -27,6 +29,11 @@ OUTPUTS = ("mu", "mu_hysteresis", "mu_adhesion", "contact_area")
 BAND_MODES = ("restrict", "separate", "both")
 
 _CHECKPOINT_INTERVAL_S = 2.0
+# warnings.catch_warnings swaps process-wide state (not thread-safe before Python 3.14): tasks running in threads
+# of one process (Dask worker threads, a thread pool) and the re-issuing of their warnings take this lock, so
+# that each task records only its own warnings and none is lost. Each task is parallel inside (numba, over the
+# speeds), so the cores stay busy.
+_WARNINGS_LOCK = threading.RLock()
 
 
 def grid(model, params=None, *, speed=1.0, temperature: float = 20.0, pressure: float = 0.3e6,
@@ -60,7 +67,9 @@ def grid(model, params=None, *, speed=1.0, temperature: float = 20.0, pressure: 
     scheduler : None, "serial", "processes", str or distributed.Client or Executor
         Where the tasks run: serially (default), local processes, a Dask scheduler address
         (``"tcp://host:8786"``) or a ``distributed.Client``, or any :class:`concurrent.futures.Executor`.
-        The results are identical.
+        The results are identical. Local processes are started with ``spawn`` (``fork`` is unsafe once
+        numba's OpenMP threads run), so a script using them needs the usual ``if __name__ == "__main__":``
+        guard, as with any multiprocessing or Dask code.
     workers : int, optional
         Number of processes for ``scheduler="processes"`` (default: CPU count).
     progress : None, bool or callable
@@ -77,7 +86,8 @@ def grid(model, params=None, *, speed=1.0, temperature: float = 20.0, pressure: 
         ``speed_m_s``, ``temperature_C``, ``pressure_Pa``; with bands ``mode`` (``total``, ``restrict`` or
         ``separate``), ``band`` (-1 for the total), ``q_low``, ``q_high`` (rad/m); with ``"continuous"``
         ``q`` and ``dmu_dlog10q``; then ``mu``, ``mu_hysteresis``, ``mu_adhesion``, ``contact_area``, with
-        bands ``fraction`` (band mu_hysteresis / total mu_hysteresis of the point and speed),
+        bands ``fraction`` (band mu_hysteresis / total mu_hysteresis of the point and speed; NaN where that
+        total is 0, and in a partial table for ``separate`` rows whose point's total had not finished),
         ``max_flash_temperature_K`` and ``converged``. Rows are in task order whatever the scheduler.
 
         Band rows: in ``restrict`` rows ``mu_hysteresis`` is the band's share of the full surface's hysteresis
@@ -226,7 +236,24 @@ class _Task:
 
 
 def _run_task(task: _Task) -> dict:
-    """Compute one task (runs in a worker): returns {"columns": {...}, "notes": (...)}."""
+    """Compute one task (runs in a worker): {"columns": {...}, "notes": (...), "warnings": ((category, text),)}.
+
+    Warnings raised by the engine are recorded and re-issued in the calling process, so a sweep on a cluster
+    warns as a serial one does.
+    """
+    with _WARNINGS_LOCK, warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        out = _compute(task)
+    seen = []
+    for w in caught:
+        item = (w.category, str(w.message))
+        if item not in seen:
+            seen.append(item)
+    out["warnings"] = tuple(seen)
+    return out
+
+
+def _compute(task: _Task) -> dict:
     v = task.speeds
     nv = v.size
     if task.role == "separate":
@@ -333,21 +360,32 @@ def _assemble(tasks, results: dict, header: tuple, model_cols, partial: bool) ->
         for note in results[i]["notes"]:
             if note not in notes:
                 notes.append(note)
-    comments = header + tuple(f"note: {n}" for n in notes)
+    warned = []
+    for i in done:
+        for _, text in results[i].get("warnings", ()):
+            if text not in warned:
+                warned.append(text)
+    comments = header + tuple(f"note: {n}" for n in notes) + tuple(f"warning: {w}" for w in warned)
     if partial and len(done) < len(tasks):
         comments += (f"PARTIAL: {len(done)} of {len(tasks)} tasks finished (sweep interrupted or failed)",)
     return Table(cols, comments)
 
 
 class _Checkpoint:
-    """Rewrites the checkpoint CSV atomically as tasks finish (throttled)."""
+    """As tasks finish: re-issues their warnings here and rewrites the checkpoint CSV atomically (throttled)."""
 
     def __init__(self, path, tasks, results, header, model_cols):
         self.path = None if path is None else Path(path)
         self.tasks, self.results, self.header, self.model_cols = tasks, results, header, model_cols
         self.last = time.monotonic()
+        self.warned: list = []
 
     def update(self, i, res):
+        for category, text in res.get("warnings", ()):
+            if (category, text) not in self.warned:
+                self.warned.append((category, text))
+                with _WARNINGS_LOCK:
+                    warnings.warn(f"sweep {_describe(self.tasks[i])}: {text}", category, stacklevel=5)
         if self.path is None:
             return
         now = time.monotonic()
@@ -359,6 +397,14 @@ class _Checkpoint:
         if self.path is None or len(table) == 0:
             return None
         return table.to_csv(self.path)
+
+
+def _describe(task: _Task) -> str:
+    text = f"point {task.point}" + "".join(f", {k} = {v:g}" for k, v in task.inputs.items())
+    text += f", T = {task.temperature:g} C, p = {task.pressure:g} Pa"
+    if task.role == "separate":
+        text += f", band {task.band} [{task.q_low:.4g}, {task.q_high:.4g}] rad/m as a surface of its own"
+    return text
 
 
 def _parse_params(params) -> dict:

@@ -226,8 +226,6 @@ def _replace(obj, field_name: str, value, name: str):
         raise InputError(f"params: {name!r} is not a numeric parameter (it holds {type(current).__name__})")
     try:
         return dataclasses.replace(obj, **{field_name: _like(current, value, name)})
-    except InputError as exc:
-        raise InputError(f"params: {name!r} = {value:g}: {exc}") from None
     except (TypeError, ValueError) as exc:
         raise InputError(f"params: {name!r} cannot be set on {type(obj).__name__}: {exc}") from None
 
@@ -297,7 +295,7 @@ def _set_surface(model, s, attr: str, value: float, name: str):
         if attr in ("q0", "q1") and hasattr(s, "with_cutoff"):
             return s.with_cutoff(**{attr: value})
         return _replace_path(model, s, attr.split("."), value, name)
-    except InputError as exc:
-        if str(exc).startswith("params:"):
+    except ValueError as exc:  # the InputErrors of surfaces, materials and persson all subclass ValueError
+        if isinstance(exc, InputError) and str(exc).startswith("params:"):
             raise
         raise InputError(f"params: {name!r} = {value:g}: {exc}") from None
