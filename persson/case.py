@@ -13,7 +13,6 @@ to the file's folder. Sections beyond DESIGN.md that this reader accepts:
 
 from __future__ import annotations
 
-import math
 import sys
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -263,10 +262,3 @@ def _file(base: Path, name, path: Path, key: str) -> Path:
     if not f.is_file():
         raise InputError(f"{path}: {key} file {f} does not exist")
     return f
-
-
-def _finite(x, name):
-    x = float(x)
-    if not math.isfinite(x):
-        raise InputError(f"{name}: expected a finite number")
-    return x

@@ -22,11 +22,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from frictioncite import citations_of, doi
-
 from scipy import integrate
 
+from frictioncite import citations_of, doi
+
 from . import _kernels, separation
+from ._checks import number
 from .effects.base import Conditions, Effect, SolverState
 from .errors import ConvergenceWarning, InputError
 from .grid import GridSettings
@@ -77,10 +78,10 @@ class Model:
     grid: GridSettings = field(default_factory=GridSettings)
 
     def __post_init__(self):
-        nu = _finite(self.nu, "nu")
+        nu = number(self.nu, "nu")
         if not 0.0 <= nu <= 0.5:
             raise InputError(f"nu: expected a Poisson ratio in [0, 0.5], got {nu}")
-        gamma = _finite(self.gamma, "gamma")
+        gamma = number(self.gamma, "gamma")
         if not 0.0 <= gamma <= 1.0:
             raise InputError(f"gamma: expected a value in [0, 1], got {gamma}")
         if not (hasattr(self.surface, "C") and hasattr(self.surface, "q_range")):
@@ -124,8 +125,8 @@ class Model:
         FrictionResult
         """
         v, scalar = _speeds(speed)
-        T0 = _finite(temperature, "temperature")
-        sigma0 = _finite(pressure, "pressure")
+        T0 = number(temperature, "temperature")
+        sigma0 = number(pressure, "pressure")
         if sigma0 <= 0:
             raise InputError(f"pressure: expected a nominal pressure > 0 Pa, got {sigma0:g}")
         cond = Conditions(speed=v, temperature=T0, pressure=sigma0, nominal_pressure=sigma0)
@@ -317,13 +318,3 @@ def _speeds(speed) -> tuple[np.ndarray, bool]:
         raise InputError(f"speed: expected speeds > 0 m/s, got {v[np.argmax(v <= 0)]:g} at index "
                          f"{int(np.argmax(v <= 0))}")
     return np.ascontiguousarray(v), scalar
-
-
-def _finite(value, name: str) -> float:
-    try:
-        x = float(value)
-    except (TypeError, ValueError):
-        raise InputError(f"{name}: expected a number, got {value!r}") from None
-    if not math.isfinite(x):
-        raise InputError(f"{name}: expected a finite number, got {x}")
-    return x

@@ -27,8 +27,6 @@ At small pressure only the gamma term diverges: sigma0 ~ exp(-u_bar / u0) with
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 from scipy import integrate, special
 

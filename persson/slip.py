@@ -50,13 +50,13 @@ Magic Formula fits, friction-speed laws and curve peaks are in :mod:`persson.tir
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from frictioncite import citations_of, doi
 
+from ._checks import number, positive
 from .errors import InputError
 
 __all__ = [
@@ -128,7 +128,7 @@ class Contact:
 
     def __post_init__(self):
         for name in ("length", "width", "stiffness"):
-            v = _number(getattr(self, name), f"contact.{name}")
+            v = number(getattr(self, name), f"contact.{name}")
             if v <= 0:
                 raise InputError(f"contact.{name}: expected a value > 0, got {v:g}")
             object.__setattr__(self, name, v)
@@ -185,16 +185,16 @@ class Contact:
 
     def pressure(self, x, pressure: float) -> np.ndarray:
         """Normal pressure p(x), Pa, at distance ``x`` (m) from the leading edge, for the mean ``pressure``."""
-        sigma0 = _positive(pressure, "pressure")
+        sigma0 = positive(pressure, "pressure")
         return sigma0 * self.shape(np.asarray(x, dtype=float) / self.length)
 
     def load(self, pressure: float) -> float:
         """Normal load sigma0 l w, N."""
-        return _positive(pressure, "pressure") * self.length * self.width
+        return positive(pressure, "pressure") * self.length * self.width
 
     def initial_slope(self, pressure: float) -> float:
         r"""Initial slope :math:`d\mu/ds|_{s\to 0} = k l / (2\sigma_0)` of the brush model."""
-        return self.stiffness * self.length / (2.0 * _positive(pressure, "pressure"))
+        return self.stiffness * self.length / (2.0 * positive(pressure, "pressure"))
 
     def full_sliding_slip(self, mu: float, pressure: float) -> float:
         r"""Slip at which the stick zone vanishes for a **constant** local friction ``mu``.
@@ -205,8 +205,8 @@ class Contact:
         patch sticks at every slip < 1, and 1.0 is returned. For a custom shape p'(0) is estimated from the
         first node.
         """
-        mu = _number(mu, "mu")
-        sigma0 = _positive(pressure, "pressure")
+        mu = number(mu, "mu")
+        sigma0 = positive(pressure, "pressure")
         if mu < 0:
             raise InputError(f"mu: expected a friction coefficient >= 0, got {mu:g}")
         if self._kind == "uniform" or self._g[0] > 0:
@@ -234,7 +234,7 @@ def _parse_distribution(spec):
     if isinstance(spec, dict):
         if set(spec) != {"sakai_n"}:
             raise InputError(f"contact.pressure_distribution: a mapping must be {{\"sakai_n\": n}}, got {spec!r}")
-        n = _number(spec["sakai_n"], "contact.pressure_distribution.sakai_n")
+        n = number(spec["sakai_n"], "contact.pressure_distribution.sakai_n")
         if n <= 0:
             raise InputError(f"contact.pressure_distribution.sakai_n: expected n > 0, got {n:g}")
 
@@ -335,7 +335,7 @@ def brush_mu(contact: Contact, slip, mu_local, *, pressure: float, mu_static=Non
     if not isinstance(contact, Contact):
         raise InputError(f"contact: expected a persson.slip.Contact, got {contact!r}")
     s = _slip_array(slip)
-    sigma0 = _positive(pressure, "pressure")
+    sigma0 = positive(pressure, "pressure")
     m = _mu_array(mu_local, "mu_local")
     mst = m if mu_static is None else _mu_array(mu_static, "mu_static")
     s, m, mst = np.broadcast_arrays(s, m, mst)
@@ -485,8 +485,8 @@ def mu_slip(model, slip, speed, *, temperature: float = 20.0, pressure: float = 
         raise InputError(f"contact: expected a persson.slip.Contact, got {contact!r}")
     s = _slip_array(slip)
     V = _speed_array(speed)
-    T0 = _number(temperature, "temperature")
-    sigma0 = _positive(pressure, "pressure")
+    T0 = number(temperature, "temperature")
+    sigma0 = positive(pressure, "pressure")
     try:
         s_b, V_b = np.broadcast_arrays(s, V)
     except ValueError:
@@ -610,16 +610,16 @@ def two_coefficient_mu(slip, *, mu_static: float, mu_dynamic: float, initial_slo
         Nodes along the patch.
     """
     s = _slip_array(slip)
-    ms = _number(mu_static, "mu_static")
-    md = _number(mu_dynamic, "mu_dynamic")
-    c0 = _number(initial_slope, "initial_slope")
+    ms = number(mu_static, "mu_static")
+    md = number(mu_dynamic, "mu_dynamic")
+    c0 = number(initial_slope, "initial_slope")
     if ms <= 0:
         raise InputError(f"mu_static: expected a value > 0, got {ms:g}")
     if md < 0:
         raise InputError(f"mu_dynamic: expected a value >= 0, got {md:g}")
     if c0 <= 0:
         raise InputError(f"initial_slope: expected a value > 0, got {c0:g}")
-    xi, g, G = _sakai_nodes(_number(sakai_n, "sakai_n"), n_points)
+    xi, g, G = _sakai_nodes(number(sakai_n, "sakai_n"), n_points)
     sf = s.ravel().astype(float)
     with np.errstate(divide="ignore"):
         theta = np.where(sf < 1.0, sf / np.where(sf < 1.0, 1.0 - sf, 1.0), np.inf)
@@ -658,7 +658,7 @@ class BrushMap:
         """(peak ratio, slip at peak) bilinearly interpolated at (n1, n2) (inside the map)."""
         from scipy.interpolate import RegularGridInterpolator
 
-        pt = [[_number(n1, "n1"), _number(n2, "n2")]]
+        pt = [[number(n1, "n1"), number(n2, "n2")]]
         if not (self.n1[0] <= pt[0][0] <= self.n1[-1] and self.n2[0] <= pt[0][1] <= self.n2[-1]):
             raise InputError(f"n1, n2: ({n1:g}, {n2:g}) lies outside the map "
                              f"[{self.n1[0]:g}, {self.n1[-1]:g}] x [{self.n2[0]:g}, {self.n2[-1]:g}]")
@@ -695,7 +695,7 @@ def two_coefficient_map(n1, n2, *, sakai_n: float = 4.0, n_slip: int = 400, n_po
         raise InputError("n2: expected initial slope / mu_s > 0")
     if isinstance(n_slip, bool) or not isinstance(n_slip, (int, np.integer)) or n_slip < 20:
         raise InputError(f"n_slip: expected an integer >= 20, got {n_slip!r}")
-    xi, g, G = _sakai_nodes(_number(sakai_n, "sakai_n"), n_points)
+    xi, g, G = _sakai_nodes(number(sakai_n, "sakai_n"), n_points)
     s = np.geomspace(1e-4, 1.0, int(n_slip))
 
     def ratio(n1v, n2v, sv):
@@ -807,8 +807,8 @@ def drft_kinematics(wheel_speed, disk_speed) -> Kinematics:
 
 def drft_from_angular(omega_wheel, omega_disk, *, wheel_radius: float, track_radius: float) -> Kinematics:
     """Kinematics from angular speeds (rad/s), the wheel's effective rolling radius and the track radius (m)."""
-    r = _positive(wheel_radius, "wheel_radius")
-    R = _positive(track_radius, "track_radius")
+    r = positive(wheel_radius, "wheel_radius")
+    R = positive(track_radius, "track_radius")
     ww = _finite_array(omega_wheel, "omega_wheel")
     wd = _finite_array(omega_disk, "omega_disk")
     if np.any(wd <= 0):
@@ -833,9 +833,9 @@ def drft_speeds(slip, speed, *, wheel_radius: float | None = None, track_radius:
     Vw = (1.0 - s) * V
     ww = wd = None
     if wheel_radius is not None:
-        ww = _sc(Vw / _positive(wheel_radius, "wheel_radius"))
+        ww = _sc(Vw / positive(wheel_radius, "wheel_radius"))
     if track_radius is not None:
-        wd = _sc(V / _positive(track_radius, "track_radius"))
+        wd = _sc(V / positive(track_radius, "track_radius"))
     return Kinematics(speed=_sc(V), wheel_speed=_sc(Vw), slip=_sc(s), sliding_speed=_sc(s * V),
                       omega_wheel=ww, omega_disk=wd)
 
@@ -843,25 +843,6 @@ def drft_speeds(slip, speed, *, wheel_radius: float | None = None, track_radius:
 # =========================================================================================================
 # validation helpers
 # =========================================================================================================
-def _number(value, name: str) -> float:
-    if isinstance(value, bool):
-        raise InputError(f"{name}: expected a number, got {value!r}")
-    try:
-        x = float(value)
-    except (TypeError, ValueError):
-        raise InputError(f"{name}: expected a number, got {value!r}") from None
-    if not math.isfinite(x):
-        raise InputError(f"{name}: expected a finite number, got {x}")
-    return x
-
-
-def _positive(value, name: str) -> float:
-    x = _number(value, name)
-    if x <= 0:
-        raise InputError(f"{name}: expected a value > 0, got {x:g}")
-    return x
-
-
 def _finite_array(value, name: str) -> np.ndarray:
     try:
         a = np.asarray(value, dtype=float)

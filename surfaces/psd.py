@@ -24,6 +24,7 @@ import numpy as np
 from frictioncite import doi
 
 from ._util import atomic_write_text
+from ._util import finite_float, positive
 from .errors import InputError
 
 __all__ = ["SelfAffine", "PSD", "Cutoffs", "read_psd"]
@@ -97,24 +98,24 @@ class SelfAffine:
 
     def __init__(self, hurst: float, q0: float, q1: float, hrms: float | None = None, C0: float | None = None,
                  qL: float | None = None):
-        H = _finite_float(hurst, "hurst")
+        H = finite_float(hurst, "hurst")
         if not 0.0 < H < 1.0:
             raise InputError(f"hurst: expected 0 < H < 1, got {H}")
-        q0 = _positive(q0, "q0")
-        q1 = _positive(q1, "q1")
+        q0 = positive(q0, "q0")
+        q1 = positive(q1, "q1")
         if not q1 > q0:
             raise InputError(f"q1: expected q1 > q0 = {q0:g} rad/m, got {q1:g}")
         if qL is not None:
-            qL = _positive(qL, "qL")
+            qL = positive(qL, "qL")
             if qL > q0:
                 raise InputError(f"qL: expected qL <= q0 = {q0:g} rad/m, got {qL:g}")
         if (hrms is None) == (C0 is None):
             raise InputError("SelfAffine: give exactly one of hrms= (m) and C0= (m^4 (rad/m)^(2+2H))")
         if C0 is None:
-            h = _positive(hrms, "hrms")
+            h = positive(hrms, "hrms")
             C0 = h**2 / (2.0 * math.pi * _moment_selfaffine(1.0, H, q0, q1, qL, 1))
         else:
-            C0 = _positive(C0, "C0")
+            C0 = positive(C0, "C0")
         for name, value in (("hurst", H), ("q0", q0), ("q1", q1), ("C0", float(C0)), ("qL", qL)):
             object.__setattr__(self, name, value)
 
@@ -245,18 +246,18 @@ class PSD:
         if (C <= 0).any():
             raise InputError(f"PSD{where}: column C must be > 0 m^4 (row {int(np.argmax(C <= 0))})")
         if hurst is not None:
-            hurst = _finite_float(hurst, "hurst")
+            hurst = finite_float(hurst, "hurst")
             if not 0.0 < hurst < 1.0 + 1e-12:
                 raise InputError(f"hurst: expected 0 < H <= 1, got {hurst:g}")
         q.setflags(write=False)
         C.setflags(write=False)
         object.__setattr__(self, "q", q)
         object.__setattr__(self, "C_values", C)
-        object.__setattr__(self, "q_r", None if q_r is None else _positive(q_r, "q_r"))
+        object.__setattr__(self, "q_r", None if q_r is None else positive(q_r, "q_r"))
         object.__setattr__(self, "extrapolated", bool(extrapolated))
         object.__setattr__(self, "source", str(source))
-        object.__setattr__(self, "qL", None if qL is None else _positive(qL, "qL"))
-        object.__setattr__(self, "q_rolloff", None if q_rolloff is None else _positive(q_rolloff, "q_rolloff"))
+        object.__setattr__(self, "qL", None if qL is None else positive(qL, "qL"))
+        object.__setattr__(self, "q_rolloff", None if q_rolloff is None else positive(q_rolloff, "q_rolloff"))
         object.__setattr__(self, "hurst", hurst)
 
     @property
@@ -302,8 +303,8 @@ class PSD:
     def with_cutoff(self, q0: float | None = None, q1: float | None = None) -> "PSD":
         """The table restricted to ``[q0, q1]`` (end points interpolated). Extending past the table is not
         done here; see :meth:`extrapolate` for tail extrapolation."""
-        lo = self.q0 if q0 is None else _positive(q0, "q0")
-        hi = self.q1 if q1 is None else _positive(q1, "q1")
+        lo = self.q0 if q0 is None else positive(q0, "q0")
+        hi = self.q1 if q1 is None else positive(q1, "q1")
         if not hi > lo:
             raise InputError(f"with_cutoff: expected q1 > q0, got q0={lo:g}, q1={hi:g}")
         if lo < self.q0 * (1 - 1e-9) or hi > self.q1 * (1 + 1e-9):
@@ -342,7 +343,7 @@ class PSD:
         PSD
             With ``q_r`` = ``q_s``, ``extrapolated=True`` and ``hurst`` recorded.
         """
-        q1 = _positive(q1, "q1")
+        q1 = positive(q1, "q1")
         q_s = self.q1 if self.q_r is None else min(self.q_r, self.q1)
         if q1 <= q_s * (1 + 1e-9):
             return self.with_cutoff(q1=q1)
@@ -351,7 +352,7 @@ class PSD:
             from .cutoffs import fit_self_affine  # cutoffs imports this module: import on use
 
             hurst = fit_self_affine(self, q_min=max(lo, self.q0), q_max=min(hi, q_s)).hurst
-        H = _finite_float(hurst, "hurst")
+        H = finite_float(hurst, "hurst")
         if not 0.0 < H <= 1.0:
             raise InputError(f"hurst: expected 0 < H <= 1 for the extrapolated tail, got {H:g}")
         measured = self.with_cutoff(q1=q_s) if q_s < self.q1 else self
@@ -484,20 +485,3 @@ def _moment_selfaffine(C0: float, H: float, q0: float, q1: float, qL: float | No
     if qL is not None and qL < q0:
         plateau = C0 * q0 ** (-2 * (1 + H)) * (q0 ** (n + 1) - qL ** (n + 1)) / (n + 1)
     return tail + plateau
-
-
-def _finite_float(value, name: str) -> float:
-    try:
-        x = float(value)
-    except (TypeError, ValueError):
-        raise InputError(f"{name}: expected a number, got {value!r}") from None
-    if not math.isfinite(x):
-        raise InputError(f"{name}: expected a finite number, got {x}")
-    return x
-
-
-def _positive(value, name: str) -> float:
-    x = _finite_float(value, name)
-    if x <= 0:
-        raise InputError(f"{name}: expected a positive number, got {x:g}")
-    return x
