@@ -64,6 +64,16 @@ REFERENCES: dict[str, str] = {
     "Toronto (2004), HAL hal-00851262.",
     "rado:psu-phd-1994": "Z. Rado, A study of road surface texture and its relationship to friction, PhD "
     "thesis, The Pennsylvania State University (1994).",
+    "isbn:978-0-471-04894-7": "J. D. Ferry, Viscoelastic Properties of Polymers, 3rd ed., Wiley, New York (1980).",
+    "10.1214/ss/1038425655": "P. H. C. Eilers, B. D. Marx, Flexible smoothing with B-splines and penalties, "
+    "Statist. Sci. 11, 89 (1996).",
+    "10.1016/S0020-7683(98)00055-9": "S. W. Park, R. A. Schapery, Methods of interconversion between linear "
+    "viscoelastic material functions. Part I - a numerical method based on Prony series, Int. J. Solids Struct. "
+    "36, 1653 (1999).",
+    "10.1137/1.9781611971217": "C. L. Lawson, R. J. Hanson, Solving Least Squares Problems, SIAM Classics in "
+    "Applied Mathematics 15 (1995).",
+    "10.1063/1.4919221": "B. Lorenz, Y. R. Oh, S. K. Nam, S. H. Jeon, B. N. J. Persson, Rubber friction on road "
+    "surfaces: Experiment and theory for low sliding speeds, J. Chem. Phys. 142, 194701 (2015).",
 }
 
 

@@ -53,6 +53,8 @@ class WLF:
     def log10_aT(self, T):
         """log10 of the shift factor at temperature(s) ``T`` (deg C). Raises below the WLF singularity."""
         dT = np.asarray(T, dtype=float) - self.T_ref
+        if not np.all(np.isfinite(dT)):
+            raise InputError(f"temperature: expected finite temperatures in deg C, got {T!r}")
         if np.any(self.C2 + dT <= 0):
             raise InputError(f"temperature: WLF (C2={self.C2} K, T_ref={self.T_ref} C) is singular at or below "
                              f"T = {self.T_ref - self.C2:g} C")
@@ -134,6 +136,8 @@ class ConstantModulus:
     def E(self, omega, T=None):
         """Complex Young's modulus, Pa, at ``omega`` (rad/s); ``T`` is ignored."""
         omega = np.asarray(omega, dtype=float)
+        if np.isnan(omega).any():
+            raise InputError("omega: NaN angular frequency (expected numbers in rad/s)")
         return self.E_storage + 1j * self.E_loss * np.sign(omega)
 
 
@@ -159,6 +163,8 @@ class Prony:
         Shift factor; ``None`` makes the material temperature-independent.
     thermal : Thermal
         Thermal properties.
+    label : str
+        Free-text description (e.g. ``"synthetic"`` or the data source); shown in reports.
     """
 
     E_inf: float
@@ -166,6 +172,7 @@ class Prony:
     tau_i: np.ndarray
     wlf: WLF | None = None
     thermal: Thermal = field(default_factory=Thermal)
+    label: str = ""
 
     def __post_init__(self):
         E_i = np.array(self.E_i, dtype=float, copy=True).ravel()
@@ -192,19 +199,50 @@ class Prony:
         return self.wlf.log10_aT(T)
 
     def E_reference(self, omega):
-        """Complex modulus at the reference temperature, Pa."""
-        w = np.asarray(omega, dtype=float)[..., None]
-        wt = w * self.tau_i
-        terms = self.E_i * (wt * wt + 1j * wt) / (1.0 + wt * wt)
-        return self.E_inf + terms.sum(axis=-1)
+        """Complex modulus at the reference temperature, Pa (vectorized over any shape of ``omega``)."""
+        return _maxwell_sum(self.E_inf, self.E_i, self.tau_i, np.asarray(omega, dtype=float))
 
     def E(self, omega, T=None):
-        """Complex Young's modulus, Pa, at ``omega`` (rad/s) and temperature ``T`` (deg C)."""
+        """Complex Young's modulus, Pa, at ``omega`` (rad/s) and temperature ``T`` (deg C).
+
+        ``omega`` and ``T`` broadcast against each other. The reduced frequency is formed in log space, so
+        that an extreme shift (cold rubber) saturates at the glassy modulus instead of overflowing; E(0) = E_inf.
+        """
         omega = np.asarray(omega, dtype=float)
-        shift = 10.0 ** self.log10_aT(T)
-        return self.E_reference(omega * shift)
+        if T is None:
+            return self.E_reference(omega)
+        return self.E_reference(_reduced_omega(omega, self.log10_aT(T)))
 
     @property
     def E_glassy(self) -> float:
         """High-frequency limit E_inf + sum E_i, Pa."""
         return float(self.E_inf + self.E_i.sum())
+
+
+# --------------------------------------------------------------------------------------------------------------
+# helpers
+
+#: |omega tau| is clipped here: the Debye terms are then exact to double precision (1/x^2 < 1e-300) and x^2
+#: never overflows.
+_X_MAX = 1e150
+
+
+def _reduced_omega(omega, log10_aT):
+    """omega * 10**log10_aT without overflow: the product is clipped to +-1e300 rad/s (E is glassy there)."""
+    omega = np.asarray(omega, dtype=float)
+    lg = np.asarray(log10_aT, dtype=float)
+    with np.errstate(divide="ignore"):
+        mag = np.log10(np.abs(omega)) + lg
+    out = np.sign(omega) * 10.0 ** np.minimum(mag, 300.0)
+    return np.where(omega == 0.0, 0.0, out)
+
+
+def _maxwell_sum(E_inf, E_i, tau_i, omega):
+    r"""E_inf + sum_i E_i (i w tau_i)/(1 + i w tau_i), evaluated stably for any omega (rad/s)."""
+    if np.isnan(omega).any():
+        raise InputError("omega: NaN angular frequency (expected numbers in rad/s)")
+    x = np.clip(omega[..., None] * tau_i, -_X_MAX, _X_MAX)
+    d = 1.0 / (1.0 + x * x)
+    real = (E_i * (x * x * d)).sum(axis=-1)
+    imag = (E_i * (x * d)).sum(axis=-1)
+    return (E_inf + real) + 1j * imag

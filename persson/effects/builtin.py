@@ -223,25 +223,9 @@ class StrainSoftening(Effect):
     loss_factor: float = 0.7
 
     def transform_material(self, material, conditions):
-        return _Softened(material, self.storage_factor, self.loss_factor)
+        import materials
 
-
-@dataclass(frozen=True, eq=False)
-class _Softened:
-    """A material with E' scaled by f and E'' by g; temperature shift and thermal data passed through."""
-
-    base: object
-    f: float
-    g: float
-
-    def E(self, omega, T=None):
-        E = np.asarray(self.base.E(omega, T))
-        return self.f * E.real + 1j * self.g * E.imag
-
-    def __getattr__(self, name):
-        if name in ("log10_aT", "thermal"):
-            return getattr(self.base, name)
-        raise AttributeError(name)
+        return materials.StrainSoftened(material, self.storage_factor, self.loss_factor)
 
 
 @doi("10.1088/0953-8984/17/1/R01")
