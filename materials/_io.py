@@ -31,6 +31,7 @@ def write_csv_atomic(path, columns: Mapping[str, np.ndarray], comments: Sequence
     text = "\n".join(lines) + "\n"
     path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    os.chmod(tmp, _file_mode())
     try:
         with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as fh:
             fh.write(text)
@@ -74,3 +75,10 @@ def read_csv_columns(path, required: Sequence[str], optional: Sequence[str] = ()
         raise InputError(f"{path}: no data rows after the header")
     data = _table(path, rows, names, ",")
     return {k: data[:, j] for k, j in idx.items()}, np.array([r[0] for r in rows])
+
+
+def _file_mode() -> int:
+    # mkstemp creates 0600 files; give the final file the permissions open() would (0666 minus the umask).
+    mask = os.umask(0)
+    os.umask(mask)
+    return 0o666 & ~mask

@@ -148,7 +148,7 @@ def _shift_at(T, T_lo, inv_dT, shift_tab):
 
 @njit(cache=True, parallel=True)
 def flash_kernel(q, lq10, lv10, v, q4C, wq, lcphi, cphi, wphi, lw0, inv_dlw, ln_re, ln_im, scale, gamma,
-                 T0, T_lo, inv_dT, shift_tab, EX, a_t0, D, heat_factor, i_m, tol, max_iter,
+                 T0, T_lo, inv_dT, shift_tab, EX, a_t0, D, heat_factor, i_m, f_m, tol, max_iter,
                  G_out, P_out, loss_out, dmu_out, mu_out, T_out, it_out, res_out):
     r"""Hysteresis friction with Persson's self-consistent flash temperature, per speed in parallel.
 
@@ -180,7 +180,8 @@ def flash_kernel(q, lq10, lv10, v, q4C, wq, lcphi, cphi, wphi, lw0, inv_dlw, ln_
                 shift[i] = _shift_at(T[i], T_lo, inv_dT, shift_tab)
             _scale_pass(iv, lq10, lv10, q4C, wq, shift, lcphi, cphi, wphi, lw0, inv_dlw, ln_re, ln_im,
                         scale[iv], gamma, G_out, P_out, loss_out, dmu_out)
-            Pm = P_out[iv, i_m]
+            # P(q_m), linear in ln q between the nodes around q_m
+            Pm = P_out[iv, i_m] + f_m * (P_out[iv, min(i_m + 1, nq - 1)] - P_out[iv, i_m])
             for j in range(nq):
                 f[j] = v[iv] * q4C[j] * heat_factor[iv] * P_out[iv, j] / Pm * loss_out[iv, j]
             res = 0.0

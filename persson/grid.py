@@ -7,6 +7,7 @@ Raise them for convergence studies; lower them for quick scans.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -59,6 +60,15 @@ class GridSettings:
         return np.geomspace(q_start, q_end, n)
 
     def angle_nodes(self) -> tuple[np.ndarray, np.ndarray]:
-        """Gauss-Legendre nodes phi and weights on [0, pi/2]."""
-        x, w = np.polynomial.legendre.leggauss(self.n_phi)
-        return 0.25 * math.pi * (x + 1.0), 0.25 * math.pi * w
+        """Gauss-Legendre nodes phi and weights on [0, pi/2] (read-only arrays)."""
+        return _gauss_legendre_quarter(self.n_phi)
+
+
+@functools.lru_cache(maxsize=16)
+def _gauss_legendre_quarter(n: int) -> tuple[np.ndarray, np.ndarray]:
+    # Pure function of n, cached: leggauss costs milliseconds at every friction call otherwise.
+    x, w = np.polynomial.legendre.leggauss(n)
+    phi, wphi = 0.25 * math.pi * (x + 1.0), 0.25 * math.pi * w
+    phi.setflags(write=False)
+    wphi.setflags(write=False)
+    return phi, wphi

@@ -27,6 +27,8 @@ At small pressure only the gamma term diverges: sigma0 ~ exp(-u_bar / u0) with
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 from scipy import integrate, special
 
@@ -133,10 +135,19 @@ def _J(x: np.ndarray, gamma: float) -> np.ndarray:
 
 
 def _K(x: np.ndarray) -> np.ndarray:
-    # erf(t)^2 ~ 4 t^2 / pi near 0, so the integrand is regular: tabulate the tail integral once per call.
+    """K(x) = int_x^inf erf(t)^2 exp(-t^2) / t dt, interpolated in a cached table."""
+    t, tail = _K_table()
+    return np.interp(x, t, tail, right=0.0)
+
+
+@functools.lru_cache(maxsize=1)
+def _K_table() -> tuple[np.ndarray, np.ndarray]:
+    # erf(t)^2 ~ 4 t^2 / pi near 0, so the integrand is regular; the table is a pure constant, built once.
     t = np.concatenate([[0.0], np.geomspace(1e-6, 8.0, 4000)])
     f = np.zeros_like(t)
     f[1:] = special.erf(t[1:]) ** 2 * np.exp(-t[1:] ** 2) / t[1:]
     cum = integrate.cumulative_trapezoid(f, t, initial=0.0)
     tail = cum[-1] - cum
-    return np.interp(x, t, tail, right=0.0)
+    t.setflags(write=False)
+    tail.setflags(write=False)
+    return t, tail

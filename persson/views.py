@@ -29,7 +29,7 @@ import numpy as np
 from frictioncite import doi
 
 from .errors import InputError
-from .io import atomic_write
+from .io import _file_mode, atomic_write
 
 __all__ = ["plot_bands", "plot_sweep", "save_figure", "contact_regions", "render_contact", "contact_view",
            "ContactView", "synthesize_heights"]
@@ -297,6 +297,7 @@ def render_contact(heights, area_fraction: float, path, *, dx: float | None = No
     path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=".png", dir=path.parent)
     os.close(fd)
+    os.chmod(tmp, _file_mode())
     plotter = None
     try:
         plotter = pv.Plotter(off_screen=True, window_size=list(window_size))

@@ -65,6 +65,7 @@ def atomic_write_text(path, text: str) -> Path:
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    os.chmod(tmp, _file_mode())
     try:
         with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as fh:
             fh.write(text)
@@ -100,3 +101,10 @@ def loglog_interp(q_new, q: np.ndarray, C: np.ndarray) -> np.ndarray:
     out = np.exp(np.interp(lq, np.log(q), np.log(C)))
     inside = (q_new >= q[0] * (1 - 1e-12)) & (q_new <= q[-1] * (1 + 1e-12))
     return np.where(inside, out, 0.0)
+
+
+def _file_mode() -> int:
+    # mkstemp creates 0600 files; give the final file the permissions open() would (0666 minus the umask).
+    mask = os.umask(0)
+    os.umask(mask)
+    return 0o666 & ~mask

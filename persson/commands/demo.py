@@ -1,13 +1,18 @@
-"""``persson demo``: the main job on the shipped example (writes CSV, PNG and prints where)."""
+"""``persson demo``: the whole validation loop on the shipped example case (synthetic DRFT-style data).
+
+compare -> diagnose -> improve (add the best significant effect, refit, repeat) -> one HTML report; prints where
+every output went.
+"""
 
 from __future__ import annotations
 
+import time
 from pathlib import Path
 
-import numpy as np
-
 NAME = "demo"
-HELP = "run the workflow on the shipped example (synthetic road + synthetic tread compound)"
+HELP = ("run the whole loop on the shipped example case: compare the model with (synthetic) measured friction, "
+        "diagnose the missing effect, add it and watch the error fall; writes an HTML report (plots embedded), "
+        "a CSV and JSON")
 
 
 def add_arguments(p):
@@ -15,27 +20,37 @@ def add_arguments(p):
 
 
 def run(args) -> int:
-    import materials
-    import surfaces
+    import validation
 
-    from ..io import write_csv
-    from ..model import Model
-    from ..plots import plot_friction, save_figure
-
+    t0 = time.perf_counter()
     out = Path(args.output_dir)
-    surface = surfaces.example_road()
-    material = materials.example_tread()
-    model = Model(surface, material)
-    speeds = np.geomspace(1e-8, 10.0, 100)
-    r = model.friction(speeds, temperature=20.0, pressure=0.3e6)
-    csv = write_csv(out / "friction_vs_speed.csv", r.as_table(),
-                    comments=("persson demo: example_road (synthetic) + example_tread (synthetic)",
-                              "T0 = 20 C, sigma0 = 0.3 MPa, baseline (hysteresis + contact area)"))
-    png = save_figure(plot_friction(r, title="example tread on example road, 20 C, 0.3 MPa"),
-                      out / "friction_vs_speed.png")
-    i = int(np.argmax(np.atleast_1d(r.mu)))
-    print(f"peak mu = {np.atleast_1d(r.mu)[i]:.3f} at v = {speeds[i]:.3g} m/s; "
-          f"A/A0 at 1 m/s = {np.interp(0.0, np.log10(speeds), np.atleast_1d(r.contact_area)):.4f}")
-    print(f"wrote {csv.resolve()}")
-    print(f"wrote {png.resolve()}")
+    case = validation.load_case(validation.case_path("example"))
+    print(f"example case {case.path} (synthetic data, see validation/cases/README.md)")
+    print(f"  {case.measurements.describe()}")
+    print(f"  baseline effects: {', '.join(case.model.effect_names) or 'none'}; "
+          f"fitted: {', '.join(case.fit) or 'none'}")
+    print("\n1. compare")
+    cmp = validation.compare(case.model, case.measurements, case.contact, name=case.name)
+    print(cmp.summary())
+    csv = cmp.to_csv(out / "comparison.csv", comments=(f"case {case.path}",))
+    print("\n2-3. diagnose, add the best significant effect, repeat")
+    imp = validation.improve(case, progress=lambda msg: print("  " + msg))
+    dx = imp.steps[0].diagnosis
+    print(dx.table_text())
+    print()
+    print(dx.explanation)
+    print()
+    print("4. watch the error fall")
+    print(imp.table_text())
+    js = out / "diagnosis.json"
+    dx.to_json(js)
+    steps = out / "steps.json"
+    imp.to_json(steps)
+    report = validation.write_report([case, cmp, dx, imp], out / "report.html",
+                                     title="persson demo: validation loop on the example case (synthetic data)")
+    print(f"\nwrote {csv.resolve()}")
+    print(f"wrote {Path(js).resolve()}")
+    print(f"wrote {Path(steps).resolve()}")
+    print(f"wrote {report.resolve()}")
+    print(f"demo finished in {time.perf_counter() - t0:.1f} s")
     return 0

@@ -81,7 +81,9 @@ class FlashTemperature(Effect):
         G, P, loss, dmu, mu = out
         v = 10.0**lv10
         q_m = self.macro_scale_ratio * q[0]
-        i_m = int(min(np.searchsorted(q, q_m * (1 - 1e-12)), q.size - 1))
+        pos = float(np.interp(math.log(q_m), np.log(q), np.arange(q.size)))  # fractional node index of q_m
+        i_m = min(int(pos), q.size - 1)
+        f_m = pos - i_m
         d = self.contact_diameter if self.contact_diameter > 0 else math.pi / q_m
         D = thermal.diffusivity
         a = D * d / v
@@ -94,7 +96,7 @@ class FlashTemperature(Effect):
         res = np.zeros(nv)
         _kernels.flash_kernel(q, lq10, lv10, v, q4C, wq, lcphi, cphi, wphi, table.lw0, 1.0 / table.dlw,
                               table.ln_re, table.ln_im, scale, gamma, conditions.temperature, shift_table.T_lo,
-                              1.0 / shift_table.dT, shift_table.shift, EX, a, D, heat_factor, i_m, self.tol,
+                              1.0 / shift_table.dT, shift_table.shift, EX, a, D, heat_factor, i_m, f_m, self.tol,
                               int(self.max_iter), G, P, loss, dmu, mu, T_q, iters, res)
         top = shift_table.T_lo + shift_table.dT * (shift_table.shift.size - 1)
         if np.any(T_q > top):

@@ -1,0 +1,208 @@
+"""Plots of comparisons, diagnoses and improvement steps (matplotlib, Agg; each function returns the figure)."""
+
+from __future__ import annotations
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+__all__ = ["plot_mu_speed", "plot_mu_slip", "plot_residuals", "plot_signatures", "plot_steps"]
+
+_MAX_PANELS = 4
+_MAX_SLIP_CURVES = 8
+
+
+def plot_mu_speed(cmp, curve_points: int = 40):
+    """Measured (points, error bars from mu_std) and predicted (lines) mu against sliding speed.
+
+    One panel per pressure, one colour per temperature; wet rows hollow markers and dashed lines. Only the
+    pure-sliding rows (slip = 1) are shown.
+    """
+    m = cmp.measurements
+    sl = m.is_sliding
+    pressures = np.unique(m.pressure[sl]) if np.any(sl) else np.array([])
+    if pressures.size > _MAX_PANELS:
+        pressures = pressures[np.linspace(0, pressures.size - 1, _MAX_PANELS).round().astype(int)]
+    n = max(1, pressures.size)
+    fig, axes = plt.subplots(1, n, figsize=(4.6 * n + 0.6, 4.0), squeeze=False, constrained_layout=True,
+                             sharey=True)
+    axes = axes[0]
+    if not np.any(sl):
+        axes[0].text(0.5, 0.5, "no pure-sliding rows (slip = 1)", ha="center", va="center",
+                     transform=axes[0].transAxes)
+        return fig
+    temps = np.unique(m.temperature[sl])
+    colors = {T: c for T, c in zip(temps, _temperature_colors(temps.size))}
+    pred = cmp.predictor
+    for ax, p in zip(axes, pressures):
+        for T in temps:
+            for wet in (False, True):
+                sel = sl & (m.pressure == p) & (m.temperature == T) & (m.wet == wet)
+                if not np.any(sel):
+                    continue
+                v = m.speed[sel]
+                c = colors[T]
+                lab = f"{T:g} C" + (" wet" if wet else "")
+                kw = dict(mfc="none") if wet else {}
+                if m.mu_std is not None:
+                    ax.errorbar(v, m.mu[sel], yerr=m.mu_std[sel], fmt="o", color=c, ms=4, capsize=2, label=lab,
+                                **kw)
+                else:
+                    ax.plot(v, m.mu[sel], "o", color=c, ms=4, label=lab, **kw)
+                vv = np.geomspace(v.min() / 1.5, v.max() * 1.5, curve_points)
+                try:
+                    mu = pred.curve(cmp.model, vv, float(T), float(p), wet)
+                    ax.plot(vv, mu, "--" if wet else "-", color=c, lw=1.2)
+                except Exception:  # noqa: BLE001  (a plot must not hide the comparison)
+                    pass
+        ax.set_xscale("log")
+        ax.set_xlabel("sliding speed v (m/s)")
+        ax.set_title(f"sigma0 = {p / 1e6:g} MPa")
+        ax.grid(alpha=0.3)
+        if ax.get_legend_handles_labels()[0]:
+            ax.legend(fontsize=7, title="points: measured, lines: model", title_fontsize=7)
+    axes[0].set_ylabel("friction coefficient mu")
+    fig.suptitle(f"{cmp.name}: mu(v), effects {', '.join(cmp.effects) or 'none'}", fontsize=10)
+    return fig
+
+
+def _temperature_colors(n: int):
+    """Distinct colours from cold (blue) to hot (red), none too pale to see."""
+    if n == 1:
+        return [plt.cm.turbo(0.15)]
+    return [plt.cm.turbo(x) for x in np.linspace(0.1, 0.9, n)]
+
+
+def plot_mu_slip(cmp, curve_points: int = 40):
+    """Measured (points) and brush-model (lines) mu against slip ratio, one curve per series / condition."""
+    m = cmp.measurements
+    rows = ~m.is_sliding
+    fig, ax = plt.subplots(figsize=(6.4, 4.2), constrained_layout=True)
+    if not np.any(rows):
+        ax.text(0.5, 0.5, "no rows with slip < 1", ha="center", va="center", transform=ax.transAxes)
+        return fig
+    keys = {}
+    for i in np.flatnonzero(rows):
+        k = (m.series[i], float(m.speed[i]), float(m.temperature[i]), float(m.pressure[i]), bool(m.wet[i]))
+        keys.setdefault(k, []).append(i)
+    # add the sliding rows (slip = 1) of the same condition to each curve
+    pred = cmp.predictor
+    for j, (k, idx) in enumerate(list(keys.items())[:_MAX_SLIP_CURVES]):
+        ser, V, T, p, wet = k
+        same = (m.is_sliding & (m.speed == V) & (m.temperature == T) & (m.pressure == p) & (m.wet == wet))
+        idx = np.concatenate([np.asarray(idx), np.flatnonzero(same)])
+        c = f"C{j % 10}"
+        lab = (f"{ser}: " if ser else "") + f"V={V:g} m/s, {T:g} C, {p / 1e6:g} MPa" + (" wet" if wet else "")
+        if m.mu_std is not None:
+            ax.errorbar(m.slip[idx], m.mu[idx], yerr=m.mu_std[idx], fmt="o", color=c, ms=4, capsize=2, label=lab)
+        else:
+            ax.plot(m.slip[idx], m.mu[idx], "o", color=c, ms=4, label=lab)
+        s = np.geomspace(max(m.slip[idx].min() / 1.5, 1e-4), 1.0, curve_points)
+        try:
+            ax.plot(s, pred.slip_curve(cmp.model, s, V, T, p, wet), "-", color=c, lw=1.2)
+        except Exception:  # noqa: BLE001
+            pass
+    if len(keys) > _MAX_SLIP_CURVES:
+        ax.text(0.01, 0.01, f"{len(keys) - _MAX_SLIP_CURVES} more curves not shown", transform=ax.transAxes,
+                fontsize=7)
+    ax.set_xscale("log")
+    ax.set_xlabel("slip ratio s")
+    ax.set_ylabel("friction coefficient mu")
+    ax.set_title(f"{cmp.name}: mu(slip), brush model", fontsize=10)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7)
+    return fig
+
+
+def plot_residuals(cmp):
+    """Residual maps: against sliding speed, temperature, pressure, and over the (speed, temperature) plane."""
+    m = cmp.measurements
+    r = cmp.residual
+    vs = m.sliding_speed
+    fig, axes = plt.subplots(2, 2, figsize=(10, 7), constrained_layout=True)
+    mk = np.where(m.is_sliding, "o", "x")
+    ax = axes[0, 0]
+    sc = None
+    tlo, thi = float(m.temperature.min()), float(m.temperature.max())
+    if thi <= tlo:
+        tlo, thi = tlo - 1.0, thi + 1.0
+    for marker in ("o", "x"):
+        sel = mk == marker
+        if np.any(sel):
+            sc = ax.scatter(vs[sel], r[sel], c=m.temperature[sel], cmap="coolwarm", vmin=tlo, vmax=thi,
+                            marker=marker, s=18, label="slip = 1" if marker == "o" else "slip < 1")
+    ax.set_xscale("log")
+    ax.set_xlabel("sliding speed slip*V (m/s)")
+    ax.set_ylabel("residual (measured - predicted)")
+    if sc is not None:
+        fig.colorbar(sc, ax=ax, label="T (C)")
+    ax.legend(fontsize=7)
+    ax = axes[0, 1]
+    sc = ax.scatter(m.temperature, r, c=np.log10(vs), cmap="viridis", s=18)
+    fig.colorbar(sc, ax=ax, label="log10 sliding speed")
+    ax.set_xlabel("temperature T0 (C)")
+    ax = axes[1, 0]
+    sc = ax.scatter(m.pressure / 1e6, r, c=np.log10(vs), cmap="viridis", s=18)
+    fig.colorbar(sc, ax=ax, label="log10 sliding speed")
+    ax.set_xlabel("pressure (MPa)")
+    ax.set_ylabel("residual")
+    ax = axes[1, 1]
+    lim = float(np.max(np.abs(r))) or 1.0
+    sc = ax.scatter(vs, m.temperature, c=r, cmap="RdBu_r", vmin=-lim, vmax=lim, s=30, edgecolors="k",
+                    linewidths=0.3)
+    fig.colorbar(sc, ax=ax, label="residual (red: model too low)")
+    ax.set_xscale("log")
+    ax.set_xlabel("sliding speed (m/s)")
+    ax.set_ylabel("temperature (C)")
+    for a in axes.ravel():
+        a.grid(alpha=0.3)
+    for a in (axes[0, 0], axes[0, 1], axes[1, 0]):
+        a.axhline(0.0, color="k", lw=0.8)
+    fig.suptitle(f"{cmp.name}: residuals, RMSE {cmp.rmse:.3g}, bias {cmp.bias:+.3g}", fontsize=10)
+    return fig
+
+
+def plot_signatures(dx, n_top: int = 3):
+    """Baseline residual and the refitted change of the top candidates against row (sorted by speed)."""
+    m = dx.measurements
+    order = np.lexsort((m.sliding_speed, m.pressure, m.temperature, m.wet))
+    fig, ax = plt.subplots(figsize=(10, 4), constrained_layout=True)
+    x = np.arange(m.n)
+    ax.plot(x, dx.baseline.residual[order], "ko", ms=3, label="baseline residual")
+    for j, c in enumerate([c for c in dx.candidates if c.change is not None][:n_top]):
+        ax.plot(x, c.change[order], "-", color=f"C{j}", lw=1.3,
+                label=f"{c.effect} (refitted): dBIC {c.delta_bic:+.1f}")
+    # mark the condition blocks
+    T, p = m.temperature[order], m.pressure[order]
+    edges = np.flatnonzero((np.diff(T) != 0) | (np.diff(p) != 0)) + 0.5
+    for e in edges:
+        ax.axvline(e, color="0.85", lw=0.8)
+    ax.axhline(0, color="k", lw=0.6)
+    ax.set_xlabel("row (grouped by wet, temperature, pressure; speed increasing within a group)")
+    ax.set_ylabel("mu")
+    ax.set_title("what is missing: the residual and how each candidate effect moves the prediction", fontsize=10)
+    ax.legend(fontsize=7)
+    return fig
+
+
+def plot_steps(improvement):
+    """RMSE after each improvement step (watch the error fall)."""
+    steps = improvement.steps
+    fig, ax = plt.subplots(figsize=(6, 3.6), constrained_layout=True)
+    x = np.arange(len(steps))
+    ax.plot(x, [s.rmse for s in steps], "o-", color="C3")
+    for i, s in enumerate(steps):
+        ax.annotate(f"{s.rmse:.3g}", (i, s.rmse), textcoords="offset points", xytext=(5, 5), fontsize=8)
+    ax.set_xticks(x)
+    ax.set_xticklabels(["baseline" if s.added is None else f"+ {s.added}" for s in steps], rotation=15,
+                       fontsize=8)
+    if improvement.noise is not None:
+        ax.axhline(improvement.noise, color="0.5", ls="--", lw=1, label=f"noise estimate {improvement.noise:.3g}")
+        ax.legend(fontsize=8)
+    ax.set_ylabel("RMSE")
+    ax.set_ylim(bottom=0)
+    ax.grid(alpha=0.3)
+    ax.set_title("RMSE after each added effect", fontsize=10)
+    return fig

@@ -1,0 +1,206 @@
+"""Model predictions for measurement rows, batched: one engine call per (temperature, pressure, wet) group.
+
+* ``slip == 1`` rows: the sliding friction ``model.friction(V, T, sigma0).mu``;
+* ``slip < 1`` rows: the brush model :func:`persson.slip.mu_slip` (contact from the case), whose local friction
+  mu(v_s) is the same model at the sliding speeds v_s = s V;
+* ``wet`` rows: the model with :class:`persson.effects.Wet` (the model's own ``wet`` effect when it has one, else
+  ``Wet()`` at its defaults); dry rows use the model without any ``wet`` effect.
+
+All sliding speeds a group needs (V of its sliding rows and s V of its slip rows) go into one
+``model.friction`` call; the slip rows then reuse those values through the callable form of ``mu_slip``.
+"""
+
+from __future__ import annotations
+
+import warnings
+from dataclasses import dataclass
+
+import numpy as np
+
+from .errors import InputError
+from .measurements import Measurements
+
+__all__ = ["Prediction", "predict", "Predictor", "wet_model", "dry_model"]
+
+
+@dataclass(frozen=True, eq=False)
+class Prediction:
+    """Predicted friction for every measurement row.
+
+    Attributes
+    ----------
+    mu : ndarray
+        Predicted friction coefficient per row.
+    mu_local : ndarray
+        Local sliding friction mu(v_s) at each row's sliding speed (equals ``mu`` on sliding rows).
+    converged : bool
+        Whether every self-consistent iteration (flash temperature) converged.
+    notes : tuple of str
+        Notes of the friction results (extrapolated tails, convergence), without repeats.
+    """
+
+    mu: np.ndarray
+    mu_local: np.ndarray
+    converged: bool = True
+    notes: tuple = ()
+
+
+def predict(model, measurements: Measurements, contact=None) -> Prediction:
+    """Predict every measurement row with ``model`` (see the module docstring).
+
+    Parameters
+    ----------
+    model : persson.Model
+    measurements : Measurements
+    contact : persson.slip.Contact, optional
+        Needed when some rows have slip < 1 (default: ``measurements.contact``).
+
+    Returns
+    -------
+    Prediction
+    """
+    return Predictor(measurements, contact).predict(model)
+
+
+def wet_model(model):
+    """The model used on wet rows: with its own ``wet`` effect, else with ``Wet()`` added."""
+    from persson.effects import Wet
+
+    return model if "wet" in model.effect_names else model.with_effect(Wet())
+
+
+def dry_model(model):
+    """The model used on dry rows: without a ``wet`` effect."""
+    return model.without("wet") if "wet" in model.effect_names else model
+
+
+class Predictor:
+    """Reusable, batched predictor for one set of measurement rows (used by compare and diagnose).
+
+    Parameters
+    ----------
+    measurements : Measurements
+    contact : persson.slip.Contact or None
+    """
+
+    def __init__(self, measurements: Measurements, contact=None):
+        if not isinstance(measurements, Measurements):
+            raise InputError(f"measurements: expected validation.Measurements, got {type(measurements).__name__}")
+        m = measurements
+        if contact is None:
+            contact = m.contact
+        if m.has_slip_rows:
+            from persson.slip import Contact
+
+            if contact is None:
+                i = int(np.argmax(m.slip < 1))
+                raise InputError(f"{m.row_label(i)}: rows with slip < 1 need the brush model: give contact= "
+                                 "(persson.slip.Contact) or a [contact] table in the case file")
+            if not isinstance(contact, Contact):
+                raise InputError(f"contact: expected persson.slip.Contact, got {contact!r}")
+        self.measurements = m
+        self.contact = contact
+        self.n_calls = 0
+        keys = {}
+        for i in range(m.n):
+            k = (float(m.temperature[i]), float(m.pressure[i]), bool(m.wet[i]))
+            keys.setdefault(k, []).append(i)
+        self.groups = []
+        for (T, p, wet), idx in keys.items():
+            idx = np.asarray(idx, dtype=int)
+            s = m.slip[idx]
+            V = m.speed[idx]
+            vs = s * V
+            speeds = np.unique(vs)
+            self.groups.append(_Group(T=T, p=p, wet=wet, idx=idx, slide=idx[s >= 1.0], slip=idx[s < 1.0],
+                                      speeds=speeds))
+
+    def predict(self, model) -> Prediction:
+        """Predictions of ``model`` for every row."""
+        m = self.measurements
+        mu = np.empty(m.n)
+        mu_loc = np.empty(m.n)
+        notes: dict[str, None] = {}
+        converged = True
+        dry = wet = None
+        for g in self.groups:
+            if g.wet:
+                if wet is None:
+                    wet = wet_model(model)
+                mg = wet
+            else:
+                if dry is None:
+                    dry = dry_model(model)
+                mg = dry
+            with warnings.catch_warnings(record=True) as caught:
+                warnings.simplefilter("always")
+                r = mg.friction(g.speeds, temperature=g.T, pressure=g.p)
+            self.n_calls += 1
+            for w in caught:
+                notes[f"{w.category.__name__}: {w.message}"] = None
+            for note in r.notes:
+                notes[note] = None
+            converged = converged and bool(r.converged)
+            mu_g = np.atleast_1d(np.asarray(r.mu, dtype=float))
+            if not np.all(np.isfinite(mu_g)):
+                raise InputError(f"model: non-finite friction at T = {g.T:g} C, p = {g.p:g} Pa")
+            vs_rows = m.slip[g.idx] * m.speed[g.idx]
+            j = np.searchsorted(g.speeds, vs_rows)
+            mu_loc[g.idx] = mu_g[j]
+            if g.slide.size:
+                mu[g.slide] = mu_loc[g.slide]
+            if g.slip.size:
+                mu[g.slip] = self._brush(g, mu_g, m.slip[g.slip], m.speed[g.slip])
+        return Prediction(mu=mu, mu_local=mu_loc, converged=converged, notes=tuple(notes))
+
+    def _brush(self, g, mu_g, slip, V):
+        from persson.slip import mu_slip
+
+        speeds = g.speeds
+
+        def local(vs):
+            vs = np.asarray(vs, dtype=float)
+            j = np.clip(np.searchsorted(speeds, vs), 0, speeds.size - 1)
+            jm = np.clip(j - 1, 0, speeds.size - 1)
+            pick = np.where(np.abs(speeds[jm] - vs) < np.abs(speeds[j] - vs), jm, j)
+            if np.any(np.abs(speeds[pick] - vs) > 1e-9 * vs):
+                raise InputError("internal: sliding speed not in the precomputed set")
+            return mu_g[pick]
+
+        res = mu_slip(local, slip, V, temperature=g.T, pressure=g.p, contact=self.contact)
+        return np.atleast_1d(np.asarray(res.mu, dtype=float))
+
+    # ---- curves for plots -----------------------------------------------------------------------------------
+    def curve(self, model, speeds, T: float, p: float, wet: bool) -> np.ndarray:
+        """Sliding friction of ``model`` at ``speeds`` (one call), dry or wet."""
+        mg = wet_model(model) if wet else dry_model(model)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            r = mg.friction(np.asarray(speeds, dtype=float), temperature=T, pressure=p)
+        self.n_calls += 1
+        return np.atleast_1d(np.asarray(r.mu, dtype=float))
+
+    def slip_curve(self, model, slips, V: float, T: float, p: float, wet: bool) -> np.ndarray:
+        """mu(slip) of the brush model at rolling speed ``V`` (one friction call)."""
+        from persson.slip import mu_slip
+
+        if self.contact is None:
+            raise InputError("slip curves need a contact (persson.slip.Contact)")
+        mg = wet_model(model) if wet else dry_model(model)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            res = mu_slip(mg, np.asarray(slips, dtype=float), float(V), temperature=T, pressure=p,
+                          contact=self.contact)
+        self.n_calls += 1
+        return np.atleast_1d(np.asarray(res.mu, dtype=float))
+
+
+@dataclass(frozen=True, eq=False)
+class _Group:
+    T: float
+    p: float
+    wet: bool
+    idx: np.ndarray
+    slide: np.ndarray
+    slip: np.ndarray
+    speeds: np.ndarray
