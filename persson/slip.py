@@ -56,7 +56,7 @@ import numpy as np
 
 from frictioncite import citations_of, doi
 
-from ._checks import number, positive
+from ._checks import finite_array, number, positive
 from .errors import InputError
 
 __all__ = [
@@ -790,8 +790,8 @@ def drft_kinematics(wheel_speed, disk_speed) -> Kinematics:
         ``disk_speed`` <= 0, ``wheel_speed`` < 0, or ``wheel_speed`` > ``disk_speed`` (driving slip: outside the
         braking brush model).
     """
-    Vw = _finite_array(wheel_speed, "wheel_speed")
-    V = _finite_array(disk_speed, "disk_speed")
+    Vw = finite_array(wheel_speed, "wheel_speed")
+    V = finite_array(disk_speed, "disk_speed")
     if np.any(V <= 0):
         raise InputError(f"disk_speed: expected a surface speed > 0 m/s, got {np.min(V):g}")
     if np.any(Vw < 0):
@@ -809,8 +809,8 @@ def drft_from_angular(omega_wheel, omega_disk, *, wheel_radius: float, track_rad
     """Kinematics from angular speeds (rad/s), the wheel's effective rolling radius and the track radius (m)."""
     r = positive(wheel_radius, "wheel_radius")
     R = positive(track_radius, "track_radius")
-    ww = _finite_array(omega_wheel, "omega_wheel")
-    wd = _finite_array(omega_disk, "omega_disk")
+    ww = finite_array(omega_wheel, "omega_wheel")
+    wd = finite_array(omega_disk, "omega_disk")
     if np.any(wd <= 0):
         raise InputError(f"omega_disk: expected an angular speed > 0 rad/s, got {np.min(wd):g}")
     if np.any(ww < 0):
@@ -825,7 +825,7 @@ def drft_speeds(slip, speed, *, wheel_radius: float | None = None, track_radius:
 
     ``slip`` in [0, 1] (0: free rolling; 1: locked wheel), ``speed`` V > 0 m/s.
     """
-    s = _finite_array(slip, "slip")
+    s = finite_array(slip, "slip")
     if np.any((s < 0) | (s > 1)):
         raise InputError(f"slip: expected braking slip ratios in [0, 1], got {s[(s < 0) | (s > 1)].ravel()[0]:g}")
     V = _speed_array(speed)
@@ -843,20 +843,8 @@ def drft_speeds(slip, speed, *, wheel_radius: float | None = None, track_radius:
 # =========================================================================================================
 # validation helpers
 # =========================================================================================================
-def _finite_array(value, name: str) -> np.ndarray:
-    try:
-        a = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
-        raise InputError(f"{name}: expected a number or an array of numbers, got {value!r}") from None
-    if a.size == 0:
-        raise InputError(f"{name}: expected at least one value")
-    if not np.all(np.isfinite(a)):
-        raise InputError(f"{name}: NaN or infinite value at index {int(np.argmax(~np.isfinite(a.ravel())))}")
-    return a
-
-
 def _slip_array(slip) -> np.ndarray:
-    s = _finite_array(slip, "slip")
+    s = finite_array(slip, "slip")
     bad = (s <= 0) | (s > 1)
     if np.any(bad):
         j = int(np.argmax(bad.ravel()))
@@ -865,7 +853,7 @@ def _slip_array(slip) -> np.ndarray:
 
 
 def _speed_array(speed) -> np.ndarray:
-    V = _finite_array(speed, "speed")
+    V = finite_array(speed, "speed")
     bad = V <= 0
     if np.any(bad):
         j = int(np.argmax(bad.ravel()))
@@ -874,14 +862,14 @@ def _speed_array(speed) -> np.ndarray:
 
 
 def _mu_array(mu, name: str) -> np.ndarray:
-    m = _finite_array(mu, name)
+    m = finite_array(mu, name)
     if np.any(m < 0):
         raise InputError(f"{name}: expected friction coefficients >= 0, got {np.min(m):g}")
     return m
 
 
 def _increasing(values, name: str) -> np.ndarray:
-    a = _finite_array(values, name).ravel()
+    a = finite_array(values, name).ravel()
     if a.size < 2 or np.any(np.diff(a) <= 0):
         raise InputError(f"{name}: expected at least two strictly increasing values")
     return a

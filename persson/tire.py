@@ -34,6 +34,7 @@ import numpy as np
 
 from frictioncite import doi
 
+from ._checks import finite_array, number
 from .errors import InputError
 
 __all__ = [
@@ -164,8 +165,8 @@ def magic_formula_from_points(slip, mu, *, E: float = 0.0) -> MagicFormula:
     """
     from scipy.optimize import least_squares
 
-    s = _array1d(slip, "slip")
-    m = _array1d(mu, "mu")
+    s = finite_array(slip, "slip").ravel()
+    m = finite_array(mu, "mu").ravel()
     if s.size != 3 or m.size != 3:
         raise InputError(f"slip, mu: expected exactly three points, got {s.size} and {m.size}")
     if np.any((s <= 0) | (s > 1)):
@@ -174,7 +175,7 @@ def magic_formula_from_points(slip, mu, *, E: float = 0.0) -> MagicFormula:
         raise InputError("slip: the three slip ratios must differ")
     if np.any(m <= 0):
         raise InputError("mu: expected three friction values > 0")
-    E = _num(E, "E")
+    E = number(E, "E")
     order = np.argsort(s)
     s, m = s[order], m[order]
 
@@ -334,7 +335,7 @@ def _fit(law, func, names, bounds, x, y, sigma, fixed, starts, citations) -> dic
     if unknown:
         raise InputError(f"fixed: unknown parameter(s) {unknown} of {law} (has {list(names)})")
     for k, v in fixed.items():
-        fixed[k] = _num(v, f"fixed[{k!r}]")
+        fixed[k] = number(v, f"fixed[{k!r}]")
     free = [n for n in names if n not in fixed]
     if not free:
         raise InputError(f"fixed: every parameter of {law} is fixed; nothing to fit")
@@ -461,7 +462,7 @@ def fit_magic_formula(slip, mu, *, form: str = "BCDE", sigma=None, fixed: dict |
                   dict(a=D0, b=1.5, c=2 * B0, d=0.0), dict(a=D0, b=1.9, c=0.5 * B0, d=0.0)]
         law = "magic_formula_simple"
     if p0:
-        starts.insert(0, {**starts[0], **{k: _num(v, f"p0[{k!r}]") for k, v in p0.items()}})
+        starts.insert(0, {**starts[0], **{k: number(v, f"p0[{k!r}]") for k, v in p0.items()}})
     parts = _fit(law, func, names, bounds, x, y, sig, fixed, starts, (MAGIC_FORMULA, PACEJKA_BOOK))
     vals, cov = parts["values"], parts["covariance"]
 
@@ -593,7 +594,7 @@ def fit_speed_law(law: str, speed, mu, *, sigma=None, fixed: dict | None = None,
     func, names, bounds = SPEED_LAWS[law]
     starts = _speed_starts(law, x, y)
     if p0:
-        starts.insert(0, {**starts[0], **{k: _num(v, f"p0[{k!r}]") for k, v in p0.items()}})
+        starts.insert(0, {**starts[0], **{k: number(v, f"p0[{k!r}]") for k, v in p0.items()}})
     parts = _fit(law, func, names, bounds, x, y, sig, fixed, starts, getattr(func, "__citations__", ()))
     return FitResult(**parts)
 
@@ -641,38 +642,14 @@ def fit_rado(speed, mu, *, sigma=None, fit_mu_locked: bool = False) -> FitResult
 # =========================================================================================================
 # helpers
 # =========================================================================================================
-def _num(v, name: str) -> float:
-    if isinstance(v, bool):
-        raise InputError(f"{name}: expected a number, got {v!r}")
-    try:
-        x = float(v)
-    except (TypeError, ValueError):
-        raise InputError(f"{name}: expected a number, got {v!r}") from None
-    if not math.isfinite(x):
-        raise InputError(f"{name}: expected a finite number, got {x}")
-    return x
-
-
-def _array1d(v, name: str) -> np.ndarray:
-    try:
-        a = np.asarray(v, dtype=float).ravel()
-    except (TypeError, ValueError):
-        raise InputError(f"{name}: expected an array of numbers") from None
-    if a.size == 0:
-        raise InputError(f"{name}: expected at least one value")
-    if not np.all(np.isfinite(a)):
-        raise InputError(f"{name}: NaN or infinite value at index {int(np.argmax(~np.isfinite(a)))}")
-    return a
-
-
 def _xy(x, y, sigma, xname: str):
-    x = _array1d(x, xname)
-    y = _array1d(y, "mu")
+    x = finite_array(x, xname).ravel()
+    y = finite_array(y, "mu").ravel()
     if x.size != y.size:
         raise InputError(f"{xname}, mu: expected equal lengths, got {x.size} and {y.size}")
     sig = None
     if sigma is not None:
-        sig = np.broadcast_to(_array1d(sigma, "sigma"), y.shape).astype(float) if np.size(sigma) in (1, y.size) \
+        sig = np.broadcast_to(finite_array(sigma, "sigma").ravel(), y.shape).astype(float) if np.size(sigma) in (1, y.size) \
             else None
         if sig is None:
             raise InputError(f"sigma: expected one value or {y.size} values")

@@ -24,7 +24,7 @@ import numpy as np
 from frictioncite import doi
 
 from ._util import atomic_write_text
-from ._util import finite_float, positive
+from ._util import finite_float, positive, powerlaw_segments_integral
 from .errors import InputError
 
 __all__ = ["SelfAffine", "PSD", "Cutoffs", "read_psd"]
@@ -290,7 +290,7 @@ class PSD:
 
     def moment(self, n: int) -> float:
         r"""Spectral moment :math:`2\pi\int q^n C(q) dq`, exact for the log-log interpolant."""
-        return 2.0 * math.pi * float(np.sum(_powerlaw_segments_integral(self.q, self.C_values, n)))
+        return 2.0 * math.pi * float(np.sum(powerlaw_segments_integral(self.q, self.C_values, n)))
 
     def hrms(self) -> float:
         """RMS height, m."""
@@ -463,18 +463,6 @@ def read_psd(path) -> PSD:
     return PSD(values["q"], values["C"], q_r=num("q_r"), extrapolated=extrapolated,
                source=meta.get("source") or str(path), qL=num("qL"), q_rolloff=num("q_rolloff"),
                hurst=num("hurst"))
-
-
-def _powerlaw_segments_integral(q: np.ndarray, C: np.ndarray, n: int) -> np.ndarray:
-    r"""Exact :math:`\int_{q_i}^{q_{i+1}} q^n C(q) dq` for C a power law on each segment (log-log linear)."""
-    qa, qb, Ca, Cb = q[:-1], q[1:], C[:-1], C[1:]
-    r = np.log(qb / qa)
-    s = np.log(Cb / Ca) / r
-    p = n + s + 1.0
-    fa = Ca * qa ** (n + 1)
-    with np.errstate(over="ignore", invalid="ignore"):
-        general = fa * np.expm1(p * r) / p
-    return np.where(np.abs(p * r) < 1e-10, fa * r, general)
 
 
 def _moment_selfaffine(C0: float, H: float, q0: float, q1: float, qL: float | None, n: int) -> float:

@@ -80,10 +80,14 @@ def test_bad_case_files_give_a_clear_error(tmp_path, capsys, text, word):
     assert not (tmp_path / "o.csv").exists()
 
 
-def test_readme_script_runs():
+def test_readme_scripts_run(tmp_path, monkeypatch):
     text = (ROOT / "README.md").read_text()
-    block = re.search(r"```python\n(.*?)```", text, re.S).group(1)
-    exec(compile(block, "README.md", "exec"), {})
+    blocks = re.findall(r"```python\n(.*?)```", text, re.S)
+    assert len(blocks) >= 2
+    monkeypatch.chdir(tmp_path)
+    for block in blocks:
+        exec(compile(block, "README.md", "exec"), {})
+    assert (tmp_path / "report.html").stat().st_size > 10_000
 
 
 def test_readme_quick_start_commands_are_what_ci_runs():

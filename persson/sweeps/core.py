@@ -13,6 +13,7 @@ from pathlib import Path
 import numpy as np
 
 from ..effects.base import Conditions
+from .._checks import number
 from ..errors import InputError
 from ..model import Model
 from .bands import (_BandRestriction, band_contributions, band_edges, check_bands, continuous_cells,
@@ -122,8 +123,8 @@ def grid(model, params=None, *, speed=1.0, temperature: float = 20.0, pressure: 
     combos = list(itertools.product(*(values[n] for n in names))) if names else [()]
     for point, combo in enumerate(combos):
         setting = dict(zip(names, (float(x) for x in combo)))
-        T = _finite(setting.get("temperature", temperature), "temperature")
-        p = _finite(setting.get("pressure", pressure), "pressure")
+        T = number(setting.get("temperature", temperature), "temperature")
+        p = number(setting.get("pressure", pressure), "pressure")
         if p <= 0:
             raise InputError(f"pressure: expected a nominal pressure > 0 Pa, got {p:g}")
         m = apply_parameters(model, setting)
@@ -453,16 +454,6 @@ def _mode(band_mode, bands, continuous: bool) -> str | None:
         raise InputError("band_mode: 'continuous' bands are cells of the full surface's integrand (mode "
                          f"'restrict'); mode {band_mode!r} is not defined for them")
     return band_mode
-
-
-def _finite(x, name: str) -> float:
-    try:
-        v = float(x)
-    except (TypeError, ValueError):
-        raise InputError(f"{name}: expected a number, got {x!r}") from None
-    if not math.isfinite(v):
-        raise InputError(f"{name}: expected a finite number, got {v}")
-    return v
 
 
 def _comments(model, names, speeds, bands, n_bands, mode, scheduler, workers, n_points) -> tuple:

@@ -23,11 +23,11 @@ Parameter names
 from __future__ import annotations
 
 import dataclasses
-import math
 import re
 
 import numpy as np
 
+from .._checks import number
 from ..errors import InputError
 
 __all__ = ["CONDITIONS", "parse_param", "parse_values", "set_parameter", "apply_parameters", "sweepable"]
@@ -148,7 +148,7 @@ def set_parameter(model, name: str, value):
         component rejects.
     """
     name = canonical(name)
-    value = _number(value, name)
+    value = number(value, f"params: {name!r}")
     if name in CONDITIONS:
         raise InputError(f"params: {name!r} is an operating condition, not a model parameter")
     head, _, rest = name.partition(".")
@@ -193,18 +193,6 @@ def sweepable(model) -> list[str]:
 # ---------------------------------------------------------------------------------------------------------
 def _unknown(model, name: str) -> InputError:
     return InputError(f"params: unknown parameter name {name!r}; this model can sweep {sweepable(model)}")
-
-
-def _number(value, name: str) -> float:
-    if isinstance(value, bool):
-        raise InputError(f"params: {name!r} expected a number, got {value!r}")
-    try:
-        x = float(value)
-    except (TypeError, ValueError):
-        raise InputError(f"params: {name!r} expected a number, got {value!r}") from None
-    if not math.isfinite(x):
-        raise InputError(f"params: {name!r} expected a finite number, got {x}")
-    return x
 
 
 def _is_number(v) -> bool:
