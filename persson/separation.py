@@ -28,6 +28,7 @@ At small pressure only the gamma term diverges: sigma0 ~ exp(-u_bar / u0) with
 from __future__ import annotations
 
 import functools
+import math
 
 import numpy as np
 from scipy import integrate, special
@@ -113,7 +114,7 @@ def _first_interval(q, s, G, gamma):
     so G = G_1 (s/s_1)^2 and q = q0 + (q1 - q0)(s/s_1)^2 there; a geometric sub-grid in s resolves the
     logarithm.
     """
-    t = np.concatenate([[0.0], np.geomspace(1e-12, 1.0, 600)])
+    t = np.concatenate([[0.0], np.geomspace(1e-12, 1.0, 241)])
     Gs = G[:, 1:2] * t**2
     x = 0.5 / np.sqrt(np.maximum(Gs, 1e-300))
     qs = q[0] + (q[1] - q[0]) * t**2
@@ -127,11 +128,32 @@ def _s(q: np.ndarray, C: np.ndarray) -> np.ndarray:
 
 
 def _J(x: np.ndarray, gamma: float) -> np.ndarray:
-    """J(x) = gamma/2 E1(x^2) + 3 (1 - gamma) int_x^inf erf(t)^2 exp(-t^2) / t dt."""
-    out = 0.5 * gamma * special.exp1(np.minimum(x, 30.0) ** 2)
+    """J(x) = gamma/2 E1(x^2) + 3 (1 - gamma) int_x^inf erf(t)^2 exp(-t^2) / t dt (x > 0).
+
+    Interpolated in ln x in a cached table: J is smooth in ln x and tends to -gamma ln x + const as x -> 0
+    (E1(x^2) ~ -euler_gamma - 2 ln x), which the table continues linearly below its first node.
+    """
+    lx_tab, J_tab = _J_table(float(gamma))
+    lx = np.log(np.maximum(np.asarray(x, dtype=float), 1e-300))
+    out = np.interp(lx, lx_tab, J_tab, right=0.0)
+    below = lx < lx_tab[0]
+    if np.any(below):
+        out = np.where(below, J_tab[0] - gamma * (lx - lx_tab[0]), out)
+    return out
+
+
+@functools.lru_cache(maxsize=8)
+def _J_table(gamma: float) -> tuple[np.ndarray, np.ndarray]:
+    # Pure function of gamma, cached: the exact E1 and the K table on 80 nodes per e-fold of x.
+    lx = np.linspace(math.log(1e-12), math.log(30.0), 3300)
+    x = np.exp(lx)
+    J = 0.5 * gamma * special.exp1(x * x)
     if gamma < 1.0:
-        out = out + 3.0 * (1.0 - gamma) * _K(x)
-    return np.where(x >= 30.0, 0.0, out)
+        J = J + 3.0 * (1.0 - gamma) * _K(x)
+    J[-1] = 0.0
+    lx.setflags(write=False)
+    J.setflags(write=False)
+    return lx, J
 
 
 def _K(x: np.ndarray) -> np.ndarray:
