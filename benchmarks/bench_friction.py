@@ -2,7 +2,8 @@
 
 Run ``python benchmarks/bench_friction.py``. Prints a small table:
 
-* warm 100-speed curve (1e-8 .. 10 m/s, default grid), baseline and with flash temperature (median of repeats);
+* warm 100-speed curve (1e-8 .. 10 m/s, default grid, ``surfaces.example_road()`` with
+  ``materials.example_tread()`` at 20 C and 0.3 MPa), baseline and with flash temperature (median of repeats);
 * first call in a fresh process with an *empty* numba cache (compilation included);
 * first result in a fresh process with the numba cache warm (import + first call), which users see
   on every run after the first.
@@ -23,7 +24,7 @@ SNIPPET = textwrap.dedent("""
     t0 = time.perf_counter()
     import numpy as np
     import materials, persson, surfaces
-    s = surfaces.SelfAffine(hurst=0.8, q0=2 * np.pi / 5e-3, q1=1e6, hrms=0.3e-3, qL=2 * np.pi / 0.05)
+    s = surfaces.example_road()
     m = materials.example_tread()
     effects = [persson.effects.FlashTemperature()] if {flash} else []
     r = persson.Model(s, m, effects=effects).friction(np.geomspace(1e-8, 10.0, 100), temperature=20.0, pressure=0.3e6)
@@ -39,8 +40,7 @@ def warm_curve(flash: bool, repeats: int = 20) -> float:
     import persson
     import surfaces
 
-    s = surfaces.SelfAffine(hurst=0.8, q0=2 * np.pi / 5e-3, q1=1e6, hrms=0.3e-3, qL=2 * np.pi / 0.05)
-    model = persson.Model(s, materials.example_tread(),
+    model = persson.Model(surfaces.example_road(), materials.example_tread(),
                           effects=[persson.effects.FlashTemperature()] if flash else [])
     v = np.geomspace(1e-8, 10.0, 100)
     model.friction(v, temperature=20.0, pressure=0.3e6)
