@@ -9,6 +9,9 @@ to the file's folder. Sections beyond DESIGN.md that this reader accepts:
     ``pressure_Pa`` -- used by ``persson friction``.
 ``[surface] example = "road"`` / ``[material] example = "tread"``
     the package's documented synthetic examples instead of files.
+``[material] dma = "dma.csv"``
+    with ``wlf = {...}`` the isotherms are shifted by that WLF law; without it the shifts are found by automated
+    time-temperature superposition at ``T_ref_C`` (default 20 C).
 """
 
 from __future__ import annotations
@@ -188,8 +191,12 @@ def build_material(tab: dict, base: Path, path: Path):
         m = materials.read_master_curve(_file(base, tab["master_curve"], path, "material.master_curve"), wlf=wlf)
     else:
         dma = materials.read_dma(_file(base, tab["dma"], path, "material.dma"))
-        T_ref = float(tab.get("wlf", {}).get("T_ref_C", tab.get("T_ref_C", 20.0)))
-        m = materials.master_curve(dma, T_ref=T_ref)
+        if "wlf" in tab:
+            # The case gives the compound's WLF law: use it as the shift factors instead of fitting new ones.
+            wlf = materials.WLF.from_mapping(tab["wlf"])
+            m = materials.master_curve(dma, T_ref=wlf.T_ref, shift_factors=wlf)
+        else:
+            m = materials.master_curve(dma, T_ref=float(tab.get("T_ref_C", 20.0)))
     if thermal is not None:
         m = _with_thermal(m, thermal)
     return m
