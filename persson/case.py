@@ -9,6 +9,10 @@ to the file's folder. Sections beyond DESIGN.md that this reader accepts:
     ``pressure_Pa`` -- used by ``persson friction``.
 ``[surface] example = "road"`` / ``[material] example = "tread"``
     the package's documented synthetic examples instead of files.
+``[surface] profiles = [...]``
+    with optional ``read_options``, ``psd_options`` and ``isotropic_options`` tables passed to
+    :func:`surfaces.read_profiles`, :meth:`surfaces.ProfileSet.psd` and :meth:`surfaces.PSD1D.to_isotropic`
+    (e.g. ``isotropic_options = { q_max = 2e4 }`` to stop the measured band below an instrument noise floor).
 ``[material] dma = "dma.csv"``
     with ``wlf = {...}`` the isotherms are shifted by that WLF law; without it the shifts are found by automated
     time-temperature superposition at ``T_ref_C`` (default 20 C).
@@ -153,7 +157,10 @@ def build_surface(tab: dict, base: Path, path: Path):
         sets = [surfaces.read_profiles(_file(base, f, path, "surface.profiles"), **tab.get("read_options", {}))
                 for f in files]
         ps = sets[0] if len(sets) == 1 else surfaces.ProfileSet.concatenate(sets)
-        s = ps.psd().to_isotropic()
+        try:
+            s = ps.psd(**tab.get("psd_options", {})).to_isotropic(**tab.get("isotropic_options", {}))
+        except TypeError as exc:
+            raise InputError(f"{path}: [surface] psd_options / isotropic_options: {exc}") from None
     if "q0" in tab or "q1" in tab:
         q0 = tab.get("q0")
         q1 = tab.get("q1")

@@ -33,3 +33,18 @@ def test_dma_without_wlf_is_shifted_automatically(dma_dir):
     (dma_dir / "case.toml").write_text('[surface]\nexample = "road"\n[material]\ndma = "dma.csv"\nT_ref_C = 20.0\n')
     m = read_case(dma_dir / "case.toml").model.material
     assert m.wlf.C1 == pytest.approx(8.86, rel=0.1) and m.wlf.C2 == pytest.approx(101.6, rel=0.1)
+
+
+def test_profiles_with_options(tmp_path):
+    rng = np.random.default_rng(0)
+    x = np.arange(8192) * 20e-6
+    z = np.cumsum(rng.normal(size=x.size)) * 2e-6
+    (tmp_path / "scan.csv").write_text("x_m,z_m\n" + "\n".join(f"{a!r},{b!r}" for a, b in zip(x, z)))
+    (tmp_path / "case.toml").write_text('[surface]\nprofiles = ["scan.csv"]\nisotropic_options = { q_max = 3e4 }\n'
+                                        '[material]\nexample = "tread"\n')
+    s = read_case(tmp_path / "case.toml").model.surface
+    assert s.q_range[1] <= 3e4 * (1 + 1e-9)
+    (tmp_path / "case.toml").write_text('[surface]\nprofiles = ["scan.csv"]\nisotropic_options = { nonsense = 1 }\n'
+                                        '[material]\nexample = "tread"\n')
+    with pytest.raises(ValueError, match="isotropic_options"):
+        read_case(tmp_path / "case.toml")
