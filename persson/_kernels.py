@@ -1,6 +1,6 @@
 """numba kernels of the Persson solver. Thin wrappers in :mod:`persson.model` prepare the arrays.
 
-All kernels work on a uniform grid in ln q (trapezoid weights ``wq``), Gauss-Legendre angles on [0, pi/2]
+All kernels work on a uniform grid in ln q (quadrature weights ``wq``, third-order interval rule), Gauss-Legendre angles on [0, pi/2]
 (``cphi``, ``lcphi`` = log10 cos phi, ``wphi``) and a modulus table in log10 of the *reduced* angular
 frequency (``lw0``, ``inv_dlw``, ``ln_re``, ``ln_im`` = ln E', ln E'' at the reference temperature of the
 table). A temperature T enters through ``shift`` = log10 a_T(T) relative to the table's temperature.
@@ -50,32 +50,51 @@ def _scale_pass(iv, lq10, lv10, q4C, wq, shift, lcphi, cphi, wphi, lw0, inv_dlw,
                 scale, gamma, G_out, P_out, loss_out, dmu_out):
     """One speed: G(q), P(q), loss integral and d mu / d ln q along the q grid; returns mu_visc.
 
-    G(q) = 1/8 int q'^3 C |E/((1-nu^2) sigma0)|^2 dphi dq'  (trapezoid in ln q, cumulative),
+    G(q) = 1/8 int q'^3 C |E/((1-nu^2) sigma0)|^2 dphi dq' (cumulative, :func:`_cumulative_quadratic`),
     P = erf(1/(2 sqrt G)), S = gamma + (1-gamma) P^2,
-    d mu/d ln q = 1/2 q^4 C S P int cos(phi) Im E/((1-nu^2) sigma0) dphi.
+    d mu/d ln q = 1/2 q^4 C S P int cos(phi) Im E/((1-nu^2) sigma0) dphi, integrated with the weights ``wq``.
     """
     nq = lq10.shape[0]
-    G = 0.0
-    g_prev = 0.0
-    mu = 0.0
+    g = np.empty(nq)
     for iq in range(nq):
         a2, al = _angular(lq10[iq] + lv10[iv] + shift[iq], lcphi, cphi, wphi, lw0, inv_dlw, ln_re, ln_im)
-        g_here = 0.125 * q4C[iq] * a2 * scale * scale
-        if iq > 0:
-            G += 0.5 * (g_prev + g_here) * (lq10[iq] - lq10[iq - 1]) * 2.302585092994046
-        g_prev = g_here
-        if G > 0.0:
-            P = math.erf(0.5 / math.sqrt(G))
-        else:
-            P = 1.0
-        S = gamma + (1.0 - gamma) * P * P
-        d = 0.5 * q4C[iq] * S * P * al * scale
-        G_out[iv, iq] = G
-        P_out[iv, iq] = P
+        g[iq] = 0.125 * q4C[iq] * a2 * scale * scale
         loss_out[iv, iq] = al * scale
+    _cumulative_quadratic(g, lq10, G_out[iv])
+    mu = 0.0
+    for iq in range(nq):
+        G = G_out[iv, iq]
+        P = math.erf(0.5 / math.sqrt(G)) if G > 0.0 else 1.0
+        S = gamma + (1.0 - gamma) * P * P
+        d = 0.5 * q4C[iq] * S * P * loss_out[iv, iq]
+        P_out[iv, iq] = P
         dmu_out[iv, iq] = d
         mu += wq[iq] * d
     return mu
+
+
+@njit(cache=True)
+def _cumulative_quadratic(f, lq10, out):
+    r"""Cumulative integral of ``f`` over ln q on a uniform grid, third order.
+
+    Each interval uses the quadratic through its two nodes and the next one (the previous one for the last
+    interval): :math:`\int_{x_i}^{x_{i+1}} f\,dx \approx \frac{h}{12}(5 f_i + 8 f_{i+1} - f_{i+2})`.
+    Where that would decrease the integral of a positive integrand (a jump by more than a factor 13 between
+    nodes) the interval falls back to the trapezoid rule.
+    """
+    n = f.shape[0]
+    out[0] = 0.0
+    for i in range(n - 1):
+        h = (lq10[i + 1] - lq10[i]) * 2.302585092994046
+        if n < 3:
+            inc = 0.5 * h * (f[i] + f[i + 1])
+        elif i + 2 < n:
+            inc = h / 12.0 * (5.0 * f[i] + 8.0 * f[i + 1] - f[i + 2])
+        else:
+            inc = h / 12.0 * (-f[i - 1] + 8.0 * f[i] + 5.0 * f[i + 1])
+        if inc < 0.0:
+            inc = 0.5 * h * (f[i] + f[i + 1])
+        out[i + 1] = out[i] + inc
 
 
 @njit(cache=True, parallel=True)
@@ -92,13 +111,22 @@ def friction_kernel(lq10, lv10, q4C, wq, shift, lcphi, cphi, wphi, lw0, inv_dlw,
                                  ln_re, ln_im, scale[iv], gamma, G_out, P_out, loss_out, dmu_out)
 
 
-def trapezoid_weights_ln(lq10: np.ndarray) -> np.ndarray:
-    """Trapezoid weights for int f d(ln q) on the nodes ``10**lq10`` (any spacing)."""
+def quadrature_weights_ln(lq10: np.ndarray) -> np.ndarray:
+    """Weights for int f d(ln q) on the uniform-in-log nodes ``10**lq10``: the sum over the intervals of the
+    same third-order interval rule as :func:`_cumulative_quadratic` (trapezoid for fewer than 3 nodes)."""
     x = lq10 * math.log(10.0)
-    w = np.zeros_like(x)
-    dx = np.diff(x)
-    w[:-1] += 0.5 * dx
-    w[1:] += 0.5 * dx
+    n = x.size
+    w = np.zeros(n)
+    h = np.diff(x)
+    if n < 3:
+        w[:-1] += 0.5 * h
+        w[1:] += 0.5 * h
+        return w
+    for i in range(n - 1):
+        if i + 2 < n:
+            w[i:i + 3] += h[i] / 12.0 * np.array([5.0, 8.0, -1.0])
+        else:
+            w[i - 1:i + 2] += h[i] / 12.0 * np.array([-1.0, 8.0, 5.0])
     return w
 
 

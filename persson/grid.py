@@ -1,7 +1,8 @@
 """Numerical grid of the solver: wavevector nodes, angle nodes and the modulus table.
 
-The defaults meet the documented accuracy: the closed-form benchmark (constant modulus, self-affine PSD) within
-0.1 % and a viscoelastic Prony case within 0.1 % of a slow adaptive quadrature (see ``tests/test_engine_*``).
+The defaults meet the documented accuracy: the closed-form benchmark (constant modulus, self-affine PSD) to about
+5e-7 and a viscoelastic Prony case to about 1e-4 of a slow adaptive quadrature (the tests require 1e-3, see
+``tests/test_engine_core.py``).
 Raise them for convergence studies; lower them for quick scans.
 """
 
@@ -25,7 +26,7 @@ class GridSettings:
     Parameters
     ----------
     q_per_decade : int
-        Wavevector nodes per decade of q (log-uniform; trapezoid rule in ln q). Default 32.
+        Wavevector nodes per decade of q (log-uniform; third-order quadrature in ln q). Default 32.
     n_phi : int
         Gauss-Legendre nodes for the angle on [0, pi/2]. Default 24.
     omega_per_decade : int

@@ -250,7 +250,7 @@ def _solve(surface, material, cond: Conditions, grid: GridSettings, nu: float, g
         raise InputError("surface: C(q) must return finite values >= 0 m^4 of the shape of q")
     lq10 = np.log10(q)
     q4C = q**4 * C
-    wq = _kernels.trapezoid_weights_ln(lq10)
+    wq = _kernels.quadrature_weights_ln(lq10)
     phi, wphi = grid.angle_nodes()
     cphi = np.cos(phi)
     lcphi = np.log10(cphi)

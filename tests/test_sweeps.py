@@ -60,10 +60,17 @@ def test_band_contributions_are_additive_when_a_band_is_split(model):
     whole = sweeps.band_contributions(r, [[1e3, 2e5]])
     split = sweeps.band_contributions(r, [[1e3, 1.234e4], [1.234e4, 2e5]])
     np.testing.assert_allclose(split.sum(axis=1), whole[:, 0], rtol=1e-12)
-    # an edge on a grid node gives the trapezoid partial sum exactly
+    # edges on grid nodes give the engine's own partial sum: its quadrature weights restricted to the band
     q = r.q
-    f, x = r.dmu_dlnq[:, 10:40], np.log(q[10:40])
-    direct = np.sum(0.5 * (f[:, 1:] + f[:, :-1]) * np.diff(x), axis=1)
+    from persson._kernels import quadrature_weights_ln
+
+    w = quadrature_weights_ln(np.log10(q))
+    whole_rule = r.dmu_dlnq @ w
+    np.testing.assert_allclose(whole_rule, r.mu_hysteresis, rtol=1e-12)
+    # interior interval i (i + 2 < n) of the engine's rule is h/12 (5 f_i + 8 f_i+1 - f_i+2)
+    h = np.log(q[1] / q[0])
+    f = r.dmu_dlnq
+    direct = sum(h / 12 * (5 * f[:, i] + 8 * f[:, i + 1] - f[:, i + 2]) for i in range(10, 39))
     np.testing.assert_allclose(sweeps.band_contributions(r, [[q[10], q[39]]])[:, 0], direct, rtol=1e-12)
 
 

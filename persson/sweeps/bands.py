@@ -10,11 +10,11 @@ Two modes.
     with :math:`d\mu/d\ln q = \tfrac12 q^4 C(q) S(q) P(q) \int_0^{2\pi} d\phi \cos\phi\,
     \mathrm{Im}E(qv\cos\phi, T_q)/((1-\nu^2)\sigma_0)` the engine's per-scale integrand
     (:attr:`FrictionResult.dmu_dlnq`), where :math:`P(q)` and :math:`T_q` are those of the *whole* surface
-    (the band feels the contact already reduced by the longer wavelengths). The engine integrates with the
-    trapezoid rule in :math:`\ln q`, i.e. it integrates the piecewise-linear interpolant of the integrand; the
-    band integral here is the exact integral of that same interpolant between the band edges, which need not
-    be grid nodes. Bands that tile :math:`[q_0, q_1]` therefore add up to the engine's hysteresis friction to
-    rounding error.
+    (the band feels the contact already reduced by the longer wavelengths). The band integral here is the
+    exact integral, between the band edges (which need not be grid nodes), of the piecewise-quadratic
+    interpolant (in :math:`\ln q`) the engine's third-order rule integrates, scaled by :func:`load_share` (the
+    share of the load the asperities carry: 1 unless a water film lifts part of it). Bands that tile
+    :math:`[q_0, q_1]` therefore add up to the engine's hysteresis friction to rounding error.
 
 ``"separate"`` (mode b)
     Each band as a surface of its own: the PSD restricted to :math:`[q_a, q_b]` (zero outside,
@@ -178,7 +178,8 @@ def band_contributions(result, bands) -> np.ndarray:
 
 
 def load_share(result) -> np.ndarray:
-    """``mu_hysteresis`` over the trapezoid integral of ``dmu_dlnq`` per speed (1 where the integral is 0)."""
+    """``mu_hysteresis`` over the engine-rule integral of ``dmu_dlnq`` per speed (1 where the integral is 0):
+    the share of the load the asperities carry (below 1 with the hydrodynamic lift of ``Wet``)."""
     x = np.log(np.asarray(result.q, dtype=float))
     f = np.atleast_2d(np.asarray(result.dmu_dlnq, dtype=float))
     total = _cumulative(x, f)[:, -1]
@@ -304,16 +305,46 @@ def _count(n, default: int) -> int:
 
 
 def _cumulative(x: np.ndarray, f: np.ndarray) -> np.ndarray:
-    """Cumulative trapezoid integral of f (n_speed, n_q) over x, starting at 0."""
-    seg = 0.5 * (f[:, 1:] + f[:, :-1]) * np.diff(x)[None, :]
-    return np.concatenate([np.zeros((f.shape[0], 1)), np.cumsum(seg, axis=1)], axis=1)
+    """Cumulative integral of f (n_speed, n_q) over x from x[0], with the engine's q rule (see _partial)."""
+    full = _partial(x, f, np.arange(x.size - 1), np.ones(x.size - 1))
+    return np.concatenate([np.zeros((f.shape[0], 1)), np.cumsum(full, axis=1)], axis=1)
 
 
 def _cumulative_at(x: np.ndarray, f: np.ndarray, F: np.ndarray, xq: np.ndarray) -> np.ndarray:
-    """Exact integral from x[0] to xq of the piecewise-linear interpolant of f -> (n_speed, len(xq))."""
+    """Integral from x[0] to xq of the engine's piecewise-quadratic interpolant of f -> (n_speed, len(xq))."""
     xq = np.clip(xq, x[0], x[-1])
     i = np.clip(np.searchsorted(x, xq, side="right") - 1, 0, x.size - 2)
+    t = (xq - x[i]) / (x[i + 1] - x[i])
+    return F[:, i] + _partial(x, f, i, t)
+
+
+def _partial(x: np.ndarray, f: np.ndarray, i: np.ndarray, t: np.ndarray) -> np.ndarray:
+    r"""Integral of f over [x_i, x_i + t h] (0 <= t <= 1) of the quadratic the engine integrates on interval i.
+
+    The engine (:func:`persson._kernels._cumulative_quadratic`) integrates interval i with the quadratic through
+    nodes i, i+1, i+2 (i-1, i, i+1 for the last interval), falling back to the trapezoid rule where that would
+    give a negative integral. In Newton form on the nodes u = 0, 1, 2 with differences
+    :math:`\Delta_1 = f_1 - f_0`, :math:`\Delta_2 = f_2 - 2 f_1 + f_0`:
+    :math:`\int_0^{u} p = h [f_0 u + \Delta_1 u^2/2 + \Delta_2 (u^3/3 - u^2/2)/2]`, which at u = 1 gives the
+    engine's h (5 f_0 + 8 f_1 - f_2)/12. Bands that tile the q range thus add up to the engine's integral.
+    """
+    n = x.size
     h = x[i + 1] - x[i]
-    t = xq - x[i]
+    if n < 3:
+        fi, fj = f[:, i], f[:, i + 1]
+        return h * (fi * t + (fj - fi) * t * t / 2.0)
+    last = i + 2 >= n
+    a = np.where(last, i - 1, i)  # first node of the quadratic
+    u0 = np.where(last, 1.0, 0.0)  # interval start in the quadratic's coordinate
+    f0, f1, f2 = f[:, a], f[:, a + 1], f[:, a + 2]
+    d1 = f1 - f0
+    d2 = f2 - 2.0 * f1 + f0
+
+    def prim(u):
+        return f0 * u + d1 * u * u / 2.0 + d2 * (u**3 / 3.0 - u * u / 2.0) / 2.0
+
+    quad = h * (prim(u0 + t) - prim(u0))
+    whole = h * (prim(u0 + 1.0) - prim(u0))
     fi, fj = f[:, i], f[:, i + 1]
-    return F[:, i] + fi * t + (fj - fi) * t * t / (2.0 * h)
+    trap = h * (fi * t + (fj - fi) * t * t / 2.0)
+    return np.where(whole < 0.0, trap, quad)
