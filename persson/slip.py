@@ -338,7 +338,7 @@ def brush_mu(contact: Contact, slip, mu_local, *, pressure: float, mu_static=Non
     sigma0 = positive(pressure, "pressure")
     m = _mu_array(mu_local, "mu_local")
     mst = m if mu_static is None else _mu_array(mu_static, "mu_static")
-    s, m, mst = np.broadcast_arrays(s, m, mst)
+    s, m, mst = _broadcast("slip, mu_local" if mu_static is None else "slip, mu_local, mu_static", s, m, mst)
     shape = s.shape
     a = _a_of(s.ravel(), contact, sigma0)
     mu, xc, _ = _brush(contact._xi, contact._g, contact._G, a, mst.ravel().astype(float),
@@ -796,7 +796,7 @@ def drft_kinematics(wheel_speed, disk_speed) -> Kinematics:
         raise InputError(f"disk_speed: expected a surface speed > 0 m/s, got {np.min(V):g}")
     if np.any(Vw < 0):
         raise InputError(f"wheel_speed: expected a circumferential speed >= 0 m/s, got {np.min(Vw):g}")
-    Vw, V = np.broadcast_arrays(Vw, V)
+    Vw, V = _broadcast("wheel_speed, disk_speed", Vw, V)
     if np.any(Vw > V * (1 + 1e-12)):
         raise InputError("wheel_speed: exceeds disk_speed (driving slip); the brush model here covers braking, "
                          "0 <= wheel_speed <= disk_speed")
@@ -829,7 +829,7 @@ def drft_speeds(slip, speed, *, wheel_radius: float | None = None, track_radius:
     if np.any((s < 0) | (s > 1)):
         raise InputError(f"slip: expected braking slip ratios in [0, 1], got {s[(s < 0) | (s > 1)].ravel()[0]:g}")
     V = _speed_array(speed)
-    s, V = np.broadcast_arrays(s, V)
+    s, V = _broadcast("slip, speed", s, V)
     Vw = (1.0 - s) * V
     ww = wd = None
     if wheel_radius is not None:
@@ -873,6 +873,15 @@ def _increasing(values, name: str) -> np.ndarray:
     if a.size < 2 or np.any(np.diff(a) <= 0):
         raise InputError(f"{name}: expected at least two strictly increasing values")
     return a
+
+
+def _broadcast(names: str, *arrays):
+    """np.broadcast_arrays, or InputError naming the arguments when their shapes do not broadcast."""
+    try:
+        return np.broadcast_arrays(*arrays)
+    except ValueError:
+        shapes = " and ".join(str(np.shape(a)) for a in arrays)
+        raise InputError(f"{names}: shapes {shapes} do not broadcast") from None
 
 
 def _sc(a):

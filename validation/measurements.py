@@ -101,7 +101,8 @@ class Measurements:
     def from_arrays(cls, *, slip, speed, temperature, pressure, mu, mu_std=None, wet=None, series=None,
                     source: str = "<arrays>", contact=None) -> "Measurements":
         """Measurements from arrays (scalars broadcast), with the same checks as :func:`read_measurements`."""
-        arrays = [np.atleast_1d(np.asarray(a, dtype=float)) for a in (slip, speed, temperature, pressure, mu)]
+        names = ("slip", "speed", "temperature", "pressure", "mu")
+        arrays = [_float_argument(a, name, source) for a, name in zip((slip, speed, temperature, pressure, mu), names)]
         try:
             arrays = [np.array(a) for a in np.broadcast_arrays(*arrays)]
         except ValueError:
@@ -109,9 +110,17 @@ class Measurements:
                              f"(shapes {[a.shape for a in arrays]})") from None
         n = arrays[0].size
         arrays = [a.ravel() for a in arrays]
-        std = None if mu_std is None else np.broadcast_to(np.asarray(mu_std, dtype=float), (n,)).copy()
-        w = None if wet is None else np.broadcast_to(np.asarray(wet), (n,)).copy()
-        ser = () if series is None else tuple(str(s) for s in np.broadcast_to(np.asarray(series, dtype=object), (n,)))
+
+        def per_row(value, name):
+            try:
+                return np.broadcast_to(value, (n,)).copy()
+            except ValueError:
+                raise InputError(f"{source}: {name} has shape {np.shape(value)}; expected a scalar or one value per "
+                                 f"row ({n} rows)") from None
+
+        std = None if mu_std is None else per_row(_float_argument(mu_std, "mu_std", source), "mu_std")
+        w = None if wet is None else per_row(np.asarray(wet), "wet")
+        ser = () if series is None else tuple(str(s) for s in per_row(np.asarray(series, dtype=object), "series"))
         return cls(slip=arrays[0], speed=arrays[1], temperature=arrays[2], pressure=arrays[3], mu=arrays[4],
                    mu_std=std, wet=w, series=ser, source=source, contact=contact)
 
@@ -260,6 +269,8 @@ def read_measurements(path) -> Measurements:
         if not stripped or stripped.startswith("#"):
             continue
         cells = [c.strip() for c in next(csv.reader([line]))]
+        if not any(cells):  # a row of empty cells (",,,,": spreadsheet exports) is a blank line
+            continue
         if header is None:
             header = cells
             header_line = lineno
@@ -441,14 +452,18 @@ def _check_arrays(cols: dict, series, source: str, lines) -> dict:
         if w.size != n:
             raise InputError(f"{source}: column 'wet' has {w.size} values, expected {n}")
         if w.dtype != bool:
-            try:
-                wf = w.astype(float)
-            except (TypeError, ValueError):
-                raise InputError(f"{source}: column 'wet': expected 0/1 values") from None
-            bad = ~np.isin(wf, (0.0, 1.0))
-            if np.any(bad):
-                i = int(np.argmax(bad))
-                raise InputError(f"{_where(source, lines, i, 'wet')}: expected 0 or 1, got {w[i]!r}")
+            wf = np.empty(n)
+            for i, x in enumerate(w.tolist()):  # numbers 0/1, or the reader's words (true/false, yes/no, ...)
+                key = x.strip().lower() if isinstance(x, str) else None
+                if key in _TRUE or key in _FALSE:
+                    wf[i] = float(key in _TRUE)
+                    continue
+                try:
+                    wf[i] = float(x)
+                except (TypeError, ValueError):
+                    wf[i] = np.nan
+                if wf[i] not in (0.0, 1.0):
+                    raise InputError(f"{_where(source, lines, i, 'wet')}: expected 0 or 1 (or true/false), got {x!r}")
             w = wf == 1.0
     out["wet"] = w
     ser = tuple(str(x) for x in series) if series else ()
@@ -460,6 +475,21 @@ def _check_arrays(cols: dict, series, source: str, lines) -> dict:
         if out.get(k) is not None:
             out[k].setflags(write=False)
     return out
+
+
+def _float_argument(value, name: str, source: str) -> np.ndarray:
+    """``value`` as a 1D-or-more float array, or InputError naming the argument and the offending entry."""
+    try:
+        return np.atleast_1d(np.asarray(value, dtype=float))
+    except (TypeError, ValueError):
+        pass
+    flat = np.atleast_1d(np.asarray(value, dtype=object)).ravel()
+    for i, x in enumerate(flat):
+        try:
+            float(x)
+        except (TypeError, ValueError):
+            raise InputError(f"{source}, row {i}, column {name!r}: expected a number, got {x!r}") from None
+    raise InputError(f"{source}: column {name!r}: expected numbers, got {value!r}")
 
 
 def _csv_text(s: str) -> str:

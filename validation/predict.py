@@ -117,6 +117,8 @@ class Predictor:
 
     def predict(self, model) -> Prediction:
         """Predictions of ``model`` for every row."""
+        if not (hasattr(model, "friction") and hasattr(model, "effect_names")):
+            raise InputError(f"model: expected a persson.Model, got {type(model).__name__}")
         m = self.measurements
         mu = np.empty(m.n)
         mu_loc = np.empty(m.n)
