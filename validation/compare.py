@@ -155,13 +155,7 @@ class Comparison:
 
     def to_json(self, path=None) -> str:
         """The :meth:`as_dict` summary as JSON text; written atomically to ``path`` when given."""
-        text = json.dumps(_clean(self.as_dict()), indent=2)
-        if path is not None:
-            from persson.io import atomic_write
-
-            with atomic_write(path, "w") as fh:
-                fh.write(text + "\n")
-        return text
+        return json_text(self.as_dict(), path)
 
     def rows_table(self) -> dict[str, np.ndarray]:
         """Per-row columns: the measurement columns plus ``mu_predicted`` and ``residual``."""
@@ -335,6 +329,17 @@ def _round(x: float) -> float:
 
 def _p10(d: int) -> str:
     return f"{10.0 ** d:g}"
+
+
+def json_text(data: dict, path=None) -> str:
+    """``data`` as indented JSON text (non-finite floats as null); written atomically to ``path`` when given."""
+    text = json.dumps(_clean(data), indent=2)
+    if path is not None:
+        from persson.io import atomic_write
+
+        with atomic_write(path, "w") as fh:
+            fh.write(text + "\n")
+    return text
 
 
 def _clean(obj):

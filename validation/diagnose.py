@@ -41,7 +41,6 @@ For a baseline model and measurements (``y``, weights :math:`w_i = 1/\sigma_i` f
 
 from __future__ import annotations
 
-import json
 import math
 import time
 import warnings
@@ -50,7 +49,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import stats
 
-from .compare import _clean, group_labels
+from .compare import group_labels, json_text
 from .errors import InputError
 from .fitting import Fitter, FreeParameter, ParameterSpace, free_parameters, halton
 from .measurements import Measurements
@@ -347,13 +346,7 @@ class Diagnosis:
 
     def to_json(self, path=None) -> str:
         """JSON text of :meth:`as_dict`; written atomically to ``path`` when given."""
-        text = json.dumps(_clean(self.as_dict()), indent=2)
-        if path is not None:
-            from persson.io import atomic_write
-
-            with atomic_write(path, "w") as fh:
-                fh.write(text + "\n")
-        return text
+        return json_text(self.as_dict(), path)
 
     def table_text(self) -> str:
         """The ranking as aligned plain text."""

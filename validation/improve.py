@@ -2,13 +2,12 @@
 
 from __future__ import annotations
 
-import json
 import time
 from dataclasses import dataclass
 
 import numpy as np
 
-from .compare import Comparison, _clean, comparison_from
+from .compare import Comparison, comparison_from, json_text
 from .diagnose import Diagnosis, diagnose
 from .errors import InputError
 from .predict import Prediction
@@ -125,13 +124,7 @@ class Improvement:
                 "stopped": self.stopped, "seconds": self.seconds}
 
     def to_json(self, path=None) -> str:
-        text = json.dumps(_clean(self.as_dict()), indent=2)
-        if path is not None:
-            from persson.io import atomic_write
-
-            with atomic_write(path, "w") as fh:
-                fh.write(text + "\n")
-        return text
+        return json_text(self.as_dict(), path)
 
     def figures(self) -> dict:
         from . import plots
