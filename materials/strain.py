@@ -134,6 +134,11 @@ class StrainSoftened:
         return self.material.log10_aT
 
     @property
+    def log10_bT(self):
+        # vertical shift of the wrapped material (AttributeError, i.e. none, when it has none)
+        return self.material.log10_bT
+
+    @property
     def T_ref(self):
         return self.material.T_ref
 

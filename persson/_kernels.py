@@ -3,7 +3,8 @@
 All kernels work on a uniform grid in ln q (quadrature weights ``wq``, third-order interval rule), Gauss-Legendre angles on [0, pi/2]
 (``cphi``, ``lcphi`` = log10 cos phi, ``wphi``) and a modulus table in log10 of the *reduced* angular
 frequency (``lw0``, ``inv_dlw``, ``ln_re``, ``ln_im`` = ln E', ln E'' at the reference temperature of the
-table). A temperature T enters through ``shift`` = log10 a_T(T) relative to the table's temperature.
+table). A temperature T enters through ``shift`` = log10 a_T(T) and ``vshift`` = ln b_T(T), both relative to the
+table's temperature (time-temperature superposition: E(omega, T) = b_T E(omega a_T, T_table)).
 
 Angular integrals use the parity of the modulus (|E|^2 even, Im E odd in omega):
 int_0^{2pi} dphi f(q v cos phi) = 4 int_0^{pi/2} dphi f(...) for f = |E|^2 and f = cos(phi) Im E.
@@ -32,21 +33,22 @@ def _lookup(lw, lw0, inv_dlw, tab):
 
 
 @njit(cache=True)
-def _angular(base, lcphi, cphi, wphi, lw0, inv_dlw, ln_re, ln_im):
-    """Return (int_0^{2pi} |E|^2 dphi, int_0^{2pi} cos(phi) Im E dphi) at log10(q v a_T) = ``base``."""
+def _angular(base, lnb, lcphi, cphi, wphi, lw0, inv_dlw, ln_re, ln_im):
+    """Return (int_0^{2pi} |E|^2 dphi, int_0^{2pi} cos(phi) Im E dphi) at log10(q v a_T) = ``base``,
+    with the moduli multiplied by the vertical shift exp(``lnb``) = b_T."""
     a2 = 0.0
     al = 0.0
     for k in range(cphi.shape[0]):
         lw = base + lcphi[k]
-        er = math.exp(_lookup(lw, lw0, inv_dlw, ln_re))
-        ei = math.exp(_lookup(lw, lw0, inv_dlw, ln_im))
+        er = math.exp(_lookup(lw, lw0, inv_dlw, ln_re) + lnb)
+        ei = math.exp(_lookup(lw, lw0, inv_dlw, ln_im) + lnb)
         a2 += wphi[k] * (er * er + ei * ei)
         al += wphi[k] * cphi[k] * ei
     return 4.0 * a2, 4.0 * al
 
 
 @njit(cache=True)
-def _scale_pass(iv, lq10, lv10, q4C, wq, shift, lcphi, cphi, wphi, lw0, inv_dlw, ln_re, ln_im,
+def _scale_pass(iv, lq10, lv10, q4C, wq, shift, vshift, lcphi, cphi, wphi, lw0, inv_dlw, ln_re, ln_im,
                 scale, gamma, G_out, P_out, loss_out, dmu_out):
     """One speed: G(q), P(q), loss integral and d mu / d ln q along the q grid; returns mu_visc.
 
@@ -57,7 +59,8 @@ def _scale_pass(iv, lq10, lv10, q4C, wq, shift, lcphi, cphi, wphi, lw0, inv_dlw,
     nq = lq10.shape[0]
     g = np.empty(nq)
     for iq in range(nq):
-        a2, al = _angular(lq10[iq] + lv10[iv] + shift[iq], lcphi, cphi, wphi, lw0, inv_dlw, ln_re, ln_im)
+        a2, al = _angular(lq10[iq] + lv10[iv] + shift[iq], vshift[iq], lcphi, cphi, wphi, lw0, inv_dlw,
+                          ln_re, ln_im)
         g[iq] = 0.125 * q4C[iq] * a2 * scale * scale
         loss_out[iv, iq] = al * scale
     _cumulative_quadratic(g, lq10, G_out[iv])
@@ -98,17 +101,17 @@ def _cumulative_quadratic(f, lq10, out):
 
 
 @njit(cache=True, parallel=True)
-def friction_kernel(lq10, lv10, q4C, wq, shift, lcphi, cphi, wphi, lw0, inv_dlw, ln_re, ln_im,
+def friction_kernel(lq10, lv10, q4C, wq, shift, vshift, lcphi, cphi, wphi, lw0, inv_dlw, ln_re, ln_im,
                     scale, gamma, G_out, P_out, loss_out, dmu_out, mu_out):
     """Hysteresis friction and contact area for every speed (prange over speeds).
 
-    Parameters are documented in the module docstring; ``shift`` has shape (n_speed, n_q) and holds
-    log10 a_T(T_q) relative to the table temperature; ``scale`` = 1/((1-nu^2) sigma0) per speed;
+    Parameters are documented in the module docstring; ``shift`` and ``vshift`` have shape (n_speed, n_q) and
+    hold log10 a_T(T) and ln b_T(T) relative to the table temperature; ``scale`` = 1/((1-nu^2) sigma0) per speed;
     outputs have shape (n_speed, n_q) and (n_speed,).
     """
     for iv in prange(lv10.shape[0]):
-        mu_out[iv] = _scale_pass(iv, lq10, lv10, q4C, wq, shift[iv], lcphi, cphi, wphi, lw0, inv_dlw,
-                                 ln_re, ln_im, scale[iv], gamma, G_out, P_out, loss_out, dmu_out)
+        mu_out[iv] = _scale_pass(iv, lq10, lv10, q4C, wq, shift[iv], vshift[iv], lcphi, cphi, wphi, lw0,
+                                 inv_dlw, ln_re, ln_im, scale[iv], gamma, G_out, P_out, loss_out, dmu_out)
 
 
 def quadrature_weights_ln(lq10: np.ndarray) -> np.ndarray:
@@ -176,7 +179,7 @@ def _shift_at(T, T_lo, inv_dT, shift_tab):
 
 @njit(cache=True, parallel=True)
 def flash_kernel(q, lq10, lv10, v, q4C, wq, lcphi, cphi, wphi, lw0, inv_dlw, ln_re, ln_im, scale, gamma,
-                 T0, T_lo, inv_dT, shift_tab, EX, a_t0, D, heat_factor, i_m, f_m, tol, max_iter,
+                 T0, T_lo, inv_dT, shift_tab, vshift_tab, EX, a_t0, D, heat_factor, i_m, f_m, tol, max_iter,
                  G_out, P_out, loss_out, dmu_out, mu_out, T_out, it_out, res_out):
     r"""Hysteresis friction with Persson's self-consistent flash temperature, per speed in parallel.
 
@@ -195,9 +198,10 @@ def flash_kernel(q, lq10, lv10, v, q4C, wq, lcphi, cphi, wphi, lw0, inv_dlw, ln_
         for i in range(nq):
             for j in range(i + 1):
                 g[i, j] = heat_kernel(q[i], q[j], a_t0[iv], D, EX[iv, i], EX[iv, j])
-        T = np.full(nq, T0)
+        T = np.full(nq, T0[iv])
         Tn = np.empty(nq)
         shift = np.empty(nq)
+        vshift = np.empty(nq)
         f = np.empty(nq)
         relax = 1.0
         res_prev = 1e300
@@ -206,7 +210,8 @@ def flash_kernel(q, lq10, lv10, v, q4C, wq, lcphi, cphi, wphi, lw0, inv_dlw, ln_
         for it in range(1, max_iter + 1):
             for i in range(nq):
                 shift[i] = _shift_at(T[i], T_lo, inv_dT, shift_tab)
-            _scale_pass(iv, lq10, lv10, q4C, wq, shift, lcphi, cphi, wphi, lw0, inv_dlw, ln_re, ln_im,
+                vshift[i] = _shift_at(T[i], T_lo, inv_dT, vshift_tab)
+            _scale_pass(iv, lq10, lv10, q4C, wq, shift, vshift, lcphi, cphi, wphi, lw0, inv_dlw, ln_re, ln_im,
                         scale[iv], gamma, G_out, P_out, loss_out, dmu_out)
             # P(q_m), linear in ln q between the nodes around q_m
             Pm = P_out[iv, i_m] + f_m * (P_out[iv, min(i_m + 1, nq - 1)] - P_out[iv, i_m])
@@ -225,7 +230,7 @@ def flash_kernel(q, lq10, lv10, v, q4C, wq, lcphi, cphi, wphi, lw0, inv_dlw, ln_
                         else:
                             wj = 0.5 * (q[j + 1] - q[j - 1])
                         acc += wj * g[i, j] * f[j]
-                Tn[i] = T0 + acc
+                Tn[i] = T0[iv] + acc
                 d = abs(Tn[i] - T[i])
                 if d > res:
                     res = d
@@ -242,8 +247,9 @@ def flash_kernel(q, lq10, lv10, v, q4C, wq, lcphi, cphi, wphi, lw0, inv_dlw, ln_
                 T[i] = T[i] + relax * (Tn[i] - T[i])
         for i in range(nq):
             shift[i] = _shift_at(T[i], T_lo, inv_dT, shift_tab)
+            vshift[i] = _shift_at(T[i], T_lo, inv_dT, vshift_tab)
             T_out[iv, i] = T[i]
-        mu_out[iv] = _scale_pass(iv, lq10, lv10, q4C, wq, shift, lcphi, cphi, wphi, lw0, inv_dlw, ln_re, ln_im,
-                                 scale[iv], gamma, G_out, P_out, loss_out, dmu_out)
+        mu_out[iv] = _scale_pass(iv, lq10, lv10, q4C, wq, shift, vshift, lcphi, cphi, wphi, lw0, inv_dlw,
+                                 ln_re, ln_im, scale[iv], gamma, G_out, P_out, loss_out, dmu_out)
         it_out[iv] = it
         res_out[iv] = res

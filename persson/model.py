@@ -32,7 +32,7 @@ from .effects.base import Conditions, Effect, SolverState
 from .errors import ConvergenceWarning, InputError
 from .grid import GridSettings
 from .results import FrictionResult
-from .tabulate import modulus_table, shift_table
+from .tabulate import modulus_table, relative_shifts, shift_table
 
 __all__ = ["Model"]
 
@@ -108,28 +108,40 @@ class Model:
         object.__setattr__(self, "effects", effects)
 
     # ----------------------------------------------------------------------------------------------------
-    def friction(self, speed, temperature: float = 20.0, pressure: float = 0.3e6) -> FrictionResult:
+    def friction(self, speed, temperature=20.0, pressure=0.3e6) -> FrictionResult:
         """Friction, contact area and per-scale detail at the sliding speed(s) ``speed``.
 
         Parameters
         ----------
         speed : float or array_like
             Sliding speed(s), m/s, > 0.
-        temperature : float
-            Background temperature T0, deg C.
-        pressure : float
-            Nominal contact pressure sigma0, Pa, > 0.
+        temperature : float or array_like
+            Background temperature T0, deg C; an array gives one temperature per speed (same length).
+        pressure : float or array_like
+            Nominal contact pressure sigma0, Pa, > 0; an array gives one pressure per speed.
 
         Returns
         -------
         FrictionResult
+            ``temperature`` and ``pressure`` are floats when given as scalars, else arrays per speed.
+
+        Notes
+        -----
+        Speeds with different temperatures share one modulus table through time-temperature superposition,
+        E(omega, T) = b_T E(omega a_T, T_table), with ``log10_aT`` (and ``log10_bT`` when present) of the
+        material; a material without ``log10_aT`` is evaluated at each distinct temperature separately.
         """
         v, scalar = _speeds(speed)
-        T0 = number(temperature, "temperature")
-        sigma0 = number(pressure, "pressure")
-        if sigma0 <= 0:
-            raise InputError(f"pressure: expected a nominal pressure > 0 Pa, got {sigma0:g}")
-        cond = Conditions(speed=v, temperature=T0, pressure=sigma0, nominal_pressure=sigma0)
+        T0 = _per_speed(temperature, "temperature", v.size)
+        sigma0 = _per_speed(pressure, "pressure", v.size)
+        if np.any(sigma0 <= 0):
+            i = int(np.argmax(sigma0 <= 0))
+            raise InputError(f"pressure: expected a nominal pressure > 0 Pa, got {sigma0[i]:g}"
+                             + (f" at index {i}" if np.ndim(pressure) else ""))
+        # Conditions keep scalars for scalar arguments (effects written for one temperature keep working)
+        T_c = T0 if np.ndim(temperature) else float(T0[0])
+        p_c = sigma0 if np.ndim(pressure) else float(sigma0[0])
+        cond = Conditions(speed=v, temperature=T_c, pressure=p_c, nominal_pressure=p_c)
         for e in self.effects:
             cond = e.transform_conditions(cond)
         surface, material = self.surface, self.material
@@ -138,7 +150,7 @@ class Model:
             material = e.transform_material(material, cond)
         thermal = next((e for e in self.effects if e.solver_role == "temperature"), None)
 
-        solved = _solve(surface, material, cond, self.grid, self.nu, self.gamma, thermal)
+        solved = _solve_grouped(surface, material, cond, self.grid, self.nu, self.gamma, thermal)
         state = SolverState(conditions=cond, surface=surface, material=material, q=solved.q,
                             area_q=solved.P, G_q=solved.G, temperature_q=solved.T_q,
                             mu_hysteresis=solved.mu, nu=self.nu, gamma=self.gamma)
@@ -170,7 +182,8 @@ class Model:
         hrms = math.sqrt(2 * math.pi * integrate.trapezoid(solved.q**2 * C_nodes, x=np.log(solved.q)))
 
         result = FrictionResult(
-            speed=v, temperature=T0, pressure=cond.nominal_pressure,
+            speed=v, temperature=float(T0[0]) if np.ndim(temperature) == 0 else T0,
+            pressure=float(sigma0[0]) if np.ndim(pressure) == 0 else sigma0,
             mu=out(mu_total, scalar), mu_hysteresis=out(mu_hys, scalar), mu_adhesion=out(mu_adh, scalar),
             mu_terms={k: out(t, scalar) for k, t in terms.items()},
             contact_area=out(solved.P[:, -1], scalar),
@@ -238,6 +251,32 @@ class _Solved:
     residual: np.ndarray
 
 
+def _solve_grouped(surface, material, cond: Conditions, grid: GridSettings, nu: float, gamma: float,
+                   thermal) -> _Solved:
+    """:func:`_solve`, split by temperature when the material cannot shift between temperatures."""
+    shape = cond.speed.shape
+    T = np.broadcast_to(np.asarray(cond.temperature, dtype=float), shape)
+    if np.all(T == T[0]) or hasattr(material, "log10_aT"):
+        return _solve(surface, material, cond, grid, nu, gamma, thermal)
+    p = np.broadcast_to(np.asarray(cond.pressure, dtype=float), shape)
+    p_nom = np.broadcast_to(np.asarray(cond.nominal_pressure, dtype=float), shape)
+    parts = []
+    for t in np.unique(T):
+        idx = np.flatnonzero(T == t)
+        sub = cond.replace(speed=cond.speed[idx], temperature=T[idx], pressure=p[idx], nominal_pressure=p_nom[idx])
+        parts.append((idx, _solve(surface, material, sub, grid, nu, gamma, thermal)))
+    n = T.size
+    first = parts[0][1]
+    merged = {}
+    for name in ("G", "P", "T_q", "dmu", "loss", "mu", "converged_each", "iterations", "residual"):
+        ref = getattr(first, name)
+        arr = np.empty((n,) + ref.shape[1:], dtype=ref.dtype)
+        for idx, part in parts:
+            arr[idx] = getattr(part, name)
+        merged[name] = arr
+    return _Solved(q=first.q, converged=bool(merged["converged_each"].all()), **merged)
+
+
 def _solve(surface, material, cond: Conditions, grid: GridSettings, nu: float, gamma: float,
            thermal) -> _Solved:
     """Prepare the arrays and run the kernels (plain or with the scale-dependent temperature)."""
@@ -256,23 +295,28 @@ def _solve(surface, material, cond: Conditions, grid: GridSettings, nu: float, g
     lcphi = np.log10(cphi)
     v = cond.speed
     lv10 = np.log10(v)
-    T0 = cond.temperature
+    T0 = np.broadcast_to(np.asarray(cond.temperature, dtype=float), v.shape)
     nv, nq = v.size, q.size
     pressure = np.broadcast_to(np.asarray(cond.pressure, dtype=float), v.shape)
     if not np.all(np.isfinite(pressure)) or np.any(pressure <= 0):
         raise InputError("pressure: the pressure on the asperity contact must stay > 0 Pa after the effects")
     scale = np.ascontiguousarray(1.0 / ((1.0 - nu * nu) * pressure))
+    # one modulus table at T_table; other temperatures are shifted onto it
+    T_table = float(T0[0]) if np.all(T0 == T0[0]) else float(np.median(T0))
 
     if thermal is None:
-        shifts = np.zeros((nv, nq))
-        s_lo = s_hi = 0.0
+        s_v, b_v = relative_shifts(material, T0, T_table)
+        shifts = np.ascontiguousarray(np.repeat(s_v[:, None], nq, axis=1))
+        vshifts = np.ascontiguousarray(np.repeat(b_v[:, None], nq, axis=1))
+        s_lo, s_hi = float(s_v.min()), float(s_v.max())
         stab = None
     else:
-        stab = shift_table(material, T0, T0 + grid.max_temperature_rise, grid.temperature_step)
+        stab = shift_table(material, T_table, float(T0.min()), float(T0.max()) + grid.max_temperature_rise,
+                           grid.temperature_step)
         s_lo, s_hi = float(stab.shift.min()), float(stab.shift.max())
     lw_min = lq10[0] + lv10.min() + lcphi.min() + s_lo - _PAD_DECADES
     lw_max = lq10[-1] + lv10.max() + s_hi + _PAD_DECADES
-    table = modulus_table(material, T0, lw_min, lw_max, grid.omega_per_decade)
+    table = modulus_table(material, T_table, lw_min, lw_max, grid.omega_per_decade)
 
     G = np.empty((nv, nq))
     P = np.empty((nv, nq))
@@ -280,9 +324,9 @@ def _solve(surface, material, cond: Conditions, grid: GridSettings, nu: float, g
     dmu = np.empty((nv, nq))
     mu = np.empty(nv)
     if thermal is None:
-        _kernels.friction_kernel(lq10, lv10, q4C, wq, shifts, lcphi, cphi, wphi, table.lw0, 1.0 / table.dlw,
-                                 table.ln_re, table.ln_im, scale, gamma, G, P, loss, dmu, mu)
-        T_q = np.full((nv, nq), T0)
+        _kernels.friction_kernel(lq10, lv10, q4C, wq, shifts, vshifts, lcphi, cphi, wphi, table.lw0,
+                                 1.0 / table.dlw, table.ln_re, table.ln_im, scale, gamma, G, P, loss, dmu, mu)
+        T_q = np.repeat(T0[:, None], nq, axis=1)
         ones = np.ones(nv, dtype=bool)
         return _Solved(q, G, P, T_q, dmu, loss, mu, True, ones, np.zeros(nv, dtype=np.int64), np.zeros(nv))
     return thermal.solve_temperature(
@@ -301,6 +345,21 @@ def _surface_notes(surface):
 
 def _shape(a: np.ndarray, scalar: bool):
     return float(a[0]) if scalar else a
+
+
+def _per_speed(value, name: str, n: int) -> np.ndarray:
+    """A scalar or an array of length n (one value per speed) as a float array of length n."""
+    if np.ndim(value) == 0:
+        return np.full(n, number(value, name))
+    try:
+        a = np.asarray(value, dtype=float).ravel()
+    except (TypeError, ValueError):
+        raise InputError(f"{name}: expected a number or an array of numbers, got {value!r}") from None
+    if a.size != n:
+        raise InputError(f"{name}: expected a scalar or one value per speed ({n}), got {a.size} values")
+    if not np.all(np.isfinite(a)):
+        raise InputError(f"{name}: NaN or infinite value at index {int(np.argmax(~np.isfinite(a)))}")
+    return a
 
 
 def _speeds(speed) -> tuple[np.ndarray, bool]:

@@ -22,10 +22,10 @@ class FrictionResult:
     ----------
     speed : ndarray
         Sliding speeds, m/s, shape (n_speed,).
-    temperature : float
-        Background temperature T0, deg C.
-    pressure : float
-        Nominal pressure sigma0, Pa.
+    temperature : float or ndarray
+        Background temperature T0, deg C (an array per speed when given per speed).
+    pressure : float or ndarray
+        Nominal pressure sigma0, Pa (an array per speed when given per speed).
     mu : float or ndarray
         Total friction coefficient: hysteresis + every effect's friction term.
     mu_hysteresis : float or ndarray
@@ -59,8 +59,8 @@ class FrictionResult:
     """
 
     speed: np.ndarray
-    temperature: float
-    pressure: float
+    temperature: float | np.ndarray
+    pressure: float | np.ndarray
     mu: np.ndarray
     mu_hysteresis: np.ndarray
     mu_adhesion: np.ndarray
@@ -88,9 +88,12 @@ class FrictionResult:
         return dataclasses.replace(self, **changes)
 
     def as_table(self) -> dict[str, np.ndarray]:
-        """Columns ``speed_m_s, mu, mu_hysteresis, mu_adhesion, contact_area`` (+ separation, flash) per speed."""
+        """Columns ``speed_m_s, T_C, pressure_Pa, mu, mu_hysteresis, mu_adhesion, contact_area`` (+ flash,
+        separation, penetration) per speed."""
         cols = {
             "speed_m_s": self.speed,
+            "T_C": np.broadcast_to(np.asarray(self.temperature, dtype=float), self.speed.shape),
+            "pressure_Pa": np.broadcast_to(np.asarray(self.pressure, dtype=float), self.speed.shape),
             "mu": np.atleast_1d(self.mu),
             "mu_hysteresis": np.atleast_1d(self.mu_hysteresis),
             "mu_adhesion": np.atleast_1d(self.mu_adhesion),

@@ -3,7 +3,8 @@
 The complex modulus is evaluated once per call on a log-uniform grid of angular frequency at the table
 temperature T0, as ln E' and ln E''; a temperature T != T0 enters as a shift of log10 omega by
 log10 a_T(T) - log10 a_T(T0) (time-temperature superposition, Williams, Landel & Ferry 1955), tabulated
-on a uniform temperature grid. Materials without ``log10_aT`` are treated as temperature-independent.
+on a uniform temperature grid, and an optional vertical shift ln b_T(T) (``log10_bT``) multiplies the moduli.
+Materials without ``log10_aT`` are treated as temperature-independent.
 """
 
 from __future__ import annotations
@@ -15,7 +16,7 @@ import numpy as np
 
 from .errors import InputError
 
-__all__ = ["ModulusTable", "ShiftTable", "modulus_table", "shift_table"]
+__all__ = ["ModulusTable", "ShiftTable", "modulus_table", "shift_table", "relative_shifts"]
 
 # Relative floor for ln E'' so that a purely elastic material (E'' = 0) stays finite in the log table.
 _LOSS_FLOOR = 1e-30
@@ -39,16 +40,17 @@ class ModulusTable:
 
 @dataclass(frozen=True, eq=False)
 class ShiftTable:
-    """log10 a_T(T) - log10 a_T(T0) on a uniform temperature grid starting at ``T_lo`` (deg C)."""
+    """log10 a_T(T) and ln b_T(T) relative to the table temperature, on a uniform grid from ``T_lo`` (deg C)."""
 
     T_lo: float
     dT: float
     shift: np.ndarray
+    vshift: np.ndarray
 
-    def __call__(self, T):
-        """Interpolated shift at temperature(s) T (clamped to the table)."""
-        x = self.T_lo + self.dT * np.arange(self.shift.size)
-        return np.interp(T, x, self.shift)
+    @property
+    def T_hi(self) -> float:
+        """Last temperature of the table, deg C."""
+        return self.T_lo + self.dT * (self.shift.size - 1)
 
 
 def modulus_table(material, T0: float, log10_omega_min: float, log10_omega_max: float,
@@ -83,15 +85,32 @@ def modulus_table(material, T0: float, log10_omega_min: float, log10_omega_max: 
                         ln_im=np.log(np.maximum(E.imag, floor)), T0=float(T0))
 
 
-def shift_table(material, T0: float, T_max: float, step: float) -> ShiftTable:
-    """Tabulate log10 a_T(T) - log10 a_T(T0) for T in [T0, T_max] (deg C)."""
-    n = max(2, int(math.ceil((T_max - T0) / step)) + 1)
-    T = T0 + step * np.arange(n)
-    log_shift = getattr(material, "log10_aT", None)
-    if log_shift is None:
-        s = np.zeros(n)
-    else:
-        s = np.asarray(log_shift(T), dtype=float) - float(np.asarray(log_shift(T0), dtype=float))
-        if s.shape != T.shape or not np.all(np.isfinite(s)):
-            raise InputError(f"material: log10_aT(T) must be finite on [{T0:g}, {T_max:g}] C")
-    return ShiftTable(T_lo=float(T0), dT=float(step), shift=s)
+def shift_table(material, T_table: float, T_lo: float, T_hi: float, step: float) -> ShiftTable:
+    """Tabulate log10 a_T(T) - log10 a_T(T_table) and ln b_T(T) - ln b_T(T_table) for T in [T_lo, T_hi] (deg C).
+
+    Materials without ``log10_aT`` are temperature-independent (zero shifts); ``log10_bT`` (vertical shift)
+    is optional.
+    """
+    n = max(2, int(math.ceil((T_hi - T_lo) / step)) + 1)
+    T = T_lo + step * np.arange(n)
+    s = _relative(material, "log10_aT", T, T_table)
+    b = _relative(material, "log10_bT", T, T_table) * math.log(10.0)
+    return ShiftTable(T_lo=float(T_lo), dT=float(step), shift=s, vshift=b)
+
+
+def relative_shifts(material, T, T_table: float) -> tuple[np.ndarray, np.ndarray]:
+    """(log10 a_T(T) - log10 a_T(T_table), ln b_T(T) - ln b_T(T_table)) at temperatures ``T``."""
+    T = np.asarray(T, dtype=float)
+    return (_relative(material, "log10_aT", T, T_table),
+            _relative(material, "log10_bT", T, T_table) * math.log(10.0))
+
+
+def _relative(material, name: str, T: np.ndarray, T_table: float) -> np.ndarray:
+    f = getattr(material, name, None)
+    if f is None:
+        return np.zeros(T.shape)
+    s = np.asarray(f(T), dtype=float) - float(np.asarray(f(T_table), dtype=float))
+    s = np.broadcast_to(s, T.shape).astype(float)
+    if not np.all(np.isfinite(s)):
+        raise InputError(f"material: {name}(T) must be finite on [{T.min():g}, {T.max():g}] C")
+    return s

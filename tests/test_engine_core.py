@@ -201,3 +201,70 @@ def test_material_returning_nan_is_refused():
     s = surfaces.SelfAffine(hurst=0.8, q0=1e3, q1=1e7, hrms=20e-6)
     with pytest.raises(persson.InputError, match="material"):
         persson.Model(s, Broken()).friction(1.0, pressure=SIGMA0)
+
+
+# --- one temperature and pressure per speed ----------------------------------------------------------------
+def _per_speed_vs_separate(model, rtol):
+    v = np.array([1e-4, 1e-2, 0.3, 3.0, 0.3])
+    T = np.array([0.0, 20.0, 35.0, 60.0, 20.0])
+    p = np.array([0.2e6, 0.3e6, 0.5e6, 0.3e6, 0.8e6])
+    r = model.friction(v, temperature=T, pressure=p)
+    ref = np.array([model.friction(vi, temperature=Ti, pressure=pi).mu for vi, Ti, pi in zip(v, T, p)])
+    area = np.array([model.friction(vi, temperature=Ti, pressure=pi).contact_area for vi, Ti, pi in zip(v, T, p)])
+    np.testing.assert_allclose(r.mu, ref, rtol=rtol)
+    np.testing.assert_allclose(r.contact_area, area, rtol=rtol)
+    np.testing.assert_array_equal(r.temperature, T)
+    np.testing.assert_array_equal(r.pressure, p)
+
+
+def test_per_speed_temperature_and_pressure_equal_separate_calls():
+    """Speeds at other temperatures are shifted onto one modulus table (WLF); they agree with separate calls."""
+    s = surfaces.SelfAffine(hurst=0.8, q0=1e3, q1=1e6, hrms=20e-6)
+    m = materials.Prony(wlf=materials.WLF(8.86, 101.6, 20.0), **PRONY)
+    _per_speed_vs_separate(persson.Model(s, m), rtol=1e-5)
+    _per_speed_vs_separate(persson.Model(s, materials.example_tread(), effects=[persson.effects.FlashTemperature(),
+                                                                               persson.effects.Adhesion()]),
+                           rtol=1e-4)
+
+
+def test_per_speed_temperature_applies_the_vertical_shift():
+    class Shifted:
+        """E(omega, T) = b_T E_ref(omega a_T): WLF horizontally, b_T = 1 + 0.01 (T - 20) vertically."""
+
+        base = materials.Prony(**PRONY)
+        wlf = materials.WLF(8.86, 101.6, 20.0)
+
+        def log10_aT(self, T):
+            return self.wlf.log10_aT(T)
+
+        def log10_bT(self, T):
+            return np.log10(1 + 0.01 * (np.asarray(T, dtype=float) - 20.0))
+
+        def E(self, omega, T=None):
+            T = 20.0 if T is None else T
+            return 10 ** self.log10_bT(T) * self.base.E(np.asarray(omega) * 10 ** self.log10_aT(T))
+
+    s = surfaces.SelfAffine(hurst=0.8, q0=1e3, q1=1e6, hrms=20e-6)
+    _per_speed_vs_separate(persson.Model(s, Shifted()), rtol=1e-5)
+
+
+def test_per_speed_temperature_without_shift_law_is_evaluated_per_temperature():
+    class Heating:
+        """Temperature-dependent, but with no shift law: each temperature gets its own table."""
+
+        def E(self, omega, T=None):
+            T = 20.0 if T is None else float(T)
+            return (5e6 + 0.05e6 * T) + 1j * 2e6 * np.sign(omega)
+
+    s = surfaces.SelfAffine(hurst=0.8, q0=1e3, q1=1e6, hrms=20e-6)
+    _per_speed_vs_separate(persson.Model(s, Heating()), rtol=1e-12)
+
+
+@pytest.mark.parametrize("kwargs, word", [
+    (dict(speed=[1.0, 2.0], temperature=[20.0]), "temperature"),
+    (dict(speed=[1.0, 2.0], pressure=[3e5, np.nan]), "pressure"),
+    (dict(speed=[1.0, 2.0], pressure=[3e5, -1.0]), "pressure"),
+])
+def test_bad_per_speed_conditions_raise(benchmark_model, kwargs, word):
+    with pytest.raises(persson.InputError, match=word):
+        benchmark_model.friction(**kwargs)

@@ -72,7 +72,9 @@ def test_predictions_equal_direct_engine_and_brush_calls():
     np.testing.assert_allclose(p[:3], model.friction([0.01, 0.1, 1.0], 20.0, 3e5).mu, rtol=1e-12)
     np.testing.assert_allclose(p[3:5], mu_slip(model, [0.02, 0.2], 1.0, temperature=20.0, pressure=3e5,
                                                contact=contact).mu, rtol=1e-12)
-    assert p[5] == pytest.approx(float(model.friction(0.1, 40.0, 2e5).mu), rel=1e-12)
+    # rows at another temperature share the engine call (and its modulus table) through time-temperature
+    # superposition, so they agree with a separate call to the table's interpolation accuracy
+    assert p[5] == pytest.approx(float(model.friction(0.1, 40.0, 2e5).mu), rel=1e-5)
     wet = model.with_effect(Wet())
     assert p[6] == pytest.approx(float(mu_slip(wet, 0.1, 0.5, temperature=20.0, pressure=3e5, contact=contact).mu),
                                  rel=1e-12)

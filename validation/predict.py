@@ -101,19 +101,30 @@ class Predictor:
         self.measurements = m
         self.contact = contact
         self.n_calls = 0
-        keys = {}
+        # One engine call per wet/dry group: every distinct (sliding speed, temperature, pressure) of the rows
+        # is one "speed" of that call (the engine takes a temperature and a pressure per speed).
+        by_wet: dict[bool, list[int]] = {}
         for i in range(m.n):
-            k = (float(m.temperature[i]), float(m.pressure[i]), bool(m.wet[i]))
-            keys.setdefault(k, []).append(i)
+            by_wet.setdefault(bool(m.wet[i]), []).append(i)
         self.groups = []
-        for (T, p, wet), idx in keys.items():
+        for wet, idx in by_wet.items():
             idx = np.asarray(idx, dtype=int)
             s = m.slip[idx]
-            V = m.speed[idx]
-            vs = s * V
-            speeds = np.unique(vs)
-            self.groups.append(_Group(T=T, p=p, wet=wet, idx=idx, slide=idx[s >= 1.0], slip=idx[s < 1.0],
-                                      speeds=speeds))
+            points, inverse = np.unique(np.column_stack([s * m.speed[idx], m.temperature[idx], m.pressure[idx]]),
+                                        axis=0, return_inverse=True)
+            inverse = np.asarray(inverse).ravel()
+            sweeps = []
+            slip_rows = np.flatnonzero(s < 1.0)
+            if slip_rows.size:
+                Tp, which = np.unique(np.column_stack([m.temperature[idx[slip_rows]], m.pressure[idx[slip_rows]]]),
+                                      axis=0, return_inverse=True)
+                which = np.asarray(which).ravel()
+                for k, (T, p) in enumerate(Tp):
+                    at = (points[:, 1] == T) & (points[:, 2] == p)
+                    sweeps.append(_SlipSweep(T=float(T), p=float(p), rows=idx[slip_rows[which == k]],
+                                             points=np.flatnonzero(at)))
+            self.groups.append(_Group(wet=wet, idx=idx, points=points, inverse=inverse, slide=idx[s >= 1.0],
+                                      sweeps=tuple(sweeps)))
 
     def predict(self, model) -> Prediction:
         """Predictions of ``model`` for every row."""
@@ -136,7 +147,7 @@ class Predictor:
                 mg = dry
             with warnings.catch_warnings(record=True) as caught:
                 warnings.simplefilter("always")
-                r = mg.friction(g.speeds, temperature=g.T, pressure=g.p)
+                r = mg.friction(g.points[:, 0], temperature=g.points[:, 1], pressure=g.points[:, 2])
             self.n_calls += 1
             for w in caught:
                 notes[f"{w.category.__name__}: {w.message}"] = None
@@ -145,20 +156,23 @@ class Predictor:
             converged = converged and bool(r.converged)
             mu_g = np.atleast_1d(np.asarray(r.mu, dtype=float))
             if not np.all(np.isfinite(mu_g)):
-                raise InputError(f"model: non-finite friction at T = {g.T:g} C, p = {g.p:g} Pa")
-            vs_rows = m.slip[g.idx] * m.speed[g.idx]
-            j = np.searchsorted(g.speeds, vs_rows)
-            mu_loc[g.idx] = mu_g[j]
+                bad = g.points[int(np.argmax(~np.isfinite(mu_g)))]
+                raise InputError(f"model: non-finite friction at v = {bad[0]:g} m/s, T = {bad[1]:g} C, "
+                                 f"p = {bad[2]:g} Pa")
+            mu_loc[g.idx] = mu_g[g.inverse]
             if g.slide.size:
                 mu[g.slide] = mu_loc[g.slide]
-            if g.slip.size:
-                mu[g.slip] = self._brush(g, mu_g, m.slip[g.slip], m.speed[g.slip])
+            for sw in g.sweeps:
+                mu[sw.rows] = self._brush(sw, g.points[sw.points, 0], mu_g[sw.points], m.slip[sw.rows],
+                                          m.speed[sw.rows])
         return Prediction(mu=mu, mu_local=mu_loc, converged=converged, notes=tuple(notes))
 
-    def _brush(self, g, mu_g, slip, V):
+    def _brush(self, sw, speeds, mu_s, slip, V):
+        """mu(slip, V) of the brush model for the rows of one (T, p) slip sweep, from precomputed mu(v_s)."""
         from persson.slip import mu_slip
 
-        speeds = g.speeds
+        order = np.argsort(speeds)
+        speeds, mu_s = speeds[order], mu_s[order]
 
         def local(vs):
             vs = np.asarray(vs, dtype=float)
@@ -167,9 +181,9 @@ class Predictor:
             pick = np.where(np.abs(speeds[jm] - vs) < np.abs(speeds[j] - vs), jm, j)
             if np.any(np.abs(speeds[pick] - vs) > 1e-9 * vs):
                 raise InputError("internal: sliding speed not in the precomputed set")
-            return mu_g[pick]
+            return mu_s[pick]
 
-        res = mu_slip(local, slip, V, temperature=g.T, pressure=g.p, contact=self.contact)
+        res = mu_slip(local, slip, V, temperature=sw.T, pressure=sw.p, contact=self.contact)
         return np.atleast_1d(np.asarray(res.mu, dtype=float))
 
     # ---- curves for plots -----------------------------------------------------------------------------------
@@ -198,11 +212,18 @@ class Predictor:
 
 
 @dataclass(frozen=True, eq=False)
-class _Group:
+class _SlipSweep:
     T: float
     p: float
+    rows: np.ndarray      # measurement rows with slip < 1 at this (T, p)
+    points: np.ndarray    # indices into the group's points at this (T, p)
+
+
+@dataclass(frozen=True, eq=False)
+class _Group:
     wet: bool
-    idx: np.ndarray
-    slide: np.ndarray
-    slip: np.ndarray
-    speeds: np.ndarray
+    idx: np.ndarray       # measurement rows of the group
+    points: np.ndarray    # distinct (sliding speed, T, p), shape (n, 3)
+    inverse: np.ndarray   # row of idx -> its point
+    slide: np.ndarray     # rows with slip = 1
+    sweeps: tuple         # _SlipSweep per (T, p) of the slip rows

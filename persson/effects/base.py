@@ -85,11 +85,12 @@ class Conditions:
     ----------
     speed : ndarray
         Sliding speeds, m/s, shape (n_speed,).
-    temperature : float
-        Background (bulk) temperature T0, deg C.
-    pressure : float
-        Nominal contact pressure sigma0 carried by the asperity contact, Pa.
-    nominal_pressure : float
+    temperature : float or ndarray
+        Background (bulk) temperature T0, deg C: a float, or an array (n_speed,) when the call gave one
+        temperature per speed. Write effects with numpy broadcasting so that both work.
+    pressure : float or ndarray
+        Nominal contact pressure sigma0 carried by the asperity contact, Pa (float, or per speed).
+    nominal_pressure : float or ndarray
         Total nominal pressure on the contact, Pa (differs from ``pressure`` when a fluid film carries load).
     wet : bool
         Whether the interface is wet (adhesion off).
@@ -98,9 +99,9 @@ class Conditions:
     """
 
     speed: np.ndarray
-    temperature: float
-    pressure: float
-    nominal_pressure: float
+    temperature: float | np.ndarray
+    pressure: float | np.ndarray
+    nominal_pressure: float | np.ndarray
     wet: bool = False
     extra: dict = field(default_factory=dict)
 

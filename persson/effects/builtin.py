@@ -90,15 +90,17 @@ class FlashTemperature(Effect):
         EX = erfcx(2.0 * q[None, :] * np.sqrt(a)[:, None])
         pressure = np.broadcast_to(np.asarray(conditions.pressure, dtype=float), v.shape)
         heat_factor = np.ascontiguousarray(pressure / thermal.heat_capacity)
+        T0 = np.ascontiguousarray(np.broadcast_to(np.asarray(conditions.temperature, dtype=float), v.shape))
         nv, nq = G.shape
         T_q = np.empty((nv, nq))
         iters = np.zeros(nv, dtype=np.int64)
         res = np.zeros(nv)
         _kernels.flash_kernel(q, lq10, lv10, v, q4C, wq, lcphi, cphi, wphi, table.lw0, 1.0 / table.dlw,
-                              table.ln_re, table.ln_im, scale, gamma, conditions.temperature, shift_table.T_lo,
-                              1.0 / shift_table.dT, shift_table.shift, EX, a, D, heat_factor, i_m, f_m, self.tol,
+                              table.ln_re, table.ln_im, scale, gamma, T0, shift_table.T_lo,
+                              1.0 / shift_table.dT, shift_table.shift, shift_table.vshift, EX, a, D, heat_factor,
+                              i_m, f_m, self.tol,
                               int(self.max_iter), G, P, loss, dmu, mu, T_q, iters, res)
-        top = shift_table.T_lo + shift_table.dT * (shift_table.shift.size - 1)
+        top = shift_table.T_hi
         if np.any(T_q > top):
             warnings.warn(f"flash temperature exceeds the tabulated range (T > {top:g} C); the modulus is "
                           "clamped there: raise GridSettings.max_temperature_rise", ConvergenceWarning,
