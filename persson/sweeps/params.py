@@ -27,7 +27,7 @@ import re
 
 import numpy as np
 
-from .._checks import number
+from .._checks import finite_array, number
 from ..errors import InputError
 
 __all__ = ["CONDITIONS", "parse_param", "parse_values", "set_parameter", "apply_parameters", "sweepable"]
@@ -117,15 +117,8 @@ def parse_values(values, argument: str = "values") -> np.ndarray:
                                  "v1,v2,...")
             out = np.array([float(p) for p in items])
     else:
-        try:
-            out = np.array(values, dtype=float).ravel()
-        except (TypeError, ValueError):
-            raise InputError(f"{argument}: expected numbers, got {values!r}") from None
-    if out.size == 0:
-        raise InputError(f"{argument}: expected at least one value")
-    if not np.all(np.isfinite(out)):
-        raise InputError(f"{argument}: NaN or infinite value at index {int(np.argmax(~np.isfinite(out)))}")
-    return out
+        out = values
+    return finite_array(out, argument).ravel()
 
 
 def apply_parameters(model, values: dict):
