@@ -8,8 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .compare import Comparison, comparison_from, json_text
-from .diagnose import Diagnosis, diagnose
-from .errors import InputError
+from .diagnose import Diagnosis, _unpack, diagnose
 from .predict import Prediction
 
 __all__ = ["Improvement", "Step", "improve"]
@@ -157,21 +156,9 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
     -------
     Improvement
     """
-    from .case import Case
-
     t0 = time.perf_counter()
     name = diagnose_options.pop("name", "")
-    if isinstance(case_or_model, Case):
-        case = case_or_model
-        model = case.model
-        measurements = case.measurements if measurements is None else measurements
-        contact = case.contact if contact is None else contact
-        fit = case.fit if fit is None else fit
-        name = name or case.name
-    else:
-        model = case_or_model
-    if measurements is None:
-        raise InputError("improve: give the measurements (or a validation.Case)")
+    model, measurements, contact, fit, name = _unpack(case_or_model, measurements, contact, fit, name)
     fit = list(fit or ())
     cands = None if candidates is None else list(candidates)
     steps = []
