@@ -74,6 +74,32 @@ REFERENCES: dict[str, str] = {
     "Applied Mathematics 15 (1995).",
     "10.1063/1.4919221": "B. Lorenz, Y. R. Oh, S. K. Nam, S. H. Jeon, B. N. J. Persson, Rubber friction on road "
     "surfaces: Experiment and theory for low sliding speeds, J. Chem. Phys. 142, 194701 (2015).",
+    "arxiv:2602.22078": "B. N. J. Persson, N. Miyashita, Tire tread block dynamics, arXiv:2602.22078 (2026).",
+    "10.1007/s11249-024-01838-4": "Y. Xu, L. Zhu, F. Xiao, Y. Zhou, A new fudge factor for Persson's theory of "
+    "purely normal elastic rough surface contact, Tribol. Lett. 72 (2024).",
+    "arxiv:1102.5412": "A. Almqvist, C. Campana, N. Prodanov, B. N. J. Persson, Interfacial separation between "
+    "elastic solids with randomly rough surfaces: comparison between theory and numerical techniques, J. Mech. "
+    "Phys. Solids 59, 2355 (2011).",
+    "10.1098/rspa.1966.0242": "J. A. Greenwood, J. B. P. Williamson, Contact of nominally flat surfaces, Proc. R. "
+    "Soc. A 295, 300 (1966).",
+    "10.1007/BF01520701": "H. C. Booij, G. P. J. M. Thoone, Generalization of Kramers-Kronig transforms and some "
+    "approximations of relations between viscoelastic quantities, Rheol. Acta 21, 15 (1982).",
+    "10.1137/0717021": "F. N. Fritsch, R. E. Carlson, Monotone piecewise cubic interpolation, SIAM J. Numer. Anal. "
+    "17, 238 (1980).",
+    "10.1137/0905021": "F. N. Fritsch, J. Butland, A method for constructing local monotone piecewise cubic "
+    "interpolants, SIAM J. Sci. Stat. Comput. 5, 300 (1984).",
+    "10.1007/BF01404567": "P. Craven, G. Wahba, Smoothing noisy data with spline functions, Numer. Math. 31, 377 "
+    "(1979).",
+    "10.1111/j.2517-6161.1974.tb00994.x": "M. Stone, Cross-validatory choice and assessment of statistical "
+    "predictions, J. R. Stat. Soc. B 36, 111 (1974).",
+    "isbn:9780198533689": "H. S. Carslaw, J. C. Jaeger, Conduction of Heat in Solids, 2nd ed., Oxford (1959).",
+    "jaeger:jprsnsw-76-203-1942": "J. C. Jaeger, Moving sources of heat and the temperature at sliding contacts, "
+    "J. Proc. R. Soc. N.S.W. 76, 203 (1942).",
+    "blok:imeche-lubrication-1937": "H. Blok, Theoretical study of temperature rise at surfaces of actual contact "
+    "under oiliness lubricating conditions, General Discussion on Lubrication and Lubricants, IMechE, vol. 2, 222 "
+    "(1937).",
+    "10.1076/vesd.39.3.189.14152": "C. Canudas-de-Wit, P. Tsiotras, E. Velenis, M. Basset, G. Gissinger, Dynamic "
+    "friction models for road/tire longitudinal interaction, Vehicle System Dynamics 39, 189 (2003).",
 }
 
 

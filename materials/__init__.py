@@ -1,7 +1,8 @@
-"""Viscoelastic materials: DMA data, time-temperature superposition, WLF, Prony master curves.
+"""Viscoelastic materials: DMA data, time-temperature superposition, shift laws, master curves, strain factors.
 
-Conventions (see DESIGN.md): SI units, angular frequency omega in rad/s, temperatures in degrees Celsius,
-E the complex **Young's** modulus E = E' + i E'' with Im E odd in omega. This package knows nothing of surfaces.
+Conventions (see docs/materials.md and docs/conventions.md): SI units, angular frequency omega in rad/s,
+temperatures in degrees Celsius, E the complex **Young's** modulus E = E' + i E'' with Im E odd in omega. This
+package knows nothing of surfaces.
 
 Every material exposes ``E(omega, T)`` (complex, vectorized) and ``thermal`` (:class:`Thermal`); those of this
 package also ``log10_aT(T)``.
@@ -10,10 +11,13 @@ Typical use::
 
     import materials
     dma = materials.read_dma("dma.csv")                 # long CSV, pyvisco CSV or Eplexor export(s)
-    m = materials.master_curve(dma, T_ref=20.0)         # shifts, WLF, causal Prony fit
-    m.E(omega, T); m.wlf; m.shift_factors; m.quality
+    m = materials.master_curve(dma, T_ref=20.0)         # shifts, law chosen by fit quality, curve
+    m.E(omega, T); m.shift; m.misfit; m.scores; m.frequency_range
     m.to_table("master_curve.csv")
-    m2 = materials.read_master_curve("master_curve.csv", wlf={"C1": 8.86, "C2": 101.6, "T_ref_C": 20.0})
+    aT = materials.read_shift_factors("shift_factors.csv")          # a TabulatedShift
+    m2 = materials.read_master_curve("master_curve.csv", shift=aT)  # the table used as measured
+    sf = materials.strain_factors(materials.read_strain_sweep("sweeps.csv"))
+    f, g = sf.factors(strain, T)
     tread = materials.example_tread()                   # synthetic, documented
 """
 
@@ -21,11 +25,15 @@ from .errors import InputError
 from .viscoelastic import WLF, ConstantModulus, Prony, Thermal
 from .examples import example_tread
 from .dma import DMAData, read_dma, read_dma_long, read_eplexor, read_pyvisco
-from .tts import (Arrhenius, ShiftFactors, TemperatureShift, WLFFit, fit_arrhenius, fit_wlf, shift_isotherms,
-                  wlf_change_reference)
+from .tts import (Arrhenius, ShiftFactors, TemperatureShift, WLFArrhenius, WLFFit, fit_arrhenius, fit_wlf,
+                  shift_isotherms, wlf_change_reference)
+from .shift import SingleTemperature, TabulatedShift, read_shift_factors
+from .shiftfit import ShiftLawScore
 from .prony_fit import FitQuality, PronyFit, fit_prony
-from .master import MasterCurve, ReducedData, TabulatedModulus, master_curve, read_master_curve
-from .strain import StrainSoftened, StrainSoftening, strain_softening_from_sweep
+from .curves import CausalityCheck, InterpolatedModulus, causality_check
+from .master import MasterCurve, ReducedData, TabulatedModulus, isotherm_misfit, master_curve, read_master_curve
+from .strain import (StrainFactors, StrainSoftened, StrainSoftening, StrainSweep, read_strain_sweep,
+                     strain_factors, strain_softening_from_sweep)
 
 _LAZY_PLOTS = ("plot_master_curve", "plot_shift_factors")
 
@@ -42,9 +50,11 @@ __all__ = [
     "InputError", "WLF", "Thermal", "ConstantModulus", "Prony", "example_tread",
     "DMAData", "read_dma", "read_dma_long", "read_pyvisco", "read_eplexor",
     "ShiftFactors", "shift_isotherms", "WLFFit", "fit_wlf", "Arrhenius", "fit_arrhenius", "TemperatureShift",
+    "WLFArrhenius", "TabulatedShift", "SingleTemperature", "read_shift_factors", "ShiftLawScore",
     "wlf_change_reference",
-    "FitQuality", "PronyFit", "fit_prony",
-    "MasterCurve", "ReducedData", "TabulatedModulus", "master_curve", "read_master_curve",
+    "FitQuality", "PronyFit", "fit_prony", "InterpolatedModulus", "CausalityCheck", "causality_check",
+    "MasterCurve", "ReducedData", "TabulatedModulus", "master_curve", "read_master_curve", "isotherm_misfit",
     "StrainSoftening", "StrainSoftened", "strain_softening_from_sweep",
+    "StrainSweep", "StrainFactors", "read_strain_sweep", "strain_factors",
     "plot_master_curve", "plot_shift_factors",
 ]

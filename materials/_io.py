@@ -27,7 +27,8 @@ def write_csv_atomic(path, columns: Mapping[str, np.ndarray], comments: Sequence
         raise InputError(f"{path}: refusing to write non-finite values")
     lines = [f"# {ln}" for c in comments for ln in str(c).splitlines()]
     lines.append(",".join(names))
-    lines.extend(",".join(f"{v:.10g}" for v in row) for row in data)
+    # shortest decimal form that reads back to the same double: a table written and read again is the same table
+    lines.extend(",".join(repr(float(v)) for v in row) for row in data)
     text = "\n".join(lines) + "\n"
     path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)

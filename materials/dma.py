@@ -1,6 +1,6 @@
 """DMA frequency sweeps: the :class:`DMAData` container and the readers for the supported file formats.
 
-Formats (see DESIGN.md):
+Formats (described for users in ``docs/materials.md``):
 
 * **long table** (the project's own): CSV with a header row ``T_C, f_Hz, E_storage_Pa, E_loss_Pa`` and an
   optional ``strain`` column (strain amplitude, dimensionless) and optional ``isotherm`` column; shear data may
@@ -12,7 +12,9 @@ Formats (see DESIGN.md):
   file name carrying the nominal temperature (``T20.txt``); a trailing non-numeric line is ignored.
 
 Every reader returns Young's moduli in Pa; shear moduli are converted with :math:`E = 2(1+\\nu) G` and the
-result says so (``DMAData.shear_converted``, ``DMAData.notes``).
+result says so (``DMAData.shear_converted``, ``DMAData.notes``). Likely unit slips are refused with a message
+naming the file and column (:mod:`materials.units`): moduli in MPa under ``_Pa`` headers, temperatures in
+kelvin, an isotherm below absolute zero; ``units=`` declares the units when the file's own are wrong or absent.
 """
 
 from __future__ import annotations
@@ -27,6 +29,7 @@ from typing import Sequence
 import numpy as np
 
 from .errors import InputError
+from .units import check_moduli, check_temperatures, normalise_units, to_celsius, unit_factor
 
 __all__ = ["DMAData", "read_dma", "read_dma_long", "read_pyvisco", "read_eplexor"]
 
@@ -34,7 +37,7 @@ __all__ = ["DMAData", "read_dma", "read_dma_long", "read_pyvisco", "read_eplexor
 DRIFT_WARN_K = 2.0
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, repr=False)
 class DMAData:
     """DMA frequency sweeps (isotherms) as Young's moduli, one row per measured point.
 
@@ -83,7 +86,7 @@ class DMAData:
     @classmethod
     def from_arrays(cls, T_C, f_Hz, E_storage, E_loss, *, strain=None, isotherm=None, source="<arrays>",
                     line=None, shear=False, poisson=0.5, isotherm_tol=1.0, drop_bad=False,
-                    notes: Sequence[str] = ()) -> "DMAData":
+                    notes: Sequence[str] = (), check_units: bool = True) -> "DMAData":
         """Validate point arrays and group them into isotherms.
 
         Parameters
@@ -111,11 +114,14 @@ class DMAData:
             True: such rows are dropped with a warning naming them.
         notes : sequence of str
             Notes to keep (e.g. from the reader).
+        check_units : bool
+            Refuse moduli outside any polymer's range (MPa passed as Pa) and temperatures that look like
+            kelvin (:mod:`materials.units`). Temperatures below absolute zero are always refused.
 
         Raises
         ------
         InputError
-            Naming the source, the line and the column of the first bad value.
+            Naming the source, the line and the column of the first bad value or likely unit slip.
         """
         notes = list(notes)
         cols = {"T_C": T_C, "f_Hz": f_Hz, "E_storage": E_storage, "E_loss": E_loss}
@@ -143,6 +149,12 @@ class DMAData:
             isotherm = np.asarray(isotherm).ravel()
             if isotherm.size != n:
                 raise InputError(f"{source}: column 'isotherm' has {isotherm.size} values, expected {n}")
+
+        # --- unit slips and impossible temperatures
+        check_temperatures(arr["T_C"], where=f"{source}, column 'T_C'", lines=line, trusted=not check_units)
+        if check_units:
+            check_moduli(arr["E_storage"], arr["E_loss"], where=f"{source}, columns 'E_storage', 'E_loss'",
+                         unit="Pa")
 
         # --- bad values: raise (naming line and column) or drop with a warning
         bad = _screen(source, line, arr, drop_bad)
@@ -236,6 +248,12 @@ class DMAData:
     def __len__(self) -> int:
         return int(self.f_Hz.size)
 
+    def __repr__(self) -> str:
+        strain = "" if self.strain is None else f", strain {self.strain.min():.3g} to {self.strain.max():.3g}"
+        return (f"DMAData({len(self)} points, {self.n_isotherms} isotherms {self.T_isotherm.min():.4g} to "
+                f"{self.T_isotherm.max():.4g} C, {self.f_Hz.min():.3g} to {self.f_Hz.max():.3g} Hz{strain}"
+                + (", shear converted" if self.shear_converted else "") + f", {self.source})")
+
     @property
     def n_isotherms(self) -> int:
         """Number of isotherms."""
@@ -278,7 +296,7 @@ class DMAData:
         return replace(out, shear_converted=self.shear_converted, poisson=self.poisson)
 
     def to_csv(self, path) -> Path:
-        """Write the DESIGN.md long table (``T_C, f_Hz, E_storage_Pa, E_loss_Pa[, strain]``), atomically."""
+        """Write the long DMA table ``T_C, f_Hz, E_storage_Pa, E_loss_Pa[, strain]`` atomically (docs/materials.md)."""
         from ._io import write_csv_atomic
         cols = {"T_C": self.T_C, "f_Hz": self.f_Hz, "E_storage_Pa": self.E_storage, "E_loss_Pa": self.E_loss}
         if self.strain is not None:
@@ -290,7 +308,7 @@ class DMAData:
 # ==================================================================================================== readers
 
 def read_dma(path, *, format: str | None = None, poisson: float = 0.5, encoding: str | None = None,
-             isotherm_tol: float = 1.0, drop_bad: bool = False) -> DMAData:
+             isotherm_tol: float = 1.0, drop_bad: bool = False, units=None) -> DMAData:
     """Read DMA frequency sweeps from a file, a list of files or a folder of files.
 
     Parameters
@@ -308,6 +326,9 @@ def read_dma(path, *, format: str | None = None, poisson: float = 0.5, encoding:
         Temperature gap (K) separating isotherms where the file has no isotherm label.
     drop_bad : bool
         Drop rows with non-finite, non-positive frequency or modulus (with a warning) instead of raising.
+    units : mapping, optional
+        The units of the columns, overriding the file's: ``{"E": "MPa", "T": "K", "f": "rad/s"}`` (keys ``f``,
+        ``E`` or ``E_storage``/``E_loss``, ``T``). Declared units skip the range checks that catch unit slips.
 
     Returns
     -------
@@ -316,12 +337,16 @@ def read_dma(path, *, format: str | None = None, poisson: float = 0.5, encoding:
     Raises
     ------
     InputError
-        Missing file or column, unreadable bytes, a bad value (naming file, line and column).
+        Missing file or column, unreadable bytes, a bad value (naming file, line and column), a likely unit
+        slip (moduli in MPa under a ``_Pa`` header, temperatures in kelvin, below absolute zero).
     """
     paths = _expand(path)
+    units = normalise_units(units)
     parts = []
     for p in paths:
-        parts.append(_read_one(p, format=format, encoding=encoding))
+        part = _read_one(p, format=format, encoding=encoding)
+        _apply_units(p, part, units)
+        parts.append(part)
     if len(paths) == 1:
         source = str(paths[0])
     elif len({p.parent for p in paths}) == 1:
@@ -361,11 +386,12 @@ def read_dma(path, *, format: str | None = None, poisson: float = 0.5, encoding:
     notes = _condense_notes(notes)
     return DMAData.from_arrays(cat["T_C"], cat["f_Hz"], cat["E_storage"], cat["E_loss"],
                                strain=cat["strain"], isotherm=cat["iso"], source=source, line=cat["line"],
-                               shear=shear.pop(), poisson=poisson, drop_bad=drop_bad, notes=notes)
+                               shear=shear.pop(), poisson=poisson, drop_bad=drop_bad, notes=notes,
+                               check_units=False)
 
 
 def read_dma_long(path, **kw) -> DMAData:
-    """Read the DESIGN.md long table; see :func:`read_dma` for the keywords."""
+    """Read the long DMA table (docs/materials.md); see :func:`read_dma` for the keywords."""
     return read_dma(path, format="long", **kw)
 
 
@@ -382,6 +408,37 @@ def read_eplexor(path, **kw) -> DMAData:
 # ==================================================================================================== helpers
 
 _PRESSURE_UNITS = {"pa": 1.0, "kpa": 1e3, "mpa": 1e6, "gpa": 1e9, "n/m2": 1.0, "n/mm2": 1e6, "n/mm^2": 1e6}
+
+
+def _apply_units(path: Path, part: dict, units: dict) -> None:
+    """Convert a parsed file's columns to the declared ``units`` and check the rest for unit slips.
+
+    Each parser reports the unit it read every column in (``part["units"]``: role -> (unit, factor or kind)).
+    A declared unit replaces it; then temperatures and moduli are checked (:mod:`materials.units`), the
+    declared ones only for impossible values.
+    """
+    read = part["units"]
+    names = part["names"]
+    for role in ("f", "E_storage", "E_loss", "T"):
+        if role not in units:
+            continue
+        unit_read, conv_read = read[role]
+        where = f"{path}, column {names[role]!r}"
+        conv_new = unit_factor(role, units[role], where=where)
+        key = "f_Hz" if role == "f" else ("T_C" if role == "T" else role)
+        if role == "T":
+            raw = part[key] + 273.15 if conv_read == "K" else part[key]
+            part[key] = to_celsius(raw, conv_new)
+        else:
+            part[key] = part[key] / conv_read * conv_new
+        read[role] = (units[role], conv_new)
+    check_temperatures(part["T_C"], where=f"{path}, column {names['T']!r}", lines=part["line"],
+                       trusted="T" in units)
+    unit_E = read["E_storage"][0]
+    origin = "units option" if "E_storage" in units else part["origins"].get("E_storage", "default")
+    check_moduli(part["E_storage"], part["E_loss"],
+                 where=f"{path}, columns {names['E_storage']!r} and {names['E_loss']!r}", unit=unit_E,
+                 trusted="E_storage" in units, source_unit=origin)
 
 
 def _expand(path) -> list[Path]:
@@ -537,7 +594,10 @@ def _parse_long(path, content) -> dict:
     return {"T_C": data[:, jT], "f_Hz": data[:, jf], "E_storage": data[:, jE1], "E_loss": data[:, jE2],
             "strain": None if js is None else data[:, js], "isotherm": None if ji is None else
             _labels(path, data[:, ji], rows, "isotherm"),
-            "line": np.array([r[0] for r in rows]), "shear": shear}
+            "line": np.array([r[0] for r in rows]), "shear": shear,
+            "names": {"T": names[jT], "f": names[jf], "E_storage": names[jE1], "E_loss": names[jE2]},
+            "units": {"T": ("C", "C"), "f": ("Hz", 1.0), "E_storage": ("Pa", 1.0), "E_loss": ("Pa", 1.0)},
+            "origins": {"E_storage": "column name"}}
 
 
 def _labels(path, values, rows, name):
@@ -571,13 +631,10 @@ def _parse_pyvisco(path, content) -> dict:
     jset = _col(path, names, "Set", required=False)
     rows = content[2:]
     data = _table(path, rows, names, ",")
-    f = data[:, jf] * _freq_factor(path, names[jf], units[jf])
-    E1 = data[:, j1] * _modulus_factor(path, names[j1], units[j1], default="MPa")
-    E2 = data[:, j2] * _modulus_factor(path, names[j2], units[j2], default="MPa")
-    T = _to_celsius(path, names[jT], units[jT], data[:, jT])
-    return {"T_C": T, "f_Hz": f, "E_storage": E1, "E_loss": E2, "strain": None,
-            "isotherm": None if jset is None else _labels(path, data[:, jset], rows, names[jset]),
-            "line": np.array([r[0] for r in rows]), "shear": shear}
+    out = _converted(path, data, names, units, jf, j1, j2, jT)
+    out.update({"strain": None, "isotherm": None if jset is None else _labels(path, data[:, jset], rows, names[jset]),
+                "line": np.array([r[0] for r in rows]), "shear": shear})
+    return out
 
 
 def _parse_eplexor(path, content) -> dict:
@@ -607,17 +664,29 @@ def _parse_eplexor(path, content) -> dict:
     if not rows:
         raise InputError(f"{path}: no data rows")
     data = _table(path, rows, names, None)
-    f = data[:, jf] * _freq_factor(path, names[jf], units[jf])
-    E1 = data[:, j1] * _modulus_factor(path, names[j1], units[j1], default="MPa")
-    E2 = data[:, j2] * _modulus_factor(path, names[j2], units[j2], default="MPa")
-    T = _to_celsius(path, names[jT], units[jT], data[:, jT])
+    out = _converted(path, data, names, units, jf, j1, j2, jT)
+    T = out["T_C"]
     m = re.search(r"T_?(-?\d+(?:\.\d+)?)", path.stem)
     if m:
         notes.append(f"{path.name}: nominal temperature {m.group(1)} C (from the file name); measured "
                      f"{np.nanmin(T):.2f} to {np.nanmax(T):.2f} C")
-    return {"T_C": T, "f_Hz": f, "E_storage": E1, "E_loss": E2, "strain": None,
-            "isotherm": np.zeros(len(rows), dtype=int), "line": np.array([r[0] for r in rows]),
-            "shear": shear, "notes": notes}
+    out.update({"strain": None, "isotherm": np.zeros(len(rows), dtype=int), "line": np.array([r[0] for r in rows]),
+                "shear": shear, "notes": notes})
+    return out
+
+
+def _converted(path, data, names, units, jf, j1, j2, jT) -> dict:
+    """Columns of a file with a units row, in Hz, Pa and deg C, and the unit each was read in."""
+    ff = _freq_factor(path, names[jf], units[jf])
+    m1 = _modulus_factor(path, names[j1], units[j1], default="MPa")
+    m2 = _modulus_factor(path, names[j2], units[j2], default="MPa")
+    T = _to_celsius(path, names[jT], units[jT], data[:, jT])
+    kind = "K" if (units[jT] or "").strip().lower() in ("k", "kelvin") else "C"
+    return {"T_C": T, "f_Hz": data[:, jf] * ff, "E_storage": data[:, j1] * m1, "E_loss": data[:, j2] * m2,
+            "names": {"T": names[jT], "f": names[jf], "E_storage": names[j1], "E_loss": names[j2]},
+            "units": {"T": (units[jT] or "C", kind), "f": (units[jf] or "Hz", ff),
+                      "E_storage": (units[j1] or "MPa", m1), "E_loss": (units[j2] or "MPa", m2)},
+            "origins": {"E_storage": "units row" if (units[j1] or "").strip() not in ("", "-") else "default"}}
 
 
 def _modulus_factor(path, name, unit, default):

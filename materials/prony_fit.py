@@ -28,7 +28,7 @@ __all__ = ["FitQuality", "PronyFit", "fit_prony", "quality_of"]
 
 @dataclass(frozen=True)
 class FitQuality:
-    r"""How well a causal Prony series reproduces the (shifted) data.
+    r"""How well a master curve's representation (causal Prony series or interpolated table) reproduces the data.
 
     Attributes
     ----------
@@ -44,6 +44,8 @@ class FitQuality:
         Number of Maxwell terms kept after pruning.
     shift_rms_log10 : float or None
         RMS scatter (decades) of the shifted data about a smooth master curve, when shifts were computed.
+    representation : str
+        ``"prony"`` (causal Prony series) or ``"table"`` (interpolated nodes).
     """
 
     rms_rel_storage: float
@@ -54,21 +56,28 @@ class FitQuality:
     n_points: int
     n_terms: int
     shift_rms_log10: float | None = None
+    representation: str = "prony"
 
     def __str__(self) -> str:
-        s = (f"Prony fit: RMS relative residual E' {100 * self.rms_rel_storage:.2f} %, "
-             f"E'' {100 * self.rms_rel_loss:.2f} % ({self.n_points} points, {self.n_terms} terms)")
+        what = ("Prony fit: RMS relative residual" if self.representation == "prony"
+                else "interpolated table: RMS relative residual")
+        size = f", {self.n_terms} terms" if self.representation == "prony" else ""
+        s = (f"{what} E' {100 * self.rms_rel_storage:.2f} %, E'' {100 * self.rms_rel_loss:.2f} % "
+             f"({self.n_points} points{size})")
         if self.shift_rms_log10 is not None:
             s += f"; shifted-data scatter {self.shift_rms_log10:.3f} decades"
         return s
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, repr=False)
 class PronyFit:
     """Result of :func:`fit_prony`: the series (at the reference temperature) and its quality."""
 
     prony: Prony
     quality: FitQuality
+
+    def __repr__(self) -> str:
+        return f"PronyFit({self.prony!r}; {self.quality})"
 
 
 @doi("10.1016/S0020-7683(98)00055-9", "10.1137/1.9781611971217")
@@ -140,7 +149,8 @@ def fit_prony(omega, E_storage, E_loss, *, tau=None, per_decade: float = 2.0, ma
     return PronyFit(prony=prony, quality=quality_of(prony, w, E1, E2))
 
 
-def quality_of(material, omega, E_storage, E_loss, *, shift_rms_log10=None) -> FitQuality:
+def quality_of(material, omega, E_storage, E_loss, *, shift_rms_log10=None, representation: str = "prony"
+               ) -> FitQuality:
     """RMS and max relative residuals of ``material.E_reference`` (or ``E``) against data."""
     w = np.asarray(omega, dtype=float)
     fE = material.E_reference(w) if hasattr(material, "E_reference") else material.E(w)
@@ -150,7 +160,8 @@ def quality_of(material, omega, E_storage, E_loss, *, shift_rms_log10=None) -> F
     n_terms = int(getattr(material, "E_i", np.zeros(0)).size)
     return FitQuality(rms_rel_storage=rs, rms_rel_loss=rl, rms_rel=float(math.sqrt(0.5 * (rs ** 2 + rl ** 2))),
                       max_rel_storage=float(np.max(np.abs(r1))), max_rel_loss=float(np.max(np.abs(r2))),
-                      n_points=int(w.size), n_terms=n_terms, shift_rms_log10=shift_rms_log10)
+                      n_points=int(w.size), n_terms=n_terms, shift_rms_log10=shift_rms_log10,
+                      representation=representation)
 
 
 # ==================================================================================================== helpers

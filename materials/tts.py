@@ -35,7 +35,7 @@ from .errors import InputError
 from .viscoelastic import WLF
 
 __all__ = ["ShiftFactors", "shift_isotherms", "WLFFit", "fit_wlf", "Arrhenius", "fit_arrhenius",
-           "TemperatureShift", "wlf_change_reference", "R_GAS"]
+           "TemperatureShift", "WLFArrhenius", "wlf_change_reference", "R_GAS"]
 
 #: Gas constant, J/(mol K).
 R_GAS = 8.314462618
@@ -44,7 +44,7 @@ _K0 = 273.15
 
 # ==================================================================================================== results
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, repr=False)
 class ShiftFactors:
     r"""Shift factors of the isotherms of a DMA data set, relative to ``T_ref``.
 
@@ -108,6 +108,11 @@ class ShiftFactors:
         return replace(self, log10_aT=self.log10_aT - log10_aT_at_new_ref,
                        log10_bT=self.log10_bT - log10_bT_at_new_ref, T_ref=float(T_ref))
 
+    def __repr__(self) -> str:
+        rms = "" if self.rms_log10 is None else f", scatter {self.rms_log10:.3g} decades"
+        return (f"ShiftFactors({self.T_C.size} isotherms {self.T_C.min():.4g}..{self.T_C.max():.4g} C, "
+                f"log10 aT {self.log10_aT.max():.3g}..{self.log10_aT.min():.3g}, T_ref = {self.T_ref:.4g} C{rms})")
+
     def as_dict(self) -> dict:
         """Plain-data form (lists), e.g. for JSON."""
         return {"T_C": self.T_C.tolist(), "log10_aT": self.log10_aT.tolist(), "log10_bT": self.log10_bT.tolist(),
@@ -116,7 +121,7 @@ class ShiftFactors:
 
 
 @doi("10.1021/ja01619a008")
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, repr=False)
 class WLFFit:
     r"""Least-squares WLF fit of shift factors, with its covariance.
 
@@ -155,16 +160,22 @@ class WLFFit:
     def T_ref(self) -> float:
         return self.wlf.T_ref
 
+    def __repr__(self) -> str:
+        return (f"WLFFit(C1 = {self.C1:.4g} +- {self.stderr[0]:.2g}, C2 = {self.C2:.4g} +- {self.stderr[1]:.2g} K, "
+                f"T_ref = {self.T_ref:.4g} C, rms {self.rms:.3g} decades over {self.n_points} isotherms)")
+
 
 @doi("isbn:978-0-471-04894-7")
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class Arrhenius:
-    r"""Arrhenius shift below the glass transition, continuous with the WLF law at ``T_g``.
+    r"""Arrhenius shift law, alone or as the branch below the glass transition of a WLF law.
 
     .. math:: \log_{10} a_T = \log_{10} a_T(T_g) + \frac{E_a}{R \ln 10}
               \left(\frac{1}{T + 273.15} - \frac{1}{T_g + 273.15}\right)
 
-    (Ferry 1980, ch. 11). ``E_a`` in J/mol, temperatures in deg C.
+    (Ferry 1980, ch. 11). ``E_a`` in J/mol, temperatures in deg C. ``T_g`` is the anchor temperature where
+    the value ``log10_aT_g`` is imposed: below a WLF law it is the glass transition (continuity with WLF); for
+    a law on its own, :meth:`from_reference` anchors it at the reference temperature (``log10_aT_g = 0``).
     """
 
     E_a: float
@@ -172,23 +183,68 @@ class Arrhenius:
     log10_aT_g: float
     E_a_stderr: float | None = None
 
+    kind = "arrhenius"
+
     def __post_init__(self):
         for name in ("E_a", "T_g", "log10_aT_g"):
             v = getattr(self, name)
-            if not (isinstance(v, (int, float, np.floating)) and math.isfinite(v)):
+            if not (isinstance(v, (int, float, np.floating, np.integer)) and not isinstance(v, bool)
+                    and math.isfinite(v)):
                 raise InputError(f"Arrhenius.{name}: expected a finite number, got {v!r}")
         if self.E_a < 0:
             raise InputError(f"Arrhenius.E_a: expected an activation energy >= 0 J/mol, got {self.E_a}")
+        if self.T_g <= -_K0:
+            raise InputError(f"Arrhenius.T_g: expected a temperature above -273.15 C, got {self.T_g}")
+
+    @classmethod
+    def from_reference(cls, E_a: float, T_ref: float) -> "Arrhenius":
+        """The Arrhenius law with activation energy ``E_a`` (J/mol) and :math:`a_T(T_{ref}) = 1`."""
+        return cls(E_a=float(E_a), T_g=float(T_ref), log10_aT_g=0.0)
+
+    @classmethod
+    def from_mapping(cls, m) -> "Arrhenius":
+        """From ``{"E_a": J/mol, "T_ref_C": deg C}`` (the case-file form)."""
+        try:
+            T_ref = m["T_ref_C"] if "T_ref_C" in m else m["T_ref"]
+            return cls.from_reference(float(m["E_a"]), float(T_ref))
+        except KeyError as exc:
+            raise InputError(f"arrhenius: missing key {exc.args[0]!r} (expected E_a in J/mol and T_ref_C)") from None
+        except (TypeError, ValueError):
+            raise InputError(f"arrhenius: expected numbers for E_a and T_ref_C, got {dict(m)!r}") from None
+
+    @property
+    def T_ref(self) -> float:
+        """Temperature where :math:`a_T = 1`, deg C (from the anchor; the anchor itself when it is 0 there)."""
+        if self.log10_aT_g == 0.0:
+            return float(self.T_g)
+        if self.E_a == 0.0:
+            raise InputError("Arrhenius: E_a = 0 and log10 aT != 0 everywhere; the law has no reference temperature")
+        inv = 1.0 / (self.T_g + _K0) - self.log10_aT_g * R_GAS * math.log(10.0) / self.E_a
+        if inv <= 0:
+            raise InputError("Arrhenius: a_T = 1 is reached at no temperature above absolute zero")
+        return 1.0 / inv - _K0
 
     def log10_aT(self, T):
-        """log10 aT at ``T`` (deg C); T must be above absolute zero."""
+        """log10 aT at ``T`` (deg C, vectorized); T must be above absolute zero."""
         TK = np.asarray(T, dtype=float) + _K0
         if not np.all(np.isfinite(TK)) or np.any(TK <= 0):
-            raise InputError("temperature: expected T > -273.15 C")
-        return self.log10_aT_g + self.E_a / (R_GAS * math.log(10.0)) * (1.0 / TK - 1.0 / (self.T_g + _K0))
+            raise InputError("temperature: expected finite temperatures above -273.15 C")
+        out = self.log10_aT_g + self.E_a / (R_GAS * math.log(10.0)) * (1.0 / TK - 1.0 / (self.T_g + _K0))
+        return out if np.ndim(out) else float(out)
+
+    def with_T_ref(self, T_ref: float) -> "Arrhenius":
+        """The same law with :math:`a_T(T_{ref}) = 1` at the new reference temperature."""
+        return replace(self, log10_aT_g=self.log10_aT_g - float(self.log10_aT(float(T_ref))))
+
+    def describe(self) -> str:
+        """One line: the law and its constants."""
+        return f"Arrhenius: E_a = {self.E_a / 1e3:.4g} kJ/mol, a_T = 1 at {self.T_ref:.4g} C"
+
+    def __repr__(self) -> str:
+        return f"Arrhenius(E_a={self.E_a:.6g}, T_g={self.T_g:.6g}, log10_aT_g={self.log10_aT_g:.6g})"
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class TemperatureShift:
     r"""The temperature law of a master curve: WLF, with Arrhenius below ``arrhenius.T_g`` when given.
 
@@ -197,7 +253,7 @@ class TemperatureShift:
 
     (the Arrhenius branch is continuous with WLF at T_g). Normally ``T_ref`` is the WLF reference and
     :math:`L(T_{ref}) = 0`; a reference below T_g is allowed (then ``wlf`` alone does not give a_T).
-    :meth:`law_at` says which law applies where.
+    :meth:`law_at` says which law applies where. :class:`WLFArrhenius` builds one from plain constants.
 
     Parameters
     ----------
@@ -210,6 +266,10 @@ class TemperatureShift:
     wlf: WLF
     arrhenius: Arrhenius | None = None
     T_ref_C: float | None = None
+
+    @property
+    def kind(self) -> str:
+        return "wlf" if self.arrhenius is None else "wlf+arrhenius"
 
     @property
     def T_ref(self) -> float:
@@ -258,10 +318,68 @@ class TemperatureShift:
         arr = self.arrhenius
         if arr is not None:
             arr = replace(arr, log10_aT_g=arr.log10_aT_g - offset)
-        out = TemperatureShift(new_wlf, arr, None)
+        out = type(self)(new_wlf, arr, None)
         if abs(out._raw(T_ref)) > 0:
-            out = TemperatureShift(new_wlf, arr, T_ref)
+            out = type(self)(new_wlf, arr, T_ref)
         return out
+
+    def describe(self) -> str:
+        """One line: the law and its constants."""
+        w = self.wlf
+        text = f"WLF: C1 = {w.C1:.4g}, C2 = {w.C2:.4g} K at T_ref = {w.T_ref:.4g} C"
+        if self.arrhenius is not None:
+            text += (f"; Arrhenius below T_g = {self.arrhenius.T_g:.4g} C (E_a = {self.arrhenius.E_a / 1e3:.4g} "
+                     "kJ/mol)")
+        if self.T_ref_C is not None:
+            text += f"; a_T = 1 at {self.T_ref_C:.4g} C"
+        return text
+
+    def __repr__(self) -> str:
+        return f"{type(self).__name__}({self.describe()})"
+
+
+@doi("10.1021/ja01619a008", "isbn:978-0-471-04894-7")
+class WLFArrhenius(TemperatureShift):
+    r"""WLF above the glass transition ``T_g``, Arrhenius below it, continuous at ``T_g``.
+
+    .. math:: \log_{10} a_T = \begin{cases} -\dfrac{C_1 (T - T_{ref})}{C_2 + T - T_{ref}} & T \ge T_g \\[1ex]
+              \log_{10} a_T^{WLF}(T_g) + \dfrac{E_a}{R\ln 10}\left(\dfrac{1}{T + 273.15}
+              - \dfrac{1}{T_g + 273.15}\right) & T < T_g \end{cases}
+
+    (Williams, Landel & Ferry 1955; Ferry 1980, ch. 11). A :class:`TemperatureShift` whose Arrhenius branch
+    is anchored on the WLF law; build it with :meth:`from_constants` or :meth:`from_mapping`.
+    """
+
+    @classmethod
+    def from_constants(cls, C1: float, C2: float, T_ref: float, E_a: float, T_g: float) -> "WLFArrhenius":
+        """From the WLF constants (C1, C2 in K, T_ref in deg C), the activation energy (J/mol) and T_g (deg C).
+
+        Raises
+        ------
+        InputError
+            T_g at or below the WLF singularity :math:`T_{ref} - C_2` (the WLF branch must be finite above T_g).
+        """
+        wlf = WLF(C1=C1, C2=C2, T_ref=T_ref)
+        if not math.isfinite(T_g) or wlf.C2 + (T_g - wlf.T_ref) <= 0:
+            raise InputError(f"WLFArrhenius: T_g = {T_g!r} C must lie above the WLF singularity "
+                             f"{wlf.T_ref - wlf.C2:g} C")
+        arr = Arrhenius(E_a=float(E_a), T_g=float(T_g), log10_aT_g=float(wlf.log10_aT(T_g)))
+        out = cls(wlf, arr, None)
+        return out if T_ref >= T_g else cls(wlf, arr, float(T_ref))
+
+    @classmethod
+    def from_mapping(cls, m) -> "WLFArrhenius":
+        """From ``{"C1", "C2", "T_ref_C", "E_a", "T_g"}`` (the case-file form; E_a in J/mol, T_g in deg C)."""
+        try:
+            T_ref = m["T_ref_C"] if "T_ref_C" in m else m["T_ref"]
+            return cls.from_constants(float(m["C1"]), float(m["C2"]), float(T_ref), float(m["E_a"]),
+                                      float(m["T_g"]))
+        except KeyError as exc:
+            raise InputError(f"wlf+arrhenius: missing key {exc.args[0]!r} (expected C1, C2, T_ref_C, E_a, T_g)"
+                             ) from None
+        except (TypeError, ValueError):
+            raise InputError(f"wlf+arrhenius: expected numbers for C1, C2, T_ref_C, E_a, T_g, got {dict(m)!r}"
+                             ) from None
 
 
 # ==================================================================================================== analysis
@@ -521,10 +639,7 @@ def wlf_change_reference(wlf: WLF, T_ref: float) -> WLF:
     :math:`C_1' = C_1 C_2 / C_2'` (exact; Ferry 1980, ch. 11). Raises if the new T_ref is at or below the
     singularity :math:`T_{ref} - C_2`.
     """
-    C2n = wlf.C2 + (T_ref - wlf.T_ref)
-    if not C2n > 0:
-        raise InputError(f"T_ref: {T_ref} C is at or below the WLF singularity {wlf.T_ref - wlf.C2:g} C")
-    return WLF(C1=wlf.C1 * wlf.C2 / C2n, C2=C2n, T_ref=float(T_ref))
+    return wlf.with_T_ref(T_ref)
 
 
 # ==================================================================================================== helpers

@@ -42,6 +42,8 @@ class WLF:
     C2: float
     T_ref: float
 
+    kind = "wlf"
+
     def __post_init__(self):
         for name in ("C1", "C2", "T_ref"):
             v = getattr(self, name)
@@ -63,6 +65,25 @@ class WLF:
     def aT(self, T):
         """Shift factor a_T (dimensionless)."""
         return 10.0 ** self.log10_aT(T)
+
+    def with_T_ref(self, T_ref: float) -> "WLF":
+        r"""The same law referred to another reference temperature (exact, Ferry 1980, ch. 11).
+
+        With :math:`\Delta = T_{ref}' - T_{ref}`: :math:`C_2' = C_2 + \Delta`, :math:`C_1' = C_1 C_2 / C_2'`.
+
+        Raises
+        ------
+        InputError
+            The new reference is at or below the singularity :math:`T_{ref} - C_2`.
+        """
+        C2n = self.C2 + (float(T_ref) - self.T_ref)
+        if not C2n > 0:
+            raise InputError(f"T_ref: {T_ref} C is at or below the WLF singularity {self.T_ref - self.C2:g} C")
+        return WLF(C1=self.C1 * self.C2 / C2n, C2=C2n, T_ref=float(T_ref))
+
+    def describe(self) -> str:
+        """One line: the law and its constants."""
+        return f"WLF: C1 = {self.C1:.4g}, C2 = {self.C2:.4g} K at T_ref = {self.T_ref:.4g} C"
 
     @classmethod
     def from_mapping(cls, m) -> "WLF":
@@ -141,7 +162,7 @@ class ConstantModulus:
         return self.E_storage + 1j * self.E_loss * np.sign(omega)
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, repr=False)
 class Prony:
     r"""Generalized Maxwell solid (Prony series) with WLF time-temperature superposition.
 
@@ -159,8 +180,10 @@ class Prony:
         Relaxation strengths, Pa (>= 0).
     tau_i : array_like
         Relaxation times at T_ref, s (> 0).
-    wlf : WLF or mapping, optional
-        Shift factor; ``None`` makes the material temperature-independent.
+    wlf : WLF, another shift law or mapping, optional
+        Shift law (any object with ``log10_aT``: :class:`WLF`, :class:`materials.WLFArrhenius`,
+        :class:`materials.TabulatedShift`, ...; or a mapping of WLF constants); ``None`` makes the material
+        temperature-independent.
     thermal : Thermal
         Thermal properties.
     label : str
@@ -190,7 +213,9 @@ class Prony:
         object.__setattr__(self, "E_i", E_i)
         object.__setattr__(self, "tau_i", tau_i)
         if self.wlf is not None and not isinstance(self.wlf, WLF):
-            object.__setattr__(self, "wlf", WLF.from_mapping(self.wlf))
+            # any shift law (WLF+Arrhenius, Arrhenius, a tabulated a_T) or a mapping of its constants
+            from .shift import as_shift_law
+            object.__setattr__(self, "wlf", as_shift_law(self.wlf, name="Prony.wlf"))
 
     def log10_aT(self, T):
         """log10 of the WLF shift factor (0 when no WLF is set or T is None)."""
@@ -218,6 +243,15 @@ class Prony:
         """High-frequency limit E_inf + sum E_i, Pa."""
         return float(self.E_inf + self.E_i.sum())
 
+    def __repr__(self) -> str:
+        lt = np.log10(self.tau_i)
+        text = (f"Prony({self.E_i.size} terms, E_inf = {self.E_inf:.4g} Pa, E_glassy = {self.E_glassy:.4g} Pa, "
+                f"tau 1e{lt.min():.3g}..1e{lt.max():.3g} s")
+        if self.wlf is not None:
+            d = getattr(self.wlf, "describe", None)
+            text += f", {d() if callable(d) else type(self.wlf).__name__}"
+        return text + (f", {self.label!r})" if self.label else ")")
+
 
 # --------------------------------------------------------------------------------------------------------------
 # helpers
@@ -228,12 +262,17 @@ _X_MAX = 1e150
 
 
 def _reduced_omega(omega, log10_aT):
-    """omega * 10**log10_aT without overflow: the product is clipped to +-1e300 rad/s (E is glassy there)."""
+    """omega * 10**log10_aT without overflow: the product is clipped to +-1e300 rad/s (E is glassy there).
+
+    Where the product is representable it is formed directly, so that log10_aT = 0 returns omega exactly.
+    """
     omega = np.asarray(omega, dtype=float)
     lg = np.asarray(log10_aT, dtype=float)
-    with np.errstate(divide="ignore"):
+    with np.errstate(divide="ignore", over="ignore", invalid="ignore"):
         mag = np.log10(np.abs(omega)) + lg
-    out = np.sign(omega) * 10.0 ** np.minimum(mag, 300.0)
+        direct = omega * 10.0 ** np.minimum(lg, 300.0)
+    clipped = np.sign(omega) * 10.0 ** np.minimum(mag, 300.0)
+    out = np.where((mag < 299.0) & np.isfinite(direct), direct, clipped)
     return np.where(omega == 0.0, 0.0, out)
 
 

@@ -1,32 +1,28 @@
-"""Case files (``case.toml``): one study bound together (DESIGN.md "Formats on disk").
+"""Case files (``case.toml``): one study bound together.
 
-:func:`read_case` builds the :class:`~persson.Model` (surface, material, Poisson ratio, gamma, baseline effects)
-and the operating conditions; :func:`validation.load_case` adds the measurements. Paths in the file are relative
-to the file's folder. Sections beyond DESIGN.md that this reader accepts:
+Every section and key is declared in :mod:`persson.case_schema` and documented in ``docs/conventions.md``
+("The case file"); an unknown key is an error ("did you mean ..."), and every value is type-checked with its key
+named. :func:`parse_case` reads and checks the file without building anything (fast: the command line uses it to
+check its outputs before computing); :func:`read_case` builds the :class:`~persson.Model` (surface, material,
+Poisson ratio, gamma, baseline effects) and the operating conditions; :func:`validation.load_case` adds the
+measurements. Paths in the file are relative to the file's folder.
 
-``[conditions]``
-    ``speeds_m_s = [...]`` or ``speed_range_m_s = [min, max, n]`` (log-spaced), ``temperature_C``,
-    ``pressure_Pa`` -- used by ``persson friction``.
-``[surface] example = "road"`` / ``[material] example = "tread"``
-    the package's documented synthetic examples instead of files.
-``[surface] profiles = [...]``
-    with optional ``read_options``, ``psd_options`` and ``isotropic_options`` tables passed to
-    :func:`surfaces.read_profiles`, :meth:`surfaces.ProfileSet.psd` and :meth:`surfaces.PSD1D.to_isotropic`
-    (e.g. ``isotropic_options = { q_max = 2e4 }`` to stop the measured band below an instrument noise floor).
-``[material] dma = "dma.csv"``
-    with ``wlf = {...}`` the isotherms are shifted by that WLF law; without it the shifts are found by automated
-    time-temperature superposition at ``T_ref_C`` (default 20 C).
+A master curve built from DMA isotherms is cached by the content of its input files and options (see
+:mod:`persson.case_cache`), so a second run on the same case does not refit it.
 """
 
 from __future__ import annotations
 
+import inspect
 import sys
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, Callable
 
 import numpy as np
 
+from ._checks import plausible_pressure, plausible_temperature
+from .case_schema import check_case, suggest
 from .errors import InputError
 from .model import Model
 
@@ -35,7 +31,38 @@ if sys.version_info >= (3, 11):
 else:  # pragma: no cover
     import tomli as tomllib
 
-__all__ = ["CaseSpec", "read_case", "build_surface", "build_material"]
+__all__ = ["CaseSpec", "CaseFile", "read_case", "parse_case", "resolve_case", "shipped_cases", "build_surface",
+           "build_material"]
+
+#: Entry-point group through which installed packages offer shipped cases (name -> case.toml).
+CASES_GROUP = "persson.cases"
+
+_DEFAULT_SPEEDS = (1e-6, 10.0, 50)
+
+
+@dataclass(frozen=True, eq=False)
+class CaseFile:
+    """A case file read and checked against the schema, nothing built yet.
+
+    Attributes
+    ----------
+    name : str
+    path : Path
+        The ``case.toml``.
+    raw : dict
+        The checked content (numbers as floats; ``Tg`` renamed ``Tg_C``).
+    inputs : tuple of Path
+        Every file the case reads (the case file, PSD, profiles, DMA files, master curve, shift factors,
+        strain sweeps, measurements): a command never writes over them.
+    """
+
+    name: str
+    path: Path
+    raw: dict
+    inputs: tuple = ()
+
+    def __repr__(self) -> str:
+        return f"CaseFile({self.name!r}, path={str(self.path)!r}, {len(self.inputs)} input files)"
 
 
 @dataclass(frozen=True, eq=False)
@@ -60,7 +87,13 @@ class CaseSpec:
     measurements : Path or None
         The measurements file named in ``[measurements]``.
     raw : dict
-        The whole parsed TOML.
+        The whole checked TOML.
+    inputs : tuple of Path
+        Every file the case reads.
+    notes : tuple of str
+        What building the case did that a user should know (e.g. the master curve came from the cache).
+    strain_factors : object or None
+        Strain-softening factors from ``[material] strain_sweeps`` (``materials.strain_factors``), if given.
     """
 
     name: str
@@ -72,6 +105,17 @@ class CaseSpec:
     contact: dict = field(default_factory=dict)
     measurements: Path | None = None
     raw: dict = field(default_factory=dict)
+    inputs: tuple = ()
+    notes: tuple = ()
+    strain_factors: object = None
+
+    def __repr__(self) -> str:
+        m = self.model
+        return (f"CaseSpec({self.name!r}, path={str(self.path)!r}, surface={type(m.surface).__name__}, "
+                f"material={type(m.material).__name__}, effects={list(m.effect_names)}, "
+                f"{self.speeds.size} speeds {self.speeds.min():.3g}-{self.speeds.max():.3g} m/s, "
+                f"T={self.temperature:g} C, p={self.pressure:g} Pa"
+                + (f", measurements={self.measurements.name!r}" if self.measurements else "") + ")")
 
     def contact_model(self):
         """The :class:`persson.slip.Contact` of the ``[contact]`` table (InputError when absent)."""
@@ -80,35 +124,43 @@ class CaseSpec:
         from .slip import Contact
 
         c = self.contact
-        try:
-            return Contact(length=float(c["length_m"]), width=float(c["width_m"]),
-                           stiffness=float(c["stiffness_Pa_per_m"]),
-                           pressure_distribution=_pressure_distribution(c.get("pressure_distribution", "parabolic")))
-        except KeyError as exc:
-            raise InputError(f"{self.path}: [contact] needs {exc.args[0]!r}") from None
+        missing = [k for k in ("length_m", "width_m", "stiffness_Pa_per_m") if k not in c]
+        if missing:
+            raise InputError(f"{self.path}: [contact] needs {', '.join(repr(k) for k in missing)}")
+        extra = {"n_points": int(c["n_points"])} if "n_points" in c else {}
+        return Contact(length=float(c["length_m"]), width=float(c["width_m"]),
+                       stiffness=float(c["stiffness_Pa_per_m"]),
+                       pressure_distribution=c.get("pressure_distribution", "parabolic"), **extra)
 
 
-def read_case(path) -> CaseSpec:
+# ---------------------------------------------------------------------------------------------------------
+def read_case(path, *, progress: Callable | None = None) -> CaseSpec:
     """Read a ``case.toml`` into a :class:`CaseSpec`.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The case file, its folder, or the name of a shipped case (e.g. ``"example"``).
+    progress : callable, optional
+        Called with short status texts while slow parts run (reading profiles, building a master curve); see
+        :mod:`persson.progress`.
 
     Raises
     ------
     InputError
-        Naming the file and the key when something is missing, malformed or points at a missing file.
+        Naming the file and the key when something is unknown, missing, of the wrong type, implausible (a
+        pressure or temperature in the wrong unit) or points at a missing file.
     """
-    path = Path(path)
-    if path.is_dir():
-        path = path / "case.toml"
-    if not path.is_file():
-        raise InputError(f"case file {path} does not exist")
-    try:
-        raw = tomllib.loads(path.read_text(encoding="utf-8"))
-    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
-        raise InputError(f"{path}: not a valid TOML file ({exc})") from None
+    case = parse_case(path)
+    raw, path = case.raw, case.path
     base = path.parent
-    surface = build_surface(_table(raw, "surface", path), base, path)
-    mat_tab = _table(raw, "material", path)
-    material = build_material(mat_tab, base, path)
+    notes: list[str] = []
+    _say(progress, "reading the surface")
+    surface = build_surface(raw["surface"], base, path)
+    mat_tab = raw["material"]
+    _say(progress, "building the material")
+    material = build_material(mat_tab, base, path, progress=progress, notes=notes)
+    strain = _strain_factors(mat_tab, base, path)
     nu = float(mat_tab.get("poisson", 0.5))
     model_tab = raw.get("model", {})
     gamma = float(model_tab.get("gamma", 0.5))
@@ -117,50 +169,105 @@ def read_case(path) -> CaseSpec:
     if "grid" in model_tab:
         from .grid import GridSettings
 
-        kwargs["grid"] = GridSettings(**model_tab["grid"])
+        with _key(path, "model", "grid"):
+            kwargs["grid"] = GridSettings(**model_tab["grid"])
     try:
         model = Model(surface, material, nu=nu, gamma=gamma, effects=effects, **kwargs)
     except InputError as exc:
         raise InputError(f"{path}: {exc}") from None
     cond = raw.get("conditions", {})
     speeds = _speeds(cond, path)
-    meas = raw.get("measurements", {})
-    mpath = None
-    if meas:
-        if "file" not in meas:
-            raise InputError(f"{path}: [measurements] needs file = \"...\"")
-        mpath = base / meas["file"]
-        if not mpath.is_file():
-            raise InputError(f"{path}: [measurements] file {mpath} does not exist")
-    return CaseSpec(name=str(raw.get("name", path.parent.name)), path=path, model=model, speeds=speeds,
-                    temperature=float(cond.get("temperature_C", 20.0)),
-                    pressure=float(cond.get("pressure_Pa", 0.3e6)), contact=dict(raw.get("contact", {})),
-                    measurements=mpath, raw=raw)
+    T = float(cond.get("temperature_C", 20.0))
+    p = float(cond.get("pressure_Pa", 0.3e6))
+    plausible_temperature(T, f"{path}: [conditions] temperature_C", strict=True)
+    plausible_pressure(p, f"{path}: [conditions] pressure_Pa", strict=True)
+    mfile = raw.get("measurements", {}).get("file")
+    return CaseSpec(name=case.name, path=path, model=model, speeds=speeds, temperature=T, pressure=p,
+                    contact=dict(raw.get("contact", {})), measurements=None if mfile is None else base / mfile,
+                    raw=raw, inputs=case.inputs, notes=tuple(notes), strain_factors=strain)
 
 
+def parse_case(path) -> CaseFile:
+    """Read and check a case file (schema, required tables, named files exist) without building anything.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The case file, its folder, or the name of a shipped case.
+
+    Returns
+    -------
+    CaseFile
+    """
+    path = resolve_case(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except UnicodeDecodeError as exc:
+        raise InputError(f"{path}: not a UTF-8 text file ({exc})") from None
+    try:
+        parsed = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise InputError(f"{path}: not a valid TOML file ({exc})") from None
+    raw = check_case(parsed, str(path))
+    for section in ("surface", "material"):
+        if section not in raw:
+            raise InputError(f"{path}: missing [{section}] table (see docs/conventions.md, \"The case file\")")
+    _check_combinations(raw, path)
+    inputs = [path] + _input_files(raw, path)
+    return CaseFile(name=str(raw.get("name", path.parent.name)), path=path, raw=raw, inputs=tuple(inputs))
+
+
+def resolve_case(path) -> Path:
+    """The ``case.toml`` of a path, a folder, or the name of a shipped case (InputError when none)."""
+    p = Path(path)
+    if p.is_dir():
+        p = p / "case.toml"
+    if p.is_file():
+        return p
+    if not p.exists() and isinstance(path, str) and "/" not in path and "\\" not in path and not p.suffix:
+        cases = shipped_cases()
+        if path in cases:
+            return cases[path]
+        raise InputError(f"case {path!r}: no such file or folder, and no shipped case of that name"
+                         f"{suggest(path, cases)}; shipped cases: {', '.join(sorted(cases)) or 'none installed'}")
+    if Path(path).is_dir():
+        raise InputError(f"case folder {Path(path)} has no case.toml")
+    raise InputError(f"case file {p} does not exist")
+
+
+def shipped_cases() -> dict[str, Path]:
+    """Cases shipped by installed packages (entry-point group ``persson.cases``): name -> case.toml."""
+    from importlib.metadata import entry_points
+
+    out: dict[str, Path] = {}
+    for ep in entry_points(group=CASES_GROUP):
+        try:
+            out.update({str(k): Path(v) for k, v in ep.load()().items()})
+        except Exception:  # noqa: BLE001 - a broken plug-in must not hide the others
+            continue
+    return dict(sorted(out.items()))
+
+
+# ---------------------------------------------------------------------------------------------------------
 def build_surface(tab: dict, base: Path, path: Path):
-    """The surface PSD of a ``[surface]`` table."""
+    """The surface PSD of a ``[surface]`` table (checked by :func:`parse_case`)."""
     import surfaces
 
-    keys = [k for k in ("psd", "profiles", "example") if k in tab]
-    if len(keys) != 1:
-        raise InputError(f"{path}: [surface] needs exactly one of psd, profiles, example (got {keys})")
-    key = keys[0]
+    key = next(k for k in ("psd", "profiles", "example") if k in tab)
     if key == "example":
-        if tab["example"] != "road":
-            raise InputError(f"{path}: [surface] example must be \"road\", got {tab['example']!r}")
         s = surfaces.example_road()
     elif key == "psd":
-        s = surfaces.read_psd(_file(base, tab["psd"], path, "surface.psd"))
+        with _key(path, "surface", "psd"):
+            s = surfaces.read_psd(_file(base, tab["psd"], path, "surface", "psd"))
     else:
-        files = tab["profiles"] if isinstance(tab["profiles"], list) else [tab["profiles"]]
-        sets = [surfaces.read_profiles(_file(base, f, path, "surface.profiles"), **tab.get("read_options", {}))
-                for f in files]
+        files = [_file(base, f, path, "surface", "profiles") for f in tab["profiles"]]
+        with _key(path, "surface", "read_options"):
+            sets = [surfaces.read_profiles(f, **tab.get("read_options", {})) for f in files]
         ps = sets[0] if len(sets) == 1 else surfaces.ProfileSet.concatenate(sets)
-        try:
-            s = ps.psd(**tab.get("psd_options", {})).to_isotropic(**tab.get("isotropic_options", {}))
-        except TypeError as exc:
-            raise InputError(f"{path}: [surface] psd_options / isotropic_options: {exc}") from None
+        with _key(path, "surface", "psd_options"):
+            p1 = ps.psd(**tab.get("psd_options", {}))
+        with _key(path, "surface", "isotropic_options"):
+            s = p1.to_isotropic(**tab.get("isotropic_options", {}))
     if "q0" in tab or "q1" in tab:
         q0 = tab.get("q0")
         q1 = tab.get("q1")
@@ -169,44 +276,161 @@ def build_surface(tab: dict, base: Path, path: Path):
             raise InputError(f"{path}: [surface] q1 = {float(q1):g} rad/m lies past the PSD's last q = {hi:g}; "
                              "nothing is extrapolated unless asked: switch on the microtexture effect "
                              "([model] effects = [\"microtexture\"]) to extend the tail")
-        s = s.with_cutoff(q0=None if q0 is None else float(q0), q1=None if q1 is None else float(q1))
+        with _key(path, "surface", "q0" if q1 is None else "q1"):
+            s = s.with_cutoff(q0=None if q0 is None else float(q0), q1=None if q1 is None else float(q1))
     return s
 
 
-def build_material(tab: dict, base: Path, path: Path):
-    """The material of a ``[material]`` table (master curve + WLF, DMA data, or the example tread)."""
+def build_material(tab: dict, base: Path, path: Path, *, progress: Callable | None = None,
+                   notes: list | None = None):
+    """The material of a ``[material]`` table: a master-curve table, DMA isotherms, or the example tread.
+
+    DMA isotherms are shifted by the case's ``wlf`` law or ``shift_factors`` table when given, else by automated
+    time-temperature superposition at ``T_ref_C`` (options ``shift_law``, ``Tg_C``, ``wlf_range_C``,
+    ``shift_options``, ``fit``); the result is cached by the content of the files and the options.
+    """
     import materials
 
-    keys = [k for k in ("master_curve", "dma", "example") if k in tab]
-    if len(keys) != 1:
-        raise InputError(f"{path}: [material] needs exactly one of master_curve, dma, example (got {keys})")
+    notes = [] if notes is None else notes
+    key = next(k for k in ("master_curve", "dma", "example") if k in tab)
     thermal = None
     if "thermal" in tab:
-        try:
+        with _key(path, "material", "thermal"):
             thermal = materials.Thermal(**tab["thermal"])
-        except TypeError as exc:
-            raise InputError(f"{path}: [material] thermal: {exc}") from None
-    key = keys[0]
     if key == "example":
-        if tab["example"] != "tread":
-            raise InputError(f"{path}: [material] example must be \"tread\", got {tab['example']!r}")
         m = materials.example_tread()
     elif key == "master_curve":
-        if "wlf" not in tab:
-            raise InputError(f"{path}: [material] master_curve needs wlf = {{ C1 = ..., C2 = ..., T_ref_C = ... }}")
-        wlf = materials.WLF.from_mapping(tab["wlf"])
-        m = materials.read_master_curve(_file(base, tab["master_curve"], path, "material.master_curve"), wlf=wlf)
+        m = _master_curve_table(tab, base, path)
     else:
-        dma = materials.read_dma(_file(base, tab["dma"], path, "material.dma"))
-        if "wlf" in tab:
-            # The case gives the compound's WLF law: use it as the shift factors instead of fitting new ones.
-            wlf = materials.WLF.from_mapping(tab["wlf"])
-            m = materials.master_curve(dma, T_ref=wlf.T_ref, shift_factors=wlf)
-        else:
-            m = materials.master_curve(dma, T_ref=float(tab.get("T_ref_C", 20.0)))
+        m = _master_curve_from_dma(tab, base, path, progress, notes)
     if thermal is not None:
         m = _with_thermal(m, thermal)
     return m
+
+
+def _master_curve_table(tab: dict, base: Path, path: Path):
+    import materials
+
+    f = _file(base, tab["master_curve"], path, "material", "master_curve")
+    wlf = _wlf(tab, path)
+    kwargs = dict(tab.get("master_curve_options", {}))
+    if "shift_factors" in tab:
+        kwargs["shift"] = _shift_table(tab, base, path)
+    if "fit" in tab:
+        kwargs["fit"] = tab["fit"]
+    if wlf is None and "shift" not in kwargs:
+        raise InputError(f"{path}: [material] master_curve needs wlf = {{ C1 = ..., C2 = ..., T_ref_C = ... }} or "
+                         "shift_factors = \"file\"")
+    return _call(materials.read_master_curve, path, "master_curve", f, wlf, **kwargs)
+
+
+def _master_curve_from_dma(tab: dict, base: Path, path: Path, progress, notes: list):
+    import materials
+
+    from .case_cache import cached
+
+    source = _dma_source(tab["dma"], base, path)
+    files = _expand_dma(source)
+    read_opts = dict(tab.get("dma_options", {}))
+    kwargs: dict[str, Any] = {}
+    wlf = _wlf(tab, path)
+    if wlf is not None:
+        # The case gives the compound's WLF law: use it as the shift factors instead of fitting new ones.
+        if "T_ref_C" in tab and float(tab["T_ref_C"]) != wlf.T_ref:
+            raise InputError(f"{path}: [material] T_ref_C = {tab['T_ref_C']:g} differs from wlf T_ref_C = "
+                             f"{wlf.T_ref:g}; the WLF constants hold for their own reference: give one of them")
+        T_ref = wlf.T_ref
+        kwargs["shift_factors"] = wlf
+    else:
+        T_ref = float(tab.get("T_ref_C", 20.0))
+        if "shift_factors" in tab:
+            kwargs["shift_factors"] = _shift_table(tab, base, path)
+    for case_key, arg in (("shift_law", "shift_law"), ("Tg_C", "Tg"), ("fit", "fit")):
+        if case_key in tab:
+            kwargs[arg] = tab[case_key]
+    if "wlf_range_C" in tab:
+        kwargs["wlf_range"] = tuple(tab["wlf_range_C"])
+    kwargs.update(tab.get("shift_options", {}))
+    shift_files = [_file(base, tab["shift_factors"], path, "material", "shift_factors")] \
+        if "shift_factors" in tab and wlf is None else []
+    options = {"T_ref": T_ref, "read": read_opts, "wlf": None if wlf is None else [wlf.C1, wlf.C2, wlf.T_ref],
+               **{k: v for k, v in kwargs.items() if k != "shift_factors"}}
+
+    def build():
+        with _key(path, "material", "dma"):
+            dma = _call(materials.read_dma, path, "dma_options", source, **read_opts)
+        _say(progress, f"fitting the master curve of {len(files)} DMA file(s)")
+        extra = {"progress": progress} if progress is not None and _accepts(materials.master_curve, "progress") \
+            else {}
+        return _call(materials.master_curve, path, _material_key(kwargs), dma, T_ref, **kwargs, **extra)
+
+    return cached("master_curve", files + shift_files, options, build, notes=notes, inputs=files)
+
+
+def _material_key(kwargs: dict) -> str:
+    """The case key most likely at fault when ``materials.master_curve`` refuses its arguments."""
+    for case_key, arg in (("shift_law", "shift_law"), ("Tg_C", "Tg"), ("wlf_range_C", "wlf_range"),
+                          ("fit", "fit")):
+        if arg in kwargs:
+            return case_key
+    return "dma"
+
+
+def _strain_factors(tab: dict, base: Path, path: Path):
+    if "strain_sweeps" not in tab:
+        if "strain_options" in tab:
+            raise InputError(f"{path}: [material] strain_options is given without strain_sweeps")
+        return None
+    import materials
+
+    files = [_file(base, f, path, "material", "strain_sweeps") for f in tab["strain_sweeps"]]
+    opts = dict(tab.get("strain_options", {}))
+    read = _function(materials, "read_strain_sweep", path, "strain_sweeps")
+    factors = _function(materials, "strain_factors", path, "strain_sweeps")
+    read_opts = {k: v for k, v in opts.items() if _accepts(read, k)}
+    fit_opts = {k: v for k, v in opts.items() if k not in read_opts}
+    sweeps = [_call(read, path, "strain_sweeps", f, **read_opts) for f in files]
+    return _call(factors, path, "strain_options", sweeps, **fit_opts)
+
+
+def _shift_table(tab: dict, base: Path, path: Path):
+    import materials
+
+    f = _file(base, tab["shift_factors"], path, "material", "shift_factors")
+    read = _function(materials, "read_shift_factors", path, "shift_factors")
+    return _call(read, path, "shift_factors", f)
+
+
+def _wlf(tab: dict, path: Path):
+    if "wlf" not in tab:
+        return None
+    import materials
+
+    with _key(path, "material", "wlf"):
+        return materials.WLF.from_mapping(tab["wlf"])
+
+
+def _dma_source(value: list, base: Path, path: Path):
+    """A file, a folder or a list of files (relative to the case) as read_dma takes it."""
+    out = []
+    for name in value:
+        p = base / name
+        if not p.exists():
+            raise InputError(f"{path}: [material] dma: {p} does not exist (expected a DMA file, a list of files or "
+                             "a folder of isotherm files)")
+        out.append(p)
+    return out[0] if len(out) == 1 else out
+
+
+def _expand_dma(source) -> list[Path]:
+    items = source if isinstance(source, list) else [source]
+    out: list[Path] = []
+    for p in items:
+        if p.is_dir():
+            out += sorted(f for f in p.iterdir() if f.is_file() and not f.name.startswith("."))
+        else:
+            out.append(p)
+    return out
 
 
 def _with_thermal(material, thermal):
@@ -222,57 +446,133 @@ def _with_thermal(material, thermal):
 def _effects(model_tab: dict, path: Path) -> tuple:
     from . import effects as fx
 
-    names = model_tab.get("effects", [])
-    if not isinstance(names, list) or not all(isinstance(n, str) for n in names):
-        raise InputError(f"{path}: [model] effects must be a list of effect names")
     out = []
-    for n in names:
+    for n in model_tab.get("effects", []):
         params = model_tab.get(n, {})
-        try:
+        with _key(path, f"model.{n}", None):
             out.append(fx.get(n, **params))
-        except TypeError as exc:
-            raise InputError(f"{path}: [model.{n}]: {exc}") from None
-        except InputError as exc:
-            raise InputError(f"{path}: [model] effects: {exc}") from None
     return tuple(out)
 
 
 def _speeds(cond: dict, path: Path) -> np.ndarray:
     if "speeds_m_s" in cond:
-        v = np.asarray(cond["speeds_m_s"], dtype=float).ravel()
-    elif "speed_range_m_s" in cond:
-        try:
-            lo, hi, n = cond["speed_range_m_s"]
-            v = np.geomspace(float(lo), float(hi), int(n))
-        except (TypeError, ValueError):
-            raise InputError(f"{path}: [conditions] speed_range_m_s must be [min, max, n]") from None
-    else:
-        v = np.geomspace(1e-6, 10.0, 50)
-    if v.size == 0 or not np.all(np.isfinite(v)) or np.any(v <= 0):
-        raise InputError(f"{path}: [conditions] speeds must be finite and > 0 m/s")
-    return v
+        return np.asarray(cond["speeds_m_s"], dtype=float).ravel()
+    lo, hi, n = cond.get("speed_range_m_s", _DEFAULT_SPEEDS)
+    return np.geomspace(float(lo), float(hi), int(n))
 
 
-def _pressure_distribution(spec):
-    if isinstance(spec, dict):
-        if "sakai_n" in spec:
-            return {"sakai_n": float(spec["sakai_n"])}
-        raise InputError(f"[contact] pressure_distribution: expected \"uniform\", \"parabolic\" or "
-                         f"{{ sakai_n = n }}, got {spec!r}")
-    return str(spec)
+# ---------------------------------------------------------------------------------------------------------
+# Rules across keys (the schema checks each key alone).
+_ONE_OF = {"surface": ("psd", "profiles", "example"), "material": ("master_curve", "dma", "example")}
+#: Keys that only make sense beside one of the alternatives above.
+_ONLY_WITH = {
+    ("surface", "read_options"): ("profiles",), ("surface", "psd_options"): ("profiles",),
+    ("surface", "isotropic_options"): ("profiles",),
+    ("material", "dma_options"): ("dma",), ("material", "shift_law"): ("dma",), ("material", "Tg_C"): ("dma",),
+    ("material", "wlf_range_C"): ("dma",), ("material", "shift_options"): ("dma",),
+    ("material", "T_ref_C"): ("dma",), ("material", "master_curve_options"): ("master_curve",),
+    ("material", "shift_factors"): ("dma", "master_curve"), ("material", "fit"): ("dma", "master_curve"),
+    ("material", "wlf"): ("dma", "master_curve"),
+}
 
 
-def _table(raw: dict, key: str, path: Path) -> dict:
-    tab = raw.get(key)
-    if not isinstance(tab, dict):
-        raise InputError(f"{path}: missing [{key}] table")
-    return tab
+def _check_combinations(raw: dict, path: Path) -> None:
+    for section, alternatives in _ONE_OF.items():
+        tab = raw[section]
+        given = [k for k in alternatives if k in tab]
+        if len(given) != 1:
+            raise InputError(f"{path}: [{section}] needs exactly one of {', '.join(alternatives)} (got "
+                             f"{', '.join(given) or 'none'})")
+    for (section, key), needs in _ONLY_WITH.items():
+        tab = raw.get(section, {})
+        if key in tab and not any(n in tab for n in needs):
+            raise InputError(f"{path}: [{section}] {key} applies only with {' or '.join(needs)}; it would be "
+                             "ignored here: remove it")
+    mat = raw["material"]
+    if "wlf" in mat and "shift_factors" in mat:
+        raise InputError(f"{path}: [material] give wlf or shift_factors, not both")
+    cond = raw.get("conditions", {})
+    if "speeds_m_s" in cond and "speed_range_m_s" in cond:
+        raise InputError(f"{path}: [conditions] give speeds_m_s or speed_range_m_s, not both")
 
 
-def _file(base: Path, name, path: Path, key: str) -> Path:
-    if not isinstance(name, str):
-        raise InputError(f"{path}: {key} must be a file name, got {name!r}")
+def _input_files(raw: dict, path: Path) -> list[Path]:
+    """Every file the case names (checked to exist), in order."""
+    base = path.parent
+    out: list[Path] = []
+    surf, mat = raw["surface"], raw["material"]
+    if "psd" in surf:
+        out.append(_file(base, surf["psd"], path, "surface", "psd"))
+    for f in surf.get("profiles", []):
+        out.append(_file(base, f, path, "surface", "profiles"))
+    if "master_curve" in mat:
+        out.append(_file(base, mat["master_curve"], path, "material", "master_curve"))
+    if "dma" in mat:
+        out += _expand_dma(_dma_source(mat["dma"], base, path))
+    if "shift_factors" in mat:
+        out.append(_file(base, mat["shift_factors"], path, "material", "shift_factors"))
+    for f in mat.get("strain_sweeps", []):
+        out.append(_file(base, f, path, "material", "strain_sweeps"))
+    if "file" in raw.get("measurements", {}):
+        out.append(_file(base, raw["measurements"]["file"], path, "measurements", "file"))
+    elif "measurements" in raw:
+        raise InputError(f"{path}: [measurements] needs file = \"...\"")
+    return out
+
+
+def _file(base: Path, name: str, path: Path, section: str, key: str) -> Path:
     f = base / name
     if not f.is_file():
-        raise InputError(f"{path}: {key} file {f} does not exist")
+        what = "is a folder; expected a file" if f.is_dir() else "does not exist"
+        raise InputError(f"{path}: [{section}] {key}: file {f} {what}")
     return f
+
+
+class _key:
+    """Context: a ValueError or TypeError raised while using one key is re-raised naming the file and key."""
+
+    def __init__(self, path: Path, section: str, key: str | None):
+        self.where = f"{path}: [{section}]" + (f" {key}" if key else "")
+        self.path = str(path)
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, exc_type, exc, tb):
+        if exc_type is None or not issubclass(exc_type, (ValueError, TypeError)):
+            return False
+        text = str(exc)
+        if issubclass(exc_type, ValueError) and self.path in text:
+            return False  # already names the file
+        raise InputError(f"{self.where}: {text}") from None
+
+
+def _call(fn, path: Path, key: str, *args, **kwargs):
+    """``fn(*args, **kwargs)``; a refused keyword or bad value becomes an InputError naming the case key."""
+    section = "material"
+    for name in kwargs:
+        if not _accepts(fn, name):
+            raise InputError(f"{path}: [{section}] {key}: this version of the materials package does not accept "
+                             f"{name!r} in {fn.__name__}()")
+    with _key(path, section, key):
+        return fn(*args, **kwargs)
+
+
+def _function(module, name: str, path: Path, key: str):
+    fn = getattr(module, name, None)
+    if fn is None:
+        raise InputError(f"{path}: [material] {key}: this version of the materials package has no {name}()")
+    return fn
+
+
+def _accepts(fn, name: str) -> bool:
+    try:
+        params = inspect.signature(fn).parameters
+    except (TypeError, ValueError):  # pragma: no cover
+        return True
+    return name in params or any(p.kind is p.VAR_KEYWORD for p in params.values())
+
+
+def _say(progress, text: str) -> None:
+    if progress is not None:
+        progress(text)

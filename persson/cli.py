@@ -1,8 +1,13 @@
 """Command line: ``persson <command> ...`` (also ``python -m persson``).
 
-Each command lives in its own module of :mod:`persson.commands` exposing ``NAME``, ``HELP``,
-``add_arguments(parser)`` and ``run(args) -> int``; this module only dispatches. Every command prints where
-its output went.
+Each command is a module exposing ``NAME``, ``HELP``, ``add_arguments(parser)`` and ``run(args) -> int``. The
+engine's own commands live in :mod:`persson.commands` (:data:`COMMANDS`); other installed packages add commands
+through the entry-point group ``persson.commands`` (name = "module"), which is how the validation package
+contributes ``demo``, ``compare``, ``diagnose`` and ``report`` without the engine depending on it. This module
+only discovers and dispatches.
+
+Every command prints where its output went; status lines and warnings go to stderr, so output written to stdout
+(``--json -``) stays clean. Exit status: 0 success, 2 bad input, 130 interrupted (Ctrl-C).
 """
 
 from __future__ import annotations
@@ -10,11 +15,16 @@ from __future__ import annotations
 import argparse
 import importlib
 import sys
+import warnings
 
-__all__ = ["main", "COMMANDS"]
+__all__ = ["main", "build_parser", "available_commands", "COMMANDS", "COMMANDS_GROUP"]
 
-#: Command modules, in the order ``--help`` lists them.
-COMMANDS = ("demo", "friction", "compare", "diagnose", "report", "sweep")
+#: The engine's command modules (in ``persson.commands``).
+COMMANDS = ("friction", "sweep", "contact")
+#: Entry-point group through which installed packages add commands.
+COMMANDS_GROUP = "persson.commands"
+# the order ``--help`` lists the commands in (others follow alphabetically)
+_HELP_ORDER = ("demo", "friction", "contact", "compare", "diagnose", "report", "sweep")
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -24,13 +34,17 @@ def main(argv: list[str] | None = None) -> int:
     if not getattr(args, "_run", None):
         parser.print_help()
         return 2
-    from .errors import InputError as PerssonInputError
-
-    try:
-        return int(args._run(args) or 0)
-    except (PerssonInputError, ValueError, FileNotFoundError) as exc:
-        print(f"persson {args._name}: error: {exc}", file=sys.stderr)
-        return 2
+    name = args._name
+    with warnings.catch_warnings():
+        warnings.showwarning = _show_warning(name)
+        try:
+            return int(args._run(args) or 0)
+        except KeyboardInterrupt:
+            print(f"persson {name}: interrupted", file=sys.stderr)
+            return 130
+        except (ValueError, OSError) as exc:  # every package's InputError is a ValueError
+            print(f"persson {name}: error: {_message(exc)}", file=sys.stderr)
+            return 2
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -43,17 +57,51 @@ def build_parser() -> argparse.ArgumentParser:
                     "flash temperature; comparison with measured friction and diagnosis of missing effects.")
     parser.add_argument("--version", action="version", version=f"persson {__version__}")
     sub = parser.add_subparsers(title="commands", metavar="COMMAND")
-    for name in COMMANDS:
-        try:
-            mod = importlib.import_module(f".commands.{name}", __package__)
-        except ModuleNotFoundError as exc:
-            if exc.name and exc.name.endswith(f"commands.{name}"):
-                continue  # command not available in this build
-            raise
+    for name, mod in available_commands().items():
         p = sub.add_parser(mod.NAME, help=mod.HELP, description=mod.HELP)
         mod.add_arguments(p)
         p.set_defaults(_run=mod.run, _name=mod.NAME)
     return parser
+
+
+def available_commands() -> dict:
+    """Command name -> module: the engine's own, then those of installed packages, in help order."""
+    found: dict = {}
+    for name in COMMANDS:
+        try:
+            found[name] = importlib.import_module(f".commands.{name}", __package__)
+        except ModuleNotFoundError as exc:
+            if exc.name and exc.name.endswith(f"commands.{name}"):
+                continue  # command not available in this build
+            raise
+    for ep in _entry_points():
+        if ep.name in found:
+            continue
+        try:
+            found[ep.name] = importlib.import_module(ep.value.split(":")[0])
+        except ImportError as exc:  # a broken plug-in must not take the engine's commands down
+            print(f"persson: command {ep.name!r} from {ep.value} is unavailable ({exc})", file=sys.stderr)
+    order = {n: i for i, n in enumerate(_HELP_ORDER)}
+    return dict(sorted(found.items(), key=lambda kv: (order.get(kv[0], len(order)), kv[0])))
+
+
+def _entry_points():
+    from importlib.metadata import entry_points
+
+    return list(entry_points(group=COMMANDS_GROUP))
+
+
+def _message(exc: BaseException) -> str:
+    if isinstance(exc, OSError) and exc.filename:
+        return f"{exc.filename}: {exc.strerror or exc}"
+    return str(exc)
+
+
+def _show_warning(name: str):
+    def show(message, category, filename, lineno, file=None, line=None):
+        print(f"persson {name}: warning ({category.__name__}): {message}", file=file or sys.stderr)
+
+    return show
 
 
 if __name__ == "__main__":  # pragma: no cover

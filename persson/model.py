@@ -22,14 +22,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from scipy import integrate
 
 from frictioncite import citations_of, doi
 
-from . import _kernels, separation
-from ._checks import number
+from . import corrections, separation, solver
+from ._checks import number, plausible_pressure, plausible_temperature
 from .effects.base import Conditions, Effect, SolverState
-from .errors import ConvergenceWarning, InputError
+from .errors import AccuracyWarning, ConvergenceWarning, InputError, PhysicsWarning
 from .grid import GridSettings
 from .results import FrictionResult
 from .tabulate import modulus_table, relative_shifts, shift_table
@@ -40,7 +39,7 @@ _PAD_DECADES = 0.5
 
 
 @doi("10.1063/1.1388626", "10.1088/0953-8984/17/1/R01", "10.1088/0953-8984/20/21/215214")
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, repr=False)
 class Model:
     """Persson rubber-friction model.
 
@@ -58,7 +57,13 @@ class Model:
     effects : sequence of Effect
         Effects switched on (see :mod:`persson.effects`).
     grid : GridSettings
-        Numerical resolution (defaults meet 0.1 % on the closed-form benchmark).
+        Numerical resolution; the defaults keep the quadrature error below 1e-3 of mu from soft to glassy rubber,
+        and every result carries its own estimate (``error_estimate``).
+    correction : {None, "yang-persson", "xu2024"}
+        Area correction of :mod:`persson.corrections` (None, the default: Persson's P = erf(1/(2 sqrt G))).
+        A correction raises the small-load contact area towards exact numerical contact mechanics and, through
+        P in the friction integral, the hysteresis friction (by about 40 % on the example road): see
+        ``docs/contact.md``.
 
     Examples
     --------
@@ -76,6 +81,7 @@ class Model:
     gamma: float = 0.5
     effects: tuple = ()
     grid: GridSettings = field(default_factory=GridSettings)
+    correction: str | None = None
 
     def __post_init__(self):
         nu = number(self.nu, "nu")
@@ -103,6 +109,9 @@ class Model:
             raise InputError("effects: at most one effect may set the temperature at each scale")
         if not isinstance(self.grid, GridSettings):
             raise InputError(f"grid: expected persson.GridSettings, got {self.grid!r}")
+        from .corrections import check_correction
+
+        object.__setattr__(self, "correction", check_correction(self.correction, gamma)[0])
         object.__setattr__(self, "nu", nu)
         object.__setattr__(self, "gamma", gamma)
         object.__setattr__(self, "effects", effects)
@@ -138,6 +147,9 @@ class Model:
             i = int(np.argmax(sigma0 <= 0))
             raise InputError(f"pressure: expected a nominal pressure > 0 Pa, got {sigma0[i]:g}"
                              + (f" at index {i}" if np.ndim(pressure) else ""))
+        # unit slips (MPa typed as Pa, kelvin as deg C) warn; below absolute zero is an error
+        plausible_pressure(sigma0, "pressure", stacklevel=3)
+        plausible_temperature(T0, "temperature", stacklevel=3)
         # Conditions keep scalars for scalar arguments (effects written for one temperature keep working)
         T_c = T0 if np.ndim(temperature) else float(T0[0])
         p_c = sigma0 if np.ndim(pressure) else float(sigma0[0])
@@ -150,7 +162,9 @@ class Model:
             material = e.transform_material(material, cond)
         thermal = next((e for e in self.effects if e.solver_role == "temperature"), None)
 
-        solved = _solve_grouped(surface, material, cond, self.grid, self.nu, self.gamma, thermal)
+        modulus = next((e for e in self.effects if type(e).modulus_factors is not Effect.modulus_factors), None)
+        solved = solver.solve(surface, material, cond, self.grid, self.nu, self.gamma, thermal, self.correction,
+                              modulus)
         state = SolverState(conditions=cond, surface=surface, material=material, q=solved.q,
                             area_q=solved.P, G_q=solved.G, temperature_q=solved.T_q,
                             mu_hysteresis=solved.mu, nu=self.nu, gamma=self.gamma)
@@ -169,17 +183,31 @@ class Model:
         mu_hys = solved.mu * load_share
         mu_total = mu_hys + sum(terms.values(), np.zeros_like(v))
 
-        notes = list(_surface_notes(surface))
+        notes = list(_surface_notes(surface)) + list(solved.notes)
+        for msg in _physics_notes(self.surface, surface, solved, mu_total, self.effects):
+            notes.append(msg)
+            warnings.warn(msg, PhysicsWarning, stacklevel=2)
         if not solved.converged:
             bad = np.flatnonzero(~solved.converged_each)
             msg = (f"flash temperature did not converge at {bad.size} of {v.size} speeds "
                    f"(max residual {np.max(solved.residual):.3g} K)")
             notes.append(msg)
             warnings.warn(msg, ConvergenceWarning, stacklevel=2)
+        coarse_grid = solved.error_estimate > self.grid.tolerance
+        if np.any(coarse_grid):
+            bad = np.flatnonzero(coarse_grid)
+            msg = (f"estimated quadrature error above the tolerance {self.grid.tolerance:g} at {bad.size} of "
+                   f"{v.size} speeds (largest {np.max(solved.error_estimate):.2g}, at v = "
+                   f"{v[bad[np.argmax(solved.error_estimate[bad])]]:.3g} m/s): raise GridSettings.q_per_decade")
+            notes.append(msg)
+            warnings.warn(msg, AccuracyWarning, stacklevel=2)
         out = _shape
         C_nodes = np.asarray(surface.C(solved.q), dtype=float)
-        u_bar = separation.mean_separation(solved.q, C_nodes, solved.G, self.gamma)
-        hrms = math.sqrt(2 * math.pi * integrate.trapezoid(solved.q**2 * C_nodes, x=np.log(solved.q)))
+        hrms = math.sqrt(solver.psd_moment(surface, solved.q, 1))
+        if hrms > 0:
+            u_bar = separation.mean_separation(solved.q, C_nodes, solved.G, self.gamma, correction=self.correction)
+        else:  # no roughness: the rubber touches the flat everywhere
+            u_bar = np.zeros(v.size)
 
         result = FrictionResult(
             speed=v, temperature=float(T0[0]) if np.ndim(temperature) == 0 else T0,
@@ -190,17 +218,27 @@ class Model:
             q=solved.q, area_q=solved.P, G_q=solved.G, temperature_q=solved.T_q, dmu_dlnq=solved.dmu,
             max_flash_temperature=out(np.max(solved.T_q, axis=1) - T0, scalar),
             mean_separation=out(u_bar, scalar),
-            penetration_depth=out(separation.penetration_depth(u_bar, hrms), scalar),
-            excited_layer_thickness=out(separation.excited_layer_thickness(solved.q, solved.dmu), scalar),
+            penetration_depth=out(separation.penetration_depth(u_bar, hrms) if hrms > 0 else np.zeros(v.size),
+                                  scalar),
+            excited_layer_thickness=out(solved.excited_layer, scalar),
+            mu_cumulative=solved.mu_cumulative * np.broadcast_to(np.asarray(load_share, dtype=float), v.shape)[:, None],
+            load_share=out(np.broadcast_to(np.asarray(load_share, dtype=float), v.shape).copy(), scalar),
+            error_estimate=out(solved.error_estimate, scalar),
             effects=tuple(e.name for e in self.effects), converged=bool(solved.converged),
             iterations=solved.iterations, residual=solved.residual, notes=tuple(notes),
             citations=citations_of(type(self), separation.mean_separation, surface, material,
-                                   *(type(e) for e in self.effects)),
+                                   *(type(e) for e in self.effects), corrections.citations(self.correction)),
             scalar=scalar,
         )
         for e in self.effects:
             result = e.transform_result(result)
         return result
+
+    def __repr__(self) -> str:
+        extra = f", correction={self.correction!r}" if self.correction else ""
+        grid = "" if self.grid == GridSettings() else f", grid={self.grid!r}"
+        return (f"Model(surface={self.surface!r}, material={self.material!r}, nu={self.nu:g}, gamma={self.gamma:g}, "
+                f"effects={list(self.effect_names)}{extra}{grid})")
 
     # ----------------------------------------------------------------------------------------------------
     def with_effect(self, effect: Effect) -> "Model":
@@ -236,103 +274,30 @@ class Model:
 
 
 # ---------------------------------------------------------------------------------------------------------
-@dataclass(frozen=True, eq=False)
-class _Solved:
-    q: np.ndarray
-    G: np.ndarray
-    P: np.ndarray
-    T_q: np.ndarray
-    dmu: np.ndarray
-    loss: np.ndarray
-    mu: np.ndarray
-    converged: bool
-    converged_each: np.ndarray
-    iterations: np.ndarray
-    residual: np.ndarray
+def _physics_notes(original, surface, solved, mu, effects):
+    """Facts that make a result doubtful: the theory's small-slope assumption, friction above 3, a PSD cut by an
+    effect, a surface without roughness."""
+    slope = math.sqrt(max(solver.psd_moment(surface, solved.q, 3), 0.0))
+    if slope == 0.0:
+        yield ("the surface has no roughness over its q range (C(q) = 0): full contact, no hysteresis friction; "
+               "check the profile or PSD")
+    elif slope > _MAX_SLOPE:
+        yield (f"rms slope {slope:.3g} over q = {solved.q[0]:.3g}..{solved.q[-1]:.3g} rad/m is far above 1: "
+               "Persson's theory assumes small slopes; check the short-wavelength cut-off q1 (an extrapolated "
+               "tail or an instrument noise floor often causes this)")
+    if np.any(np.asarray(mu) > _MAX_MU):
+        yield (f"friction coefficient up to {float(np.max(mu)):.3g} (> {_MAX_MU:g}): physically implausible for "
+               "rubber; check the surface's q1, the modulus units and the pressure")
+    q_hi, q_hi0 = float(surface.q_range[1]), float(original.q_range[1])
+    if q_hi < q_hi0 * (1 - 1e-9):
+        names = [e.name for e in effects if hasattr(e, "q1")] or [e.name for e in effects]
+        yield (f"the effects ({', '.join(names)}) cut the PSD at q1 = {q_hi:.4g} rad/m, below the surface's own "
+               f"q1 = {q_hi0:.4g} rad/m: the roughness between them is ignored")
 
 
-def _solve_grouped(surface, material, cond: Conditions, grid: GridSettings, nu: float, gamma: float,
-                   thermal) -> _Solved:
-    """:func:`_solve`, split by temperature when the material cannot shift between temperatures."""
-    shape = cond.speed.shape
-    T = np.broadcast_to(np.asarray(cond.temperature, dtype=float), shape)
-    if np.all(T == T[0]) or hasattr(material, "log10_aT"):
-        return _solve(surface, material, cond, grid, nu, gamma, thermal)
-    p = np.broadcast_to(np.asarray(cond.pressure, dtype=float), shape)
-    p_nom = np.broadcast_to(np.asarray(cond.nominal_pressure, dtype=float), shape)
-    parts = []
-    for t in np.unique(T):
-        idx = np.flatnonzero(T == t)
-        sub = cond.replace(speed=cond.speed[idx], temperature=T[idx], pressure=p[idx], nominal_pressure=p_nom[idx])
-        parts.append((idx, _solve(surface, material, sub, grid, nu, gamma, thermal)))
-    n = T.size
-    first = parts[0][1]
-    merged = {}
-    for name in ("G", "P", "T_q", "dmu", "loss", "mu", "converged_each", "iterations", "residual"):
-        ref = getattr(first, name)
-        arr = np.empty((n,) + ref.shape[1:], dtype=ref.dtype)
-        for idx, part in parts:
-            arr[idx] = getattr(part, name)
-        merged[name] = arr
-    return _Solved(q=first.q, converged=bool(merged["converged_each"].all()), **merged)
-
-
-def _solve(surface, material, cond: Conditions, grid: GridSettings, nu: float, gamma: float,
-           thermal) -> _Solved:
-    """Prepare the arrays and run the kernels (plain or with the scale-dependent temperature)."""
-    q_lo, q_hi = (float(x) for x in surface.q_range)
-    if not (0 < q_lo < q_hi):
-        raise InputError(f"surface: expected 0 < q0 < q1 after the effects, got ({q_lo:g}, {q_hi:g}) rad/m")
-    q = grid.q_nodes(q_lo, q_hi)
-    C = np.asarray(surface.C(q), dtype=float)
-    if C.shape != q.shape or not np.all(np.isfinite(C)) or np.any(C < 0):
-        raise InputError("surface: C(q) must return finite values >= 0 m^4 of the shape of q")
-    lq10 = np.log10(q)
-    q4C = q**4 * C
-    wq = _kernels.quadrature_weights_ln(lq10)
-    phi, wphi = grid.angle_nodes()
-    cphi = np.cos(phi)
-    lcphi = np.log10(cphi)
-    v = cond.speed
-    lv10 = np.log10(v)
-    T0 = np.broadcast_to(np.asarray(cond.temperature, dtype=float), v.shape)
-    nv, nq = v.size, q.size
-    pressure = np.broadcast_to(np.asarray(cond.pressure, dtype=float), v.shape)
-    if not np.all(np.isfinite(pressure)) or np.any(pressure <= 0):
-        raise InputError("pressure: the pressure on the asperity contact must stay > 0 Pa after the effects")
-    scale = np.ascontiguousarray(1.0 / ((1.0 - nu * nu) * pressure))
-    # one modulus table at T_table; other temperatures are shifted onto it
-    T_table = float(T0[0]) if np.all(T0 == T0[0]) else float(np.median(T0))
-
-    if thermal is None:
-        s_v, b_v = relative_shifts(material, T0, T_table)
-        shifts = np.ascontiguousarray(np.repeat(s_v[:, None], nq, axis=1))
-        vshifts = np.ascontiguousarray(np.repeat(b_v[:, None], nq, axis=1))
-        s_lo, s_hi = float(s_v.min()), float(s_v.max())
-        stab = None
-    else:
-        stab = shift_table(material, T_table, float(T0.min()), float(T0.max()) + grid.max_temperature_rise,
-                           grid.temperature_step)
-        s_lo, s_hi = float(stab.shift.min()), float(stab.shift.max())
-    lw_min = lq10[0] + lv10.min() + lcphi.min() + s_lo - _PAD_DECADES
-    lw_max = lq10[-1] + lv10.max() + s_hi + _PAD_DECADES
-    table = modulus_table(material, T_table, lw_min, lw_max, grid.omega_per_decade)
-
-    G = np.empty((nv, nq))
-    P = np.empty((nv, nq))
-    loss = np.empty((nv, nq))
-    dmu = np.empty((nv, nq))
-    mu = np.empty(nv)
-    if thermal is None:
-        _kernels.friction_kernel(lq10, lv10, q4C, wq, shifts, vshifts, lcphi, cphi, wphi, table.lw0,
-                                 1.0 / table.dlw, table.ln_re, table.ln_im, scale, gamma, G, P, loss, dmu, mu)
-        T_q = np.repeat(T0[:, None], nq, axis=1)
-        ones = np.ones(nv, dtype=bool)
-        return _Solved(q, G, P, T_q, dmu, loss, mu, True, ones, np.zeros(nv, dtype=np.int64), np.zeros(nv))
-    return thermal.solve_temperature(
-        q=q, C=C, lq10=lq10, lv10=lv10, q4C=q4C, wq=wq, lcphi=lcphi, cphi=cphi, wphi=wphi, table=table,
-        shift_table=stab, scale=scale, gamma=gamma, nu=nu, conditions=cond, material=material,
-        out=(G, P, loss, dmu, mu), solved_type=_Solved)
+#: Above these the result carries a PhysicsWarning (small-slope theory; friction of rubber).
+_MAX_SLOPE = 3.0
+_MAX_MU = 3.0
 
 
 def _surface_notes(surface):

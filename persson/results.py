@@ -29,7 +29,7 @@ class FrictionResult:
     mu : float or ndarray
         Total friction coefficient: hysteresis + every effect's friction term.
     mu_hysteresis : float or ndarray
-        Viscoelastic (hysteresis) contribution (Persson 2001, Eq. 1 of DESIGN.md "Physics").
+        Viscoelastic (hysteresis) contribution (Persson, J. Chem. Phys. 115, 3840 (2001), Eq. 1).
     mu_adhesion : float or ndarray
         Adhesive (contact-area shear) contribution; 0 without the adhesion effect.
     mu_terms : dict
@@ -46,6 +46,17 @@ class FrictionResult:
         Wavevector nodes, rad/m.
     area_q, G_q, temperature_q, dmu_dlnq : ndarray (n_speed, n_q)
         P(q), Persson's G(q), the temperature at scale q (deg C) and the hysteresis integrand d mu / d ln q.
+    mu_cumulative : ndarray (n_speed, n_q)
+        Hysteresis friction carried by the scales q0..q (the engine's integral of d mu up to each node; the last
+        column is ``mu_hysteresis``). Differences between nodes are exact band contributions.
+    load_share : float or ndarray
+        Share of the nominal load carried by the asperity contact (1 unless a fluid film carries part of it,
+        e.g. the hydrodynamic lift of ``Wet``); the hysteresis friction is normalised by the total load.
+    error_estimate : float or ndarray
+        Estimated relative error of ``mu_hysteresis`` from the wavevector quadrature: the difference from the
+        same rules on every other node, divided by sqrt(21) (the rules are third order for smooth PSDs, second
+        order across the kinks of a tabulated PSD; see ``benchmarks/accuracy.py``). Results whose estimate exceeds
+        ``GridSettings.tolerance`` warn and say so in ``notes``.
     effects : tuple of str
         Names of the effects switched on.
     converged : bool
@@ -71,6 +82,9 @@ class FrictionResult:
     temperature_q: np.ndarray
     dmu_dlnq: np.ndarray
     mu_terms: dict = field(default_factory=dict)
+    mu_cumulative: np.ndarray | None = None
+    load_share: np.ndarray | float = 1.0
+    error_estimate: np.ndarray | float | None = None
     mean_separation: np.ndarray | None = None
     penetration_depth: np.ndarray | None = None
     excited_layer_thickness: np.ndarray | None = None
@@ -82,6 +96,17 @@ class FrictionResult:
     notes: tuple = ()
     citations: tuple = ()
     scalar: bool = False
+
+    def __repr__(self) -> str:
+        v = np.atleast_1d(self.speed)
+        mu = np.atleast_1d(self.mu)
+        speeds = f"v={v[0]:.3g} m/s" if v.size == 1 else f"{v.size} speeds {v.min():.3g}..{v.max():.3g} m/s"
+        mus = f"mu={mu[0]:.4g}" if mu.size == 1 else f"mu {mu.min():.4g}..{mu.max():.4g}"
+        area = np.atleast_1d(self.contact_area)
+        extra = f", effects={list(self.effects)}" if self.effects else ""
+        notes = f", {len(self.notes)} note(s)" if self.notes else ""
+        return (f"FrictionResult({speeds}, {mus}, A/A0 {area.min():.3g}..{area.max():.3g}, "
+                f"{self.q.size} q nodes{extra}{notes})")
 
     def replace(self, **changes) -> "FrictionResult":
         """Copy with fields changed (for effects' ``transform_result``)."""

@@ -1,6 +1,6 @@
 r"""Friction against slip ratio: the steady-state brush model of a braked rubber wheel, and DRFT kinematics.
 
-Geometry and conventions (DESIGN.md, "Slip"). A wheel rolls and is braked on a moving counter-surface (the
+Geometry and conventions (docs/slip.md). A wheel rolls and is braked on a moving counter-surface (the
 disk of a DRFT-style tester, or the road under a tire). ``V`` is the rolling reference speed (the surface speed
 of the disk under the wheel, or the vehicle speed), ``omega r`` the circumferential speed of the wheel. Then
 
@@ -40,9 +40,19 @@ discrete load is exact (``s = 1`` returns :math:`\mu(V)` to rounding). The error
 (exact for the uniform pressure). Everything is vectorised over slips and speeds, and the friction model is
 evaluated **once**, on the array of distinct sliding speeds.
 
+Local pressure and temperature along the patch. When the model carries the
+:class:`~persson.effects.PatchHeating` effect, the local friction is :math:`\mu(v_s, p(x), T(x))`: the engine's
+sliding friction at the local pressure and at the background temperature of the rubber element as it travels
+through the contact, heated by the frictional power :math:`\tau(x) v_s` behind the stick zone (one-dimensional
+conduction into the tread and the counter-surface; see :mod:`persson.effects.patch`). The friction is then
+tabulated once per call over (sliding speed, pressure, temperature) and interpolated; ``slip = 1`` is the
+locked wheel, the patch average of the heated sliding friction (the limit of the curve). :func:`fit_slip` fits
+contact and effect parameters of such a model to measured curves, with standard errors.
+
 Also here: the two-coefficient brush used to analyse trailer data (static limit :math:`\mu_s` in the stick zone,
 dynamic :math:`\mu_D` in the slide zone, Sakai's n = 4 pressure) and its map over
-:math:`n_1 = \mu_D/\mu_s` and :math:`n_2 = (\text{initial slope})/\mu_s`; and the DRFT kinematics.
+:math:`n_1 = \mu_D/\mu_s` and :math:`n_2 = (\text{initial slope})/\mu_s`; :func:`fit_brush`, the brush model with a
+Stribeck-type sliding friction fitted to a measured curve alone; and the DRFT kinematics (braking and driving).
 
 Magic Formula fits, friction-speed laws and curve peaks are in :mod:`persson.tire`; plots in
 :mod:`persson.slip_plots`.
@@ -50,6 +60,7 @@ Magic Formula fits, friction-speed laws and curve peaks are in :mod:`persson.tir
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -58,17 +69,23 @@ from frictioncite import citations_of, doi
 
 from ._checks import finite_array, number, positive
 from .errors import InputError
+from .tire import FitResult
 
 __all__ = [
     "Contact", "SlipResult", "mu_slip", "brush_mu", "BrushCurve", "two_coefficient_mu", "BrushMap",
     "two_coefficient_map", "Kinematics", "drft_kinematics", "drft_from_angular", "drft_speeds",
-    "PACEJKA_BOOK", "SAKAI_1981",
+    "PatchProfile", "CONTACT_PARAMETERS", "stribeck_brush_mu", "fit_brush", "BrushFit", "fit_slip", "SlipFit",
+    "predict_slip", "PACEJKA_BOOK", "SAKAI_1981", "CANUDAS_2003",
 ]
 
 #: H. B. Pacejka, Tire and Vehicle Dynamics (3rd ed., 2012), brush model: chapter 3.
 PACEJKA_BOOK = "isbn:9780080970165"
 #: H. Sakai, Theoretical and experimental studies on the dynamic properties of tyres (Int. J. Vehicle Design, 1981).
 SAKAI_1981 = "sakai:ijvd-1981"
+#: C. Canudas-de-Wit, P. Tsiotras, E. Velenis, M. Basset, G. Gissinger, Dynamic friction models for road/tire
+#: longitudinal interaction, Vehicle System Dynamics 39 (3), 189-226 (2003): Stribeck-type friction of the
+#: brush elements, g(v) = mu_C + (mu_S - mu_C) exp(-|v/v_s|^alpha).
+CANUDAS_2003 = "10.1076/vesd.39.3.189.14152"
 
 _MAX_CELLS = 2_000_000  # rows x nodes per vectorised block of the brush integral
 
@@ -99,7 +116,7 @@ class Contact:
         :math:`p(x) = \sigma_0 \frac{n+1}{n}\left[1 - \left|2x/l - 1\right|^n\right]`, normalised to the mean
         :math:`\sigma_0` (the mean of :math:`1-|\xi|^n` on [-1, 1] is n/(n+1)). n = 2 is the parabolic law,
         larger n flatter, towards the uniform law as n -> infinity. Source: H. Sakai, Int. J. Vehicle Design
-        2 (1981), as specified in DESIGN.md ("Sakai's n-power form"; the absolute value makes odd and
+        2 (1981) ("Sakai's n-power form"; the absolute value makes odd and
         non-integer n symmetric; for even n it is Sakai's polynomial);
         a callable ``f(xi)``: the shape :math:`p/\sigma_0` as a function of :math:`\xi = x/l \in [0, 1]`
         (vectorised, finite, >= 0); it must integrate to the load, i.e. :math:`\int_0^1 f\,d\xi = 1`
@@ -219,6 +236,54 @@ class Contact:
             dg0 = self._g[1] / self._xi[1]
         theta = mu * sigma0 * dg0 / (self.stiffness * self.length)
         return theta / (1.0 + theta)
+
+    # ------------------------------------------------------------------------------------------------------
+    def parameter_values(self) -> dict[str, float]:
+        """The fittable contact parameters (:data:`CONTACT_PARAMETERS`) and their values; ``sakai_n`` only for a
+        parabolic (n = 2) or Sakai pressure."""
+        out = {"length": self.length, "stiffness": self.stiffness}
+        if self.sakai_n is not None:
+            out["sakai_n"] = float(self.sakai_n)
+        return out
+
+    def with_parameters(self, **values) -> "Contact":
+        """Copy with some parameters changed: ``length``, ``width``, ``stiffness``, ``n_points``,
+        ``pressure_distribution``, or ``sakai_n`` (sets the pressure to Sakai's law with that exponent; a parabolic
+        contact is Sakai's n = 2). Validated like the constructor (InputError naming the parameter)."""
+        import dataclasses
+
+        known = {"length", "width", "stiffness", "n_points", "pressure_distribution", "sakai_n"}
+        unknown = sorted(set(values) - known)
+        if unknown:
+            raise InputError(f"contact: unknown parameter(s) {unknown}; known: {sorted(known)}")
+        if "sakai_n" in values:
+            if "pressure_distribution" in values:
+                raise InputError("contact: give sakai_n or pressure_distribution, not both")
+            if self._kind not in ("parabolic", "sakai"):
+                raise InputError(f"contact.sakai_n: the contact's pressure is {self._kind!r}, not Sakai's n-power law")
+            values = dict(values)
+            values["pressure_distribution"] = {"sakai_n": number(values.pop("sakai_n"), "contact.sakai_n")}
+        return dataclasses.replace(self, **values)
+
+
+def _contact_parameters():
+    from .effects.base import Parameter
+
+    return (
+        Parameter("length", 0.02, (1.0e-4, 1.0), "m", "contact length l in the rolling direction", log_scale=True,
+                  plausible=(1.0e-3, 0.3)),
+        Parameter("stiffness", 3.0e9, (1.0e5, 1.0e13), "Pa/m",
+                  "shear stiffness k of the tread per unit area per unit displacement", log_scale=True,
+                  plausible=(1.0e6, 1.0e11)),
+        Parameter("sakai_n", 2.0, (0.5, 50.0), "1", "exponent of Sakai's pressure law (2: parabolic)",
+                  log_scale=True, plausible=(1.0, 20.0)),
+    )
+
+
+#: The contact parameters a fit may vary (name, default, bounds, unit, meaning, log scale, plausible range: a
+#: tread's k ~ G/h with G ~ 0.5-5 MPa, h ~ 1-20 mm; patches from a small test wheel to a truck tire), as for
+#: effects: ``"contact.length"``, ``"contact.stiffness"``, ``"contact.sakai_n"`` in :func:`fit_slip`.
+CONTACT_PARAMETERS = _contact_parameters()
 
 
 def _parse_distribution(spec):
@@ -388,11 +453,13 @@ class SlipResult:
     contact : Contact
     friction : FrictionResult or None
         The friction model's result at the distinct sliding speeds ``friction.speed`` (None for a plain
-        function).
+        function, and with patch heating, where the engine is evaluated on a table: see ``patch``).
     converged : bool
         Whether the friction model's self-consistent iterations converged at every sliding speed.
     notes : tuple of str
     citations : tuple of str
+    patch : PatchProfile or None
+        With patch heating: the temperature, shear and local friction along the patch for every (slip, speed).
     """
 
     slip: np.ndarray
@@ -411,6 +478,7 @@ class SlipResult:
     converged: bool = True
     notes: tuple = ()
     citations: tuple = ()
+    patch: object = None
 
     @property
     def slide_fraction(self):
@@ -428,12 +496,14 @@ class SlipResult:
 
     def as_table(self) -> dict[str, np.ndarray]:
         """Flat columns ``slip, speed_m_s, sliding_speed_m_s, mu, mu_local, stick_fraction, stick_length_m,
-        force_N``."""
+        force_N`` (and ``max_temperature_rise_K`` with patch heating)."""
         cols = {
             "slip": self.slip, "speed_m_s": self.speed, "sliding_speed_m_s": self.sliding_speed, "mu": self.mu,
             "mu_local": self.mu_local, "stick_fraction": self.stick_fraction, "stick_length_m": self.stick_length,
             "force_N": self.force,
         }
+        if self.patch is not None:
+            cols["max_temperature_rise_K"] = self.patch.max_rise
         return {k: np.atleast_1d(np.asarray(v, dtype=float)).ravel() for k, v in cols.items()}
 
     def to_csv(self, path, comments: tuple[str, ...] = ()):
@@ -446,9 +516,45 @@ class SlipResult:
         return write_csv(path, self.as_table(), comments=head + tuple(comments) + tuple(self.notes))
 
 
+@dataclass(frozen=True, eq=False)
+class PatchProfile:
+    """What happens along the contact patch, for every (slip, speed) of a :func:`mu_slip` call with patch heating.
+
+    Attributes
+    ----------
+    x : ndarray (N,)
+        Distance from the leading edge, m (the contact's nodes).
+    temperature : ndarray (..., N)
+        Background temperature of the rubber at x, deg C (T0 in the stick zone); leading axes those of
+        ``SlipResult.mu``.
+    shear : ndarray (..., N)
+        Shear stress over the mean pressure, tau(x)/sigma0 (k theta x / sigma0 in the stick zone).
+    mu_local : ndarray (..., N)
+        Local friction coefficient mu(v_s, p(x), T(x)) (at T0 in the stick zone: the sticking limit).
+    pressure : ndarray (N,)
+        p(x), Pa.
+    max_rise : ndarray or float
+        Largest background temperature rise along the patch, K.
+    heating : persson.effects.PatchHeating
+    table_points : int
+        Engine evaluations spent on the friction table.
+    engine_calls : int
+    """
+
+    x: np.ndarray
+    temperature: np.ndarray
+    shear: np.ndarray
+    mu_local: np.ndarray
+    pressure: np.ndarray
+    max_rise: np.ndarray
+    heating: object
+    table_points: int
+    engine_calls: int
+
+
 @doi(PACEJKA_BOOK)
 def mu_slip(model, slip, speed, *, temperature: float = 20.0, pressure: float = 0.3e6,
-            contact: Contact) -> SlipResult:
+            contact: Contact, profiles: bool = True) -> SlipResult:
     r"""Friction coefficient against braking slip ratio and speed (steady-state brush model).
 
     Parameters
@@ -468,12 +574,15 @@ def mu_slip(model, slip, speed, *, temperature: float = 20.0, pressure: float = 
         Mean contact pressure sigma0, Pa (> 0): the pressure of the friction model and of the brush.
     contact : Contact
         The contact patch.
+    profiles : bool
+        With patch heating, keep the profiles along the patch (``SlipResult.patch``; default True).
 
     Returns
     -------
     SlipResult
         ``.mu`` etc. with the broadcast shape of ``slip`` and ``speed``; the friction model is evaluated once,
-        at the distinct sliding speeds s V.
+        at the distinct sliding speeds s V (with patch heating: once on a table over speed, pressure and
+        temperature, plus once at T0 to bound the heating; see :func:`persson.effects.patch.patch_friction`).
 
     Raises
     ------
@@ -496,6 +605,9 @@ def mu_slip(model, slip, speed, *, temperature: float = 20.0, pressure: float = 
     s_f = s_b.ravel().astype(float)
     V_f = V_b.ravel().astype(float)
     vs = s_f * V_f
+    heating = _heating_of(model)
+    if heating is not None:
+        return _mu_slip_patch(model, heating, s_f, V_f, T0, sigma0, contact, shape, profiles)
     v_unique, inverse = _distinct(vs)
     mu_u, fr = _local_friction(model, v_unique, T0, sigma0)
     mu_loc = mu_u[inverse]
@@ -514,6 +626,42 @@ def mu_slip(model, slip, speed, *, temperature: float = 20.0, pressure: float = 
         stick_length=out(xc * contact.length), stick_fraction=out(xc), force=out(mu * load), load=load,
         temperature=T0, pressure=sigma0, contact=contact, friction=fr, converged=converged, notes=notes,
         citations=citations_of(mu_slip, contact.citations, fr if fr is not None else ()),
+    )
+
+
+def _heating_of(model):
+    """The model's PatchHeating effect, or None."""
+    names = getattr(model, "effect_names", ())
+    if "patch_heating" in names:
+        return model.effect("patch_heating")
+    return None
+
+
+def _mu_slip_patch(model, heating, s_f, V_f, T0, sigma0, contact, shape, profiles) -> SlipResult:
+    from .effects.patch import patch_friction
+
+    sol = patch_friction(model, heating, contact, s_f, V_f, T0, sigma0, profiles=profiles)
+    scalar = shape == ()
+    load = contact.load(sigma0)
+
+    def out(x):
+        x = np.asarray(x, dtype=float).reshape(shape)
+        return float(x) if scalar else x
+
+    prof = None
+    if profiles:
+        N = sol.xi.size
+        prof = PatchProfile(x=sol.xi * contact.length, temperature=sol.temperature.reshape(shape + (N,)),
+                            shear=sol.shear.reshape(shape + (N,)), mu_local=sol.mu_profile.reshape(shape + (N,)),
+                            pressure=sigma0 * contact._g.copy(), max_rise=out(sol.max_rise), heating=heating,
+                            table_points=sol.table_points, engine_calls=sol.engine_calls)
+    vs = s_f * V_f
+    return SlipResult(
+        slip=out(s_f), speed=out(V_f), sliding_speed=out(vs), mu=out(sol.mu), mu_local=out(sol.mu_local),
+        stick_length=out(sol.stick_fraction * contact.length), stick_fraction=out(sol.stick_fraction),
+        force=out(sol.mu * load), load=load, temperature=T0, pressure=sigma0, contact=contact, friction=None,
+        converged=sol.converged, notes=sol.notes,
+        citations=citations_of(mu_slip, contact.citations, type(heating), model), patch=prof,
     )
 
 
@@ -751,24 +899,521 @@ def _parabola_vertex(x, y):
 
 
 # =========================================================================================================
+# Brush model fitted to a measured curve (no friction model)
+# =========================================================================================================
+def _stribeck_law(slip, initial_slope, mu_static, mu_dynamic, slip_c, sakai_n, n_points=201):
+    """mu(slip) of the Stribeck brush (see :func:`stribeck_brush_mu`), vectorised over slip."""
+    s = np.asarray(slip, dtype=float)
+    sf = s.ravel()
+    xi, g, G = _sakai_nodes(float(sakai_n), n_points)
+    with np.errstate(divide="ignore"):
+        theta = np.where(sf < 1.0, sf / np.where(sf < 1.0, 1.0 - sf, 1.0), np.inf)
+        decay = np.exp(-sf / slip_c) if slip_c > 0 else np.zeros_like(sf)
+    slide = mu_dynamic + (mu_static - mu_dynamic) * decay
+    mu, _, _ = _brush(xi, g, G, 2.0 * initial_slope * theta, np.full(sf.size, float(mu_static)), slide)
+    return mu.reshape(s.shape)
+
+
+@doi(PACEJKA_BOOK, SAKAI_1981, CANUDAS_2003)
+def stribeck_brush_mu(slip, *, initial_slope: float, mu_static: float, mu_dynamic: float, slip_c: float,
+                      sakai_n: float = 2.0, n_points: int = 201) -> BrushCurve:
+    r"""Brush model whose sliding friction falls from the static to the dynamic value with the sliding speed.
+
+    The brush of :func:`mu_slip` (bristle displacement :math:`\theta x`, :math:`\theta = s/(1-s)`, Sakai's
+    pressure law, n = 2 parabolic) with the friction limit :math:`\mu_s p(x)` in the stick zone and, in the slide
+    zone, the Stribeck-type law used for the brush elements of tire friction models (Canudas-de-Wit et al.,
+    Vehicle System Dynamics 39, 189 (2003): :math:`g(v) = \mu_C + (\mu_S - \mu_C)e^{-|v/v_s|^\alpha}`), here with
+    :math:`\alpha = 1` and at one rolling speed V, where :math:`v_s/v_c = s/s_c`:
+
+    .. math:: \mu_{slide}(s) = \mu_D + (\mu_s - \mu_D)\,e^{-s/s_c}, \qquad
+        \mu(s) = C_0\theta\xi_c^2 + \int_{\xi_c}^1 \mu_{slide}(s)\,\frac{p}{\sigma_0}\,d\xi,\quad
+        2C_0\theta\xi_c = \mu_s\,p(\xi_c)/\sigma_0,
+
+    :math:`C_0 = k l/(2\sigma_0)` the initial slope. ``slip_c = 0`` is the two-coefficient brush
+    (:func:`two_coefficient_mu`). The curve rises with slope :math:`C_0`, peaks, and falls towards
+    :math:`\mu_D + (\mu_s - \mu_D)e^{-1/s_c}` at the locked wheel.
+
+    Parameters
+    ----------
+    slip : array_like
+        Slip ratios in (0, 1].
+    initial_slope : float
+        :math:`C_0` (> 0).
+    mu_static, mu_dynamic : float
+        :math:`\mu_s > 0`, :math:`\mu_D \ge 0`.
+    slip_c : float
+        Decay slip :math:`s_c = v_c/V` (>= 0).
+    sakai_n : float
+        Exponent of Sakai's pressure law (2: parabolic).
+    """
+    s = _slip_array(slip)
+    c0 = positive(initial_slope, "initial_slope")
+    ms = positive(mu_static, "mu_static")
+    md = number(mu_dynamic, "mu_dynamic")
+    sc = number(slip_c, "slip_c")
+    if md < 0:
+        raise InputError(f"mu_dynamic: expected a value >= 0, got {md:g}")
+    if sc < 0:
+        raise InputError(f"slip_c: expected a value >= 0, got {sc:g}")
+    n = positive(sakai_n, "sakai_n")
+    xi, g, G = _sakai_nodes(n, n_points)
+    sf = s.ravel().astype(float)
+    with np.errstate(divide="ignore"):
+        theta = np.where(sf < 1.0, sf / np.where(sf < 1.0, 1.0 - sf, 1.0), np.inf)
+        decay = np.exp(-sf / sc) if sc > 0 else np.zeros_like(sf)
+    mu, xc, _ = _brush(xi, g, G, 2.0 * c0 * theta, np.full(sf.size, ms), md + (ms - md) * decay)
+    return BrushCurve(slip=s, mu=mu.reshape(s.shape), stick_fraction=xc.reshape(s.shape), mu_static=ms,
+                      mu_dynamic=md, initial_slope=c0, sakai_n=n, citations=(PACEJKA_BOOK, SAKAI_1981, CANUDAS_2003))
+
+
+@dataclass(frozen=True, eq=False)
+class BrushFit(FitResult):
+    """A brush-model fit (:func:`fit_brush`): parameters with standard errors and the curve's characteristics.
+
+    Attributes (in addition to :class:`persson.tire.FitResult`)
+    ----------------------------------------------------------
+    peak_mu, peak_mu_std, slip_at_peak, slip_at_peak_std, locked_mu, locked_mu_std : float
+        Largest mu on 0 < s <= 1, its slip, mu at s = 1, each with its standard uncertainty (linear
+        propagation of the covariance).
+    """
+
+    peak_mu: float = 0.0
+    peak_mu_std: float = 0.0
+    slip_at_peak: float = 0.0
+    slip_at_peak_std: float = 0.0
+    locked_mu: float = 0.0
+    locked_mu_std: float = 0.0
+
+_BRUSH_BOUNDS = {"initial_slope": (1e-2, 1e5), "mu_static": (1e-3, 10.0), "mu_dynamic": (0.0, 10.0),
+                 "slip_c": (1e-4, 100.0), "sakai_n": (0.5, 50.0)}
+
+
+@doi(PACEJKA_BOOK, SAKAI_1981, CANUDAS_2003)
+def fit_brush(slip, mu, *, sigma=None, law: str = "stribeck", sakai_n: float | None = 2.0, fixed: dict | None = None,
+              p0: dict | None = None) -> "BrushFit":
+    r"""Fit the brush model to a measured mu(slip) curve at one speed, with standard errors.
+
+    Parameters
+    ----------
+    slip, mu : array_like
+        Slip ratios in (0, 1] and friction coefficients (more points than free parameters).
+    sigma : float or array_like, optional
+        Standard uncertainties of ``mu``. Given: the covariance is absolute
+        (:math:`(J^T W J)^{-1}`, :math:`W = \sigma^{-2}`); without: it is scaled by the residual variance
+        :math:`\chi^2/(n - k)` (the misfit of the law is then part of the error).
+    law : {"stribeck", "two_coefficient"}
+        ``"stribeck"`` (default): :func:`stribeck_brush_mu`, parameters ``initial_slope``, ``mu_static``,
+        ``mu_dynamic``, ``slip_c``, ``sakai_n``; ``"two_coefficient"``: the same with ``slip_c = 0``
+        (:func:`two_coefficient_mu`).
+    sakai_n : float or None
+        Exponent of the pressure law held fixed (default 2, parabolic); None fits it.
+    fixed : dict, optional
+        Further parameters held fixed.
+    p0 : dict, optional
+        An extra starting point.
+
+    Returns
+    -------
+    BrushFit
+        ``values``/``stderr``/``covariance`` by parameter (``fit["mu_static"]``, ``fit.std("mu_static")``),
+        ``rms``, ``dof`` and the peak, the slip at the peak and the locked-wheel value with their standard
+        uncertainties. The standard errors come from the Jacobian at the optimum
+        (:func:`scipy.optimize.curve_fit`).
+    """
+    from .tire import _curve_peak, _fit, _propagate, _xy
+
+    x, y, sig = _xy(slip, mu, sigma, "slip")
+    if np.any((x <= 0) | (x > 1)):
+        raise InputError("slip: expected slip ratios in (0, 1] (1 = locked wheel)")
+    if law not in ("stribeck", "two_coefficient"):
+        raise InputError(f"law: expected \"stribeck\" or \"two_coefficient\", got {law!r}")
+    fixed = dict(fixed or {})
+    if sakai_n is not None:
+        fixed.setdefault("sakai_n", positive(sakai_n, "sakai_n"))
+    if law == "two_coefficient":
+        fixed["slip_c"] = 0.0
+    names = ("initial_slope", "mu_static", "mu_dynamic", "slip_c", "sakai_n")
+    bounds = dict(_BRUSH_BOUNDS)
+    if law == "two_coefficient":
+        bounds["slip_c"] = (0.0, 0.0)
+    # starting values from the data: the slope through the origin below half the peak slip, the peak, the tail
+    j = int(np.argmax(y))
+    sp = float(max(x[j], 1e-3))
+    small = x <= 0.5 * sp
+    c0 = float(np.sum(x[small] * y[small]) / np.sum(x[small] ** 2)) if np.any(small) else 2.0 * y[j] / sp
+    c0 = float(np.clip(max(c0, y[j] / sp), 1e-2, 1e5))
+    ytail = float(y[np.argmax(x)])
+    starts = [dict(initial_slope=c0, mu_static=1.1 * y[j], mu_dynamic=ytail, slip_c=max(2 * sp, 1e-3), sakai_n=2.0),
+              dict(initial_slope=c0, mu_static=1.3 * y[j], mu_dynamic=0.8 * ytail, slip_c=max(5 * sp, 1e-3),
+                   sakai_n=4.0),
+              dict(initial_slope=2 * c0, mu_static=y[j], mu_dynamic=ytail, slip_c=max(0.5 * sp, 1e-3), sakai_n=2.0)]
+    if p0:
+        starts.insert(0, {**starts[0], **{k: number(v, f"p0[{k!r}]") for k, v in p0.items()}})
+    if "sakai_n" not in fixed:
+        # the exponent free: start from the better of the fits with n = 2 and n = 4 held
+        pre = []
+        for n in (2.0, 4.0):
+            try:
+                pre.append(_fit(f"brush_{law}", _stribeck_law, names, bounds, x, y, sig, {**fixed, "sakai_n": n},
+                                starts, (), tol=1e-9, maxfev=1000))
+            except InputError:
+                continue
+        if pre:
+            best = min(pre, key=lambda q: q["rms"])
+            starts = [dict(zip(names, best["values"]))] + starts[:1]
+    # the brush integral is piecewise smooth in the parameters (the stick boundary moves across the patch nodes):
+    # tolerances at 1e-9 (tighter ones never trigger at the kinks) and a bounded number of evaluations per start
+    parts = _fit(f"brush_{law}", _stribeck_law, names, bounds, x, y, sig, fixed, starts,
+                 (PACEJKA_BOOK, SAKAI_1981, CANUDAS_2003), tol=1e-9, maxfev=1000)
+    vals, cov = parts["values"], parts["covariance"]
+
+    def pk(v):
+        return _curve_peak(lambda ss: _stribeck_law(np.clip(ss, 1e-9, 1.0), *v), 1e-6, 1.0, 801)
+
+    peak_mu, peak_std = _propagate(lambda v: pk(v)[0], vals, cov)
+    sp_, sp_std = _propagate(lambda v: pk(v)[1], vals, cov)
+    lk, lk_std = _propagate(lambda v: float(_stribeck_law(1.0, *v)), vals, cov)
+    return BrushFit(**parts, peak_mu=peak_mu, peak_mu_std=peak_std, slip_at_peak=sp_, slip_at_peak_std=sp_std,
+                    locked_mu=lk, locked_mu_std=lk_std)
+
+
+# =========================================================================================================
+# Contact and effect parameters fitted through the friction model
+# =========================================================================================================
+@doi(PACEJKA_BOOK)
+def predict_slip(model, slip, speed, *, temperature=20.0, pressure=0.3e6, contact: Contact, cache: dict | None = None):
+    r"""Brush-model friction for rows with their own slip, speed, temperature and pressure (1D arrays, broadcast).
+
+    With patch heating in ``model``: :func:`persson.effects.patch.patch_friction` (one table for all rows);
+    without: the brush model with the engine's friction at each row's (v_s, T0, sigma0), one engine call.
+    ``cache`` (a dict the caller keeps) reuses the engine's values while only the contact changes.
+
+    Returns
+    -------
+    ndarray
+        mu per row.
+    """
+    if not isinstance(contact, Contact):
+        raise InputError(f"contact: expected a persson.slip.Contact, got {contact!r}")
+    s = _slip_array(slip)
+    V = _speed_array(speed)
+    T = finite_array(temperature, "temperature")
+    p = finite_array(pressure, "pressure")
+    if np.any(p <= 0):
+        raise InputError("pressure: expected mean pressures > 0 Pa")
+    s, V, T, p = (a.ravel().astype(float) for a in _broadcast("slip, speed, temperature, pressure", s, V, T, p))
+    heating = _heating_of(model)
+    if heating is not None:
+        from .effects.patch import patch_friction
+
+        return patch_friction(model, heating, contact, s, V, T, p, tables=cache).mu
+    from .effects.patch import engine_key
+
+    pts = np.column_stack([s * V, T, p])
+    key = pts.tobytes()
+    ekey = engine_key(model)
+    if cache is not None and cache.get("engine") == ekey and cache.get("key") == key:
+        mu_loc = cache["value"]
+    else:
+        if not hasattr(model, "friction"):
+            raise InputError(f"model: expected a persson.Model (or an object with friction(speed, temperature=, "
+                             f"pressure=)), got {model!r}")
+        uniq, inv = np.unique(pts, axis=0, return_inverse=True)
+        r = model.friction(uniq[:, 0], temperature=uniq[:, 1], pressure=uniq[:, 2])
+        m = np.atleast_1d(np.asarray(r.mu, dtype=float))
+        if not np.all(np.isfinite(m) & (m >= 0)):
+            raise InputError("model: non-finite or negative local friction")
+        mu_loc = m[np.asarray(inv).ravel()]
+        if cache is not None:
+            cache.update(engine=ekey, key=key, value=mu_loc, model=model)
+    with np.errstate(divide="ignore"):
+        theta = np.where(s < 1.0, s / np.where(s < 1.0, 1.0 - s, 1.0), np.inf)
+    a = contact.stiffness * contact.length / p * theta
+    mu, _, _ = _brush(contact._xi, contact._g, contact._G, a, mu_loc, mu_loc)
+    return mu
+
+
+@dataclass(frozen=True, eq=False)
+class SlipFit:
+    r"""Contact and effect parameters of a friction model fitted to measured mu(slip, V) (:func:`fit_slip`).
+
+    Attributes
+    ----------
+    names : tuple of str
+        Fitted parameters (``"contact.stiffness"``, ``"patch_heating.counter_effusivity"``, ``"gamma"``, ...).
+    values, stderr : ndarray
+        Best-fit values and standard uncertainties.
+    covariance, correlation : ndarray (k, k)
+    model, contact : the fitted model and contact
+    predicted, residual : ndarray (n,)
+    rms : float
+        Root-mean-square residual.
+    chi2 : float
+        Weighted residual sum of squares (:math:`\sum r^2/\sigma^2`; the plain sum without ``sigma``).
+    dof : int
+        n - k.
+    sigma : ndarray or None
+        The standard uncertainties given.
+    lack_of_fit_p : float or None
+        With ``sigma``: :math:`P(\chi^2_{dof} \ge \chi^2)`, small when the model cannot describe the data within
+        their uncertainties (None without ``sigma``).
+    n_evaluations : int
+    notes : tuple of str
+    """
+
+    names: tuple
+    values: np.ndarray
+    stderr: np.ndarray
+    covariance: np.ndarray
+    correlation: np.ndarray
+    model: object
+    contact: Contact
+    predicted: np.ndarray
+    residual: np.ndarray
+    rms: float
+    chi2: float
+    dof: int
+    sigma: np.ndarray | None
+    lack_of_fit_p: float | None
+    n_evaluations: int
+    notes: tuple = ()
+
+    def __getitem__(self, name: str) -> float:
+        return float(self.values[self._index(name)])
+
+    def std(self, name: str) -> float:
+        """Standard uncertainty of ``name``."""
+        return float(self.stderr[self._index(name)])
+
+    @property
+    def params(self) -> dict[str, float]:
+        return {n: float(v) for n, v in zip(self.names, self.values)}
+
+    @property
+    def uncertainties(self) -> dict[str, float]:
+        return {n: float(v) for n, v in zip(self.names, self.stderr)}
+
+    @property
+    def reduced_chi2(self) -> float:
+        """chi2 / dof."""
+        return self.chi2 / max(self.dof, 1)
+
+    def summary(self) -> str:
+        lines = [f"{n} = {v:.6g} +- {e:.3g}" for n, v, e in zip(self.names, self.values, self.stderr)]
+        lines.append(f"rms {self.rms:.4g}, chi2 {self.chi2:.4g} on {self.dof} dof"
+                     + (f", lack-of-fit p = {self.lack_of_fit_p:.3g}" if self.lack_of_fit_p is not None else ""))
+        return "\n".join(lines + list(self.notes))
+
+    def _index(self, name):
+        try:
+            return self.names.index(name)
+        except ValueError:
+            raise InputError(f"parameter: {name!r} was not fitted (fitted: {list(self.names)})") from None
+
+
+def _fit_parameter(name: str, model, contact: Contact):
+    """(spec, getter, setter) of a fit parameter name."""
+    from .effects.base import Parameter
+
+    if name == "gamma":
+        spec = Parameter("gamma", 0.5, (0.0, 1.0), "1", "gamma of S(q)")
+        return spec, (lambda m, c: float(m.gamma)), (lambda m, c, v: (m.replace(gamma=v), c))
+    if "." not in name:
+        raise InputError(f"vary: {name!r}: expected \"contact.<parameter>\", \"<effect>.<parameter>\" or \"gamma\"")
+    owner, par = name.split(".", 1)
+    if owner == "contact":
+        specs = {p.name: p for p in CONTACT_PARAMETERS}
+        if par not in specs:
+            raise InputError(f"vary: {name!r}: the contact has {sorted(specs)}")
+        if par == "sakai_n" and contact.sakai_n is None:
+            raise InputError(f"vary: {name!r}: the contact's pressure is {contact.kind!r}, not Sakai's n-power law")
+        return (specs[par], (lambda m, c: float(c.parameter_values()[par])),
+                (lambda m, c, v: (m, c.with_parameters(**{par: v}))))
+    if owner not in getattr(model, "effect_names", ()):
+        raise InputError(f"vary: {name!r}: the model has no effect {owner!r} (has {list(model.effect_names)})")
+    eff = model.effect(owner)
+    specs = {p.name: p for p in eff.parameters}
+    if par not in specs:
+        raise InputError(f"vary: {name!r}: {owner} has the documented parameters {sorted(specs)}")
+    return (specs[par], (lambda m, c: float(getattr(m.effect(owner), par))),
+            (lambda m, c, v: (m.with_effect(m.effect(owner).with_parameters(**{par: v})), c)))
+
+
+@doi(PACEJKA_BOOK)
+def fit_slip(model, slip, speed, mu, *, temperature=20.0, pressure=0.3e6, contact: Contact,
+             vary=("contact.stiffness",), sigma=None, p0: dict | None = None, bounds: dict | None = None,
+             max_nfev: int = 200) -> SlipFit:
+    r"""Fit contact and effect parameters of a friction model to measured mu(slip, V), with standard errors.
+
+    Weighted least squares (:func:`scipy.optimize.least_squares`, trust region with bounds; log-scale parameters
+    in log space) of the brush-model prediction :func:`predict_slip` (with patch heating when the model has it).
+    The covariance is :math:`(J^TJ)^{-1}` of the weighted residuals at the optimum, :math:`J` by central
+    differences (step 1e-3 of each scaled parameter), scaled by :math:`\chi^2/(n - k)` when ``sigma`` is not
+    given.
+
+    Parameters
+    ----------
+    model : persson.Model
+    slip, speed, mu : array_like
+        Measured rows (slip in (0, 1], V in m/s), broadcast together.
+    temperature, pressure : float or array_like
+        T0 (deg C) and sigma0 (Pa) per row.
+    contact : Contact
+    vary : sequence of str
+        Parameters to fit: ``"contact.stiffness"``, ``"contact.length"``, ``"contact.sakai_n"``,
+        ``"<effect>.<parameter>"`` (a documented parameter of an effect in the model, e.g.
+        ``"patch_heating.counter_effusivity"``) or ``"gamma"``. Bounds and scales come from
+        :data:`CONTACT_PARAMETERS` and the effects' :class:`~persson.effects.Parameter` specifications.
+    sigma : float or array_like, optional
+        Standard uncertainties of ``mu``.
+    p0 : dict, optional
+        Starting values by name (default: the current values).
+    bounds : dict, optional
+        ``name -> (lo, hi)`` narrowing the documented bounds.
+    max_nfev : int
+        Largest number of model evaluations of the optimiser.
+
+    Returns
+    -------
+    SlipFit
+    """
+    from scipy.optimize import least_squares
+    from scipy.stats import chi2 as chi2_dist
+
+    if not isinstance(contact, Contact):
+        raise InputError(f"contact: expected a persson.slip.Contact, got {contact!r}")
+    s = _slip_array(slip)
+    V = _speed_array(speed)
+    y = finite_array(mu, "mu")
+    T = finite_array(temperature, "temperature")
+    p = finite_array(pressure, "pressure")
+    s, V, y, T, p = (a.ravel().astype(float) for a in _broadcast("slip, speed, mu, temperature, pressure",
+                                                                   s, V, y, T, p))
+    n = y.size
+    sig = None
+    if sigma is not None:
+        sig = np.broadcast_to(finite_array(sigma, "sigma").ravel(), y.shape).astype(float) \
+            if np.size(sigma) in (1, n) else None
+        if sig is None or np.any(sig <= 0):
+            raise InputError(f"sigma: expected one value or {n} values, all > 0")
+    names = tuple(vary)
+    if not names:
+        raise InputError("vary: expected at least one parameter to fit")
+    if len(set(names)) != len(names):
+        raise InputError(f"vary: parameters given twice in {list(names)}")
+    k = len(names)
+    if n <= k:
+        raise InputError(f"mu: {n} rows cannot determine {k} parameters")
+    pars = [_fit_parameter(nm, model, contact) for nm in names]
+    lo = np.empty(k)
+    hi = np.empty(k)
+    logs = np.zeros(k, dtype=bool)
+    x0 = np.empty(k)
+    for i, (nm, (spec, get, _)) in enumerate(zip(names, pars)):
+        a, b = (float(v) for v in spec.bounds)
+        if bounds and nm in bounds:
+            a, b = max(a, number(bounds[nm][0], f"bounds[{nm!r}]")), min(b, number(bounds[nm][1], f"bounds[{nm!r}]"))
+        logs[i] = bool(spec.log_scale) and a > 0
+        v0 = number(p0[nm], f"p0[{nm!r}]") if p0 and nm in p0 else get(model, contact)
+        if not a <= v0 <= b:
+            raise InputError(f"p0[{nm!r}]: {v0:g} lies outside the bounds [{a:g}, {b:g}] {spec.unit}")
+        lo[i], hi[i] = (math.log(a), math.log(b)) if logs[i] else (a, b)
+        x0[i] = math.log(v0) if logs[i] else v0
+    w = 1.0 / sig if sig is not None else np.ones(n)
+    cache: dict = {}
+    count = [0]
+
+    def build(x):
+        m, c = model, contact
+        for i, (_, _, setter) in enumerate(pars):
+            v = math.exp(x[i]) if logs[i] else float(x[i])
+            m, c = setter(m, c, v)
+        return m, c
+
+    def resid(x):
+        m, c = build(np.clip(x, lo, hi))
+        count[0] += 1
+        return (predict_slip(m, s, V, temperature=T, pressure=p, contact=c, cache=cache) - y) * w
+
+    span = np.where(np.isfinite(hi - lo), hi - lo, 1.0)
+    x0 = np.clip(x0, lo + 1e-9 * span, hi - 1e-9 * span)
+    res = least_squares(resid, x0, bounds=(lo, hi), method="trf", x_scale="jac", diff_step=1e-4,
+                        max_nfev=int(max_nfev), xtol=1e-10, ftol=1e-12, gtol=1e-10)
+    x = res.x
+    r0 = resid(x)
+    # Jacobian by central differences at the optimum (steps inside the bounds)
+    J = np.empty((n, k))
+    for i in range(k):
+        h = 1e-3 * max(1.0, abs(x[i])) if not logs[i] else 1e-3
+        up, dn = x.copy(), x.copy()
+        up[i] = min(x[i] + h, hi[i])
+        dn[i] = max(x[i] - h, lo[i])
+        J[:, i] = (resid(up) - resid(dn)) / (up[i] - dn[i])
+    chi2 = float(r0 @ r0)
+    dof = n - k
+    notes = []
+    try:
+        cov_x = np.linalg.inv(J.T @ J)
+    except np.linalg.LinAlgError:
+        cov_x = np.linalg.pinv(J.T @ J)
+        notes.append("the parameters are not all determined by the data (singular normal matrix)")
+    if sig is None:
+        cov_x = cov_x * chi2 / max(dof, 1)
+    vals = np.where(logs, np.exp(x), x)
+    D = np.where(logs, vals, 1.0)
+    cov = cov_x * D[:, None] * D[None, :]
+    std = np.sqrt(np.clip(np.diag(cov), 0.0, None))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        corr = cov / np.outer(std, std)
+    corr = np.where(np.isfinite(corr), corr, 0.0)
+    at_bound = [nm for i, nm in enumerate(names) if min(x[i] - lo[i], hi[i] - x[i]) < 1e-6 * span[i]]
+    if at_bound:
+        notes.append(f"parameter(s) {at_bound} at their bound; their uncertainties are not meaningful")
+    if not res.success:
+        notes.append(f"the optimiser stopped: {res.message}")
+    m_fit, c_fit = build(x)
+    pred = y + r0 / w
+    p_lof = float(chi2_dist.sf(chi2, dof)) if sig is not None else None
+    return SlipFit(names=names, values=vals, stderr=std, covariance=cov, correlation=corr, model=m_fit,
+                   contact=c_fit, predicted=pred, residual=y - pred, rms=float(np.sqrt(np.mean((y - pred) ** 2))),
+                   chi2=chi2, dof=dof, sigma=sig, lack_of_fit_p=p_lof, n_evaluations=count[0], notes=tuple(notes))
+
+
+# =========================================================================================================
 # DRFT kinematics
 # =========================================================================================================
 @doi(PACEJKA_BOOK)
 @dataclass(frozen=True, eq=False)
 class Kinematics:
-    r"""Wheel-on-disk (DRFT) kinematics of braking slip.
+    r"""Wheel-on-disk (DRFT) or wheel-on-road kinematics of longitudinal slip, braking and driving.
+
+    Speeds are magnitudes along the rolling direction. :math:`V` is the rolling reference speed: the surface
+    speed of the counter-surface under the wheel centre (:math:`V = \Omega_{disk} R_{track}` on a DRFT, the
+    vehicle speed on a road); :math:`V_w = \omega r` the circumferential speed of the wheel (r its effective
+    rolling radius). Braking: :math:`V_w < V`; driving: :math:`V_w > V`; free rolling: :math:`V_w = V`.
 
     Attributes
     ----------
     speed : ndarray or float
-        Rolling reference speed V, m/s: the disk's surface speed under the wheel,
-        :math:`V = \Omega_{disk} R_{track}`.
+        V, m/s (> 0).
     wheel_speed : ndarray or float
-        Circumferential wheel speed :math:`\omega r`, m/s (r the effective rolling radius).
+        :math:`V_w = \omega r`, m/s (>= 0).
     slip : ndarray or float
-        :math:`s = (V - \omega r)/V`; 0 free rolling, 1 locked wheel (pure sliding).
+        Braking slip ratio :math:`s = (V - V_w)/V` (the convention of docs/slip.md and the ``slip`` column of measurements):
+        0 free rolling, 1 locked wheel (pure sliding); negative when driving.
+    longitudinal_slip : ndarray or float
+        :math:`\kappa = (V_w - V)/V = -s`, the SAE J670 / ISO 8855 sign used by Pacejka's Magic Formula: positive
+        when driving, -1 for a locked wheel.
+    driving_slip : ndarray or float
+        :math:`s_d = (V_w - V)/V_w` when driving (0 when braking): 0 free rolling, 1 a wheel spinning on a
+        standing surface.
     sliding_speed : ndarray or float
-        :math:`v_s = V - \omega r = sV`, m/s.
+        :math:`v_s = |V - V_w|`, m/s (= sV when braking).
+    theoretical_slip : ndarray or float
+        :math:`\theta = |V - V_w|/V_w`, the bristle displacement per unit distance from the leading edge of the
+        brush model (:math:`s/(1-s)` braking, :math:`s_d` driving; inf for a locked wheel).
+    braking, driving : ndarray or bool
+        Which rows brake (:math:`V_w < V`) and which drive (:math:`V_w > V`).
     omega_wheel, omega_disk : ndarray or float or None
         Angular speeds, rad/s, when the radii are known.
     """
@@ -779,16 +1424,39 @@ class Kinematics:
     sliding_speed: np.ndarray
     omega_wheel: np.ndarray | None = None
     omega_disk: np.ndarray | None = None
+    longitudinal_slip: np.ndarray | None = None
+    driving_slip: np.ndarray | None = None
+    theoretical_slip: np.ndarray | None = None
+    braking: np.ndarray | None = None
+    driving: np.ndarray | None = None
 
 
+def _kinematics(Vw: np.ndarray, V: np.ndarray, **angular) -> Kinematics:
+    vs = np.abs(V - Vw)
+    s = (V - Vw) / V
+    drive = Vw > V
+    with np.errstate(divide="ignore", invalid="ignore"):
+        theta = np.where(Vw > 0, vs / np.where(Vw > 0, Vw, 1.0), np.inf)
+        sd = np.where(drive, (Vw - V) / np.where(drive, Vw, 1.0), 0.0)
+    b = Vw < V
+    return Kinematics(speed=_sc(V), wheel_speed=_sc(Vw), slip=_sc(s), sliding_speed=_sc(vs),
+                      longitudinal_slip=_sc((Vw - V) / V), driving_slip=_sc(sd), theoretical_slip=_sc(theta),
+                      braking=b if b.ndim else bool(b), driving=drive if drive.ndim else bool(drive), **angular)
+
+
+@doi(PACEJKA_BOOK)
 def drft_kinematics(wheel_speed, disk_speed) -> Kinematics:
-    """Slip ratio and sliding speed from the wheel's circumferential speed and the disk's surface speed (m/s).
+    r"""Slip ratios and sliding speed from the wheel's circumferential speed and the disk's surface speed (m/s).
+
+    ``disk_speed`` is V (the counter-surface speed under the wheel centre), ``wheel_speed`` :math:`V_w = \omega r`.
+    Braking (:math:`V_w < V`) gives ``slip`` in (0, 1]; driving (:math:`V_w > V`) a negative ``slip`` and
+    ``driving_slip`` in (0, 1) (see :class:`Kinematics` for every convention). The brush model
+    (:func:`mu_slip`) takes the braking rows.
 
     Raises
     ------
     InputError
-        ``disk_speed`` <= 0, ``wheel_speed`` < 0, or ``wheel_speed`` > ``disk_speed`` (driving slip: outside the
-        braking brush model).
+        ``disk_speed`` <= 0, ``wheel_speed`` < 0, or shapes that do not broadcast.
     """
     Vw = finite_array(wheel_speed, "wheel_speed")
     V = finite_array(disk_speed, "disk_speed")
@@ -797,16 +1465,14 @@ def drft_kinematics(wheel_speed, disk_speed) -> Kinematics:
     if np.any(Vw < 0):
         raise InputError(f"wheel_speed: expected a circumferential speed >= 0 m/s, got {np.min(Vw):g}")
     Vw, V = _broadcast("wheel_speed, disk_speed", Vw, V)
-    if np.any(Vw > V * (1 + 1e-12)):
-        raise InputError("wheel_speed: exceeds disk_speed (driving slip); the brush model here covers braking, "
-                         "0 <= wheel_speed <= disk_speed")
-    vs = np.clip(V - Vw, 0.0, None)
-    s = vs / V
-    return Kinematics(speed=_sc(V), wheel_speed=_sc(Vw), slip=_sc(s), sliding_speed=_sc(vs))
+    return _kinematics(Vw.astype(float), V.astype(float))
 
 
+@doi(PACEJKA_BOOK)
 def drft_from_angular(omega_wheel, omega_disk, *, wheel_radius: float, track_radius: float) -> Kinematics:
-    """Kinematics from angular speeds (rad/s), the wheel's effective rolling radius and the track radius (m)."""
+    r"""Kinematics from angular speeds (rad/s, magnitudes), the wheel's effective rolling radius r and the track
+    radius R (the distance from the disk axis to the wheel centre line), m: :math:`V = \Omega_{disk} R`,
+    :math:`V_w = \omega r`. See :func:`drft_kinematics`."""
     r = positive(wheel_radius, "wheel_radius")
     R = positive(track_radius, "track_radius")
     ww = finite_array(omega_wheel, "omega_wheel")
@@ -815,29 +1481,30 @@ def drft_from_angular(omega_wheel, omega_disk, *, wheel_radius: float, track_rad
         raise InputError(f"omega_disk: expected an angular speed > 0 rad/s, got {np.min(wd):g}")
     if np.any(ww < 0):
         raise InputError(f"omega_wheel: expected an angular speed >= 0 rad/s, got {np.min(ww):g}")
-    k = drft_kinematics(ww * r, wd * R)
-    return Kinematics(k.speed, k.wheel_speed, k.slip, k.sliding_speed, omega_wheel=_sc(np.asarray(ww, float)),
-                      omega_disk=_sc(np.asarray(wd, float)))
+    ww, wd = _broadcast("omega_wheel, omega_disk", ww, wd)
+    return _kinematics(ww * r, wd * R, omega_wheel=_sc(ww), omega_disk=_sc(wd))
 
 
+@doi(PACEJKA_BOOK)
 def drft_speeds(slip, speed, *, wheel_radius: float | None = None, track_radius: float | None = None) -> Kinematics:
-    """Wheel speed and sliding speed (and angular speeds, when the radii are given) for a slip ratio and speed V.
+    r"""Wheel speed, sliding speed (and angular speeds, when the radii are given) for a slip ratio and speed V.
 
-    ``slip`` in [0, 1] (0: free rolling; 1: locked wheel), ``speed`` V > 0 m/s.
+    ``slip`` is the braking slip :math:`s = (V - V_w)/V <= 1` (0 free rolling, 1 locked wheel; negative values
+    are driving: :math:`V_w = (1 - s)V > V`), ``speed`` V > 0 m/s.
     """
     s = finite_array(slip, "slip")
-    if np.any((s < 0) | (s > 1)):
-        raise InputError(f"slip: expected braking slip ratios in [0, 1], got {s[(s < 0) | (s > 1)].ravel()[0]:g}")
+    if np.any(s > 1):
+        raise InputError(f"slip: expected slip ratios s = (V - omega r)/V <= 1 (1 = locked wheel), got "
+                         f"{s[s > 1].ravel()[0]:g}")
     V = _speed_array(speed)
     s, V = _broadcast("slip, speed", s, V)
     Vw = (1.0 - s) * V
-    ww = wd = None
+    ang = {}
     if wheel_radius is not None:
-        ww = _sc(Vw / positive(wheel_radius, "wheel_radius"))
+        ang["omega_wheel"] = _sc(Vw / positive(wheel_radius, "wheel_radius"))
     if track_radius is not None:
-        wd = _sc(V / positive(track_radius, "track_radius"))
-    return Kinematics(speed=_sc(V), wheel_speed=_sc(Vw), slip=_sc(s), sliding_speed=_sc(s * V),
-                      omega_wheel=ww, omega_disk=wd)
+        ang["omega_disk"] = _sc(V / positive(track_radius, "track_radius"))
+    return _kinematics(Vw.astype(float), V.astype(float), **ang)
 
 
 # =========================================================================================================

@@ -9,6 +9,7 @@ Materials without ``log10_aT`` are treated as temperature-independent.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -16,7 +17,8 @@ import numpy as np
 
 from .errors import InputError
 
-__all__ = ["ModulusTable", "ShiftTable", "modulus_table", "shift_table", "relative_shifts"]
+__all__ = ["ModulusTable", "ShiftTable", "AngularTable", "modulus_table", "shift_table", "relative_shifts",
+           "angular_table", "convolution_weights"]
 
 # Relative floor for ln E'' so that a purely elastic material (E'' = 0) stays finite in the log table.
 _LOSS_FLOOR = 1e-30
@@ -114,3 +116,115 @@ def _relative(material, name: str, T: np.ndarray, T_table: float) -> np.ndarray:
     if not np.all(np.isfinite(s)):
         raise InputError(f"material: {name}(T) must be finite on [{T.min():g}, {T.max():g}] C")
     return s
+
+
+# ==================================================================================================== angular
+#: Decades of frequency the modulus table reaches below the lowest frequency looked up: the angular integrals
+#: see E at omega cos(phi) < omega, with a weight that falls as 10^{-t} per decade t below (1e-5 at 5 decades,
+#: where the modulus is continued by its value at the table's end).
+ANGULAR_PAD_DECADES = 5.0
+
+
+@dataclass(frozen=True, eq=False)
+class AngularTable:
+    r"""The angular integrals of the modulus on a uniform grid of log10 omega (rad/s) at temperature ``T0``.
+
+    ``ln_are``, ``ln_aim``, ``ln_l`` hold the natural logarithms of
+
+    .. math::
+        A_{re}(\omega) = \int_0^{2\pi} E'(\omega\cos\phi)^2 d\phi,\quad
+        A_{im}(\omega) = \int_0^{2\pi} E''(\omega\cos\phi)^2 d\phi,\quad
+        L(\omega) = \int_0^{2\pi} \cos\phi\, E''(\omega\cos\phi)\, d\phi
+
+    (Im E odd in omega, so each is 4 times the integral over [0, pi/2]); ``lw_valid`` is the range of log10
+    omega where they are accurate (the table reaches :data:`ANGULAR_PAD_DECADES` lower).
+    """
+
+    lw0: float
+    dlw: float
+    ln_are: np.ndarray
+    ln_aim: np.ndarray
+    ln_l: np.ndarray
+    T0: float
+    lw_valid: tuple
+
+    @property
+    def log10_omega(self) -> np.ndarray:
+        """Grid of log10 omega, rad/s."""
+        return self.lw0 + self.dlw * np.arange(self.ln_are.size)
+
+
+def angular_table(material, T0: float, log10_omega_min: float, log10_omega_max: float,
+                  per_decade: int) -> AngularTable:
+    r"""Tabulate the angular integrals of ``material.E(omega, T0)`` for log10 omega in [min, max] (rad/s).
+
+    With :math:`\cos\phi = 10^{-t}` each angular integral is a convolution in log frequency,
+    :math:`\int_0^\infty K(t)\, F(\log_{10}\omega - t)\, dt` with
+    :math:`K(t) = 4\ln 10\; 10^{-(1+p)t} / \sqrt{1 - 10^{-2t}}` (p = 0 for A, 1 for L), evaluated by
+    :func:`persson._kernels.angular_convolution` with the weights of :func:`convolution_weights` (exact for the
+    cubic interpolant of F between the table nodes).
+
+    Raises
+    ------
+    InputError
+        If the material returns non-finite values, E' <= 0 or E'' < 0 for omega > 0.
+    """
+    from . import _kernels
+
+    lo = math.floor((log10_omega_min - ANGULAR_PAD_DECADES) * per_decade) / per_decade
+    hi = math.ceil(log10_omega_max * per_decade) / per_decade + 3.0 / per_decade
+    table = modulus_table(material, T0, lo, hi, per_decade)
+    Er = np.exp(table.ln_re)
+    Ei = np.exp(table.ln_im)
+    dlw = 1.0 / per_decade
+    n = Er.size
+    out = []
+    for F, power in ((Er * Er, 0), (Ei * Ei, 0), (Ei, 1)):
+        c = convolution_weights(per_decade, min(n, _max_weights(per_decade)), power)
+        a = np.empty(n)
+        _kernels.angular_convolution(np.ascontiguousarray(F), c, a)
+        out.append(np.log(np.maximum(a, 1e-300)))
+    return AngularTable(lw0=table.lw0, dlw=dlw, ln_are=out[0], ln_aim=out[1], ln_l=out[2], T0=float(T0),
+                        lw_valid=(float(log10_omega_min), float(log10_omega_max)))
+
+
+def _max_weights(per_decade: int) -> int:
+    # K(t) < 1e-20 of its value near t = 0 past 20 decades: later weights are zero in double precision
+    return int(20 * per_decade) + 3
+
+
+@functools.lru_cache(maxsize=16)
+def convolution_weights(per_decade: int, n: int, power: int) -> np.ndarray:
+    r"""Weights c_d (d = -1 .. n+1, stored at ``c[d + 1]``; n cells) of :math:`\int_0^\infty K(t) F(\ell - t) dt =
+    \sum_d c_d F(\ell - d\Delta)` for F interpolated by 4-point Lagrange polynomials on the uniform grid of step
+    :math:`\Delta = 1/` ``per_decade``.
+
+    Cell m covers :math:`t \in [m\Delta, (m+1)\Delta]`, where F is the cubic through the nodes
+    :math:`\ell - (m+2)\Delta, ..., \ell - (m-1)\Delta`; each basis polynomial is integrated against K by 12-point
+    Gauss-Legendre (in :math:`\sqrt{t}` on the first cell, where :math:`K \sim t^{-1/2}`). Pure function of its
+    arguments, cached; read-only result.
+    """
+    dlw = 1.0 / per_decade
+    xg, wg = np.polynomial.legendre.leggauss(12)
+    xg = 0.5 * (xg + 1.0)
+    wg = 0.5 * wg
+    m = np.arange(n)[:, None]
+    first = m == 0
+    sig = np.where(first, xg * xg, xg)
+    jac = np.where(first, 2.0 * xg, 1.0)
+    t = (m + sig) * dlw
+    K = 4.0 * math.log(10.0) * 10.0 ** (-(1 + power) * t) / np.sqrt(-np.expm1(-2.0 * math.log(10.0) * t))
+    kw = K * jac * dlw * wg  # (n, 12)
+    tau = 1.0 - sig  # position in the cell [node m+1 below, node m below] of the 4-point stencil
+    basis = (-tau * (tau - 1) * (tau - 2) / 6, (tau + 1) * (tau - 1) * (tau - 2) / 2,
+             -(tau + 1) * tau * (tau - 2) / 2, (tau + 1) * tau * (tau - 1) / 6)
+    c = np.zeros(n + 3)
+    for r, b in zip((-1, 0, 1, 2), basis):
+        d = np.arange(n) + 1 - r  # the stencil node r of cell m is F_{j - (m + 1 - r)}
+        np.add.at(c, d + 1, (b * kw).sum(axis=1))
+    # K beyond the last cell, in closed form (y = 10^-t): 4 arcsin(Y) for p = 0, 4 (1 - sqrt(1 - Y^2)) for p = 1;
+    # it multiplies values further down than any node, i.e. the clamped F_0
+    Y = 10.0 ** (-n * dlw)
+    c[-1] += 4.0 * math.asin(Y) if power == 0 else 4.0 * (1.0 - math.sqrt(1.0 - Y * Y))
+    c.setflags(write=False)
+    return c

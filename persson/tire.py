@@ -8,7 +8,10 @@ Magic Formula (Pacejka & Bakker 1992; Pacejka, *Tire and Vehicle Dynamics*, ch. 
   (the B, C, D form with E = 0 plus an offset d).
 
 Peak mu, slip at the peak and locked-wheel mu (:math:`\mu(s=1)`) are computed from the fitted curve on
-:math:`0 \le s \le 1`, with standard uncertainties by linear propagation of the parameter covariance.
+:math:`0 \le s \le 1`, with standard uncertainties by linear propagation of the parameter covariance. A peak can
+be declared: :func:`magic_formula_from_peak` identifies the curve from the peak and one or two locked-wheel values
+(the peak's value and position are two conditions), and ``fit_magic_formula(..., peak=(s_p, mu_p))`` fits a full
+curve with the peak held there.
 
 Friction-speed laws (V a speed in m/s: the slip speed or the test speed of the data):
 
@@ -39,6 +42,7 @@ from .errors import InputError
 
 __all__ = [
     "magic_formula", "magic_formula_simple", "MagicFormula", "SimpleMagicFormula", "magic_formula_from_points",
+    "magic_formula_from_peak", "magic_formula_peak_B",
     "FitResult", "MagicFormulaFit", "fit_magic_formula", "peak",
     "piarc", "piarc_ifi", "do_marsac_mosset", "rado", "fit_speed_law", "fit_piarc", "fit_do_marsac_mosset",
     "fit_rado", "SPEED_LAWS", "MAGIC_FORMULA", "PIARC_1995", "DO_2004", "RADO_1994",
@@ -201,6 +205,229 @@ def magic_formula_from_points(slip, mu, *, E: float = 0.0) -> MagicFormula:
     return MagicFormula(B=B, C=C, D=D, E=E)
 
 
+def magic_formula_peak_B(peak_slip: float, C: float, E: float = 0.0) -> float:
+    r"""The B that puts the maximum of :math:`D\sin\{C\arctan[Bs - E(Bs - \arctan Bs)]\}` at ``peak_slip``.
+
+    The sine peaks where :math:`C\arctan\phi = \pi/2`, :math:`\phi(x) = x - E(x - \arctan x)`, i.e.
+    :math:`\phi(B s_p) = \tan(\pi/(2C))` (needs C > 1; :math:`\phi` increases for E < 1, so the root is unique:
+    for E = 0, :math:`B = \tan(\pi/2C)/s_p`; Pacejka, Tire and Vehicle Dynamics, ch. 4, the peak and the curvature
+    factor).
+    """
+    from scipy.optimize import brentq
+
+    sp = number(peak_slip, "peak_slip")
+    C = number(C, "C")
+    E = number(E, "E")
+    if not 0 < sp <= 1:
+        raise InputError(f"peak_slip: expected a slip ratio in (0, 1], got {sp:g}")
+    if not C > 1:
+        raise InputError(f"C: a Magic Formula with a peak needs C > 1, got {C:g}")
+    if not E < 1:
+        raise InputError(f"E: expected E < 1 (phi must increase), got {E:g}")
+    t = math.tan(math.pi / (2.0 * C))
+    if E == 0:
+        return t / sp
+
+    def phi(x):
+        return x - E * (x - math.atan(x)) - t
+
+    hi = 2.0 * (t + abs(E) * math.pi / 2.0) / (1.0 - E) + 1.0
+    return brentq(phi, 0.0, hi, xtol=1e-15, rtol=1e-15) / sp
+
+
+@doi(MAGIC_FORMULA, PACEJKA_BOOK)
+def magic_formula_from_peak(peak_slip, peak_mu, slip, mu, *, E=None, sigma=None,
+                            peak_slip_std: float = 0.0) -> "MagicFormulaFit":
+    r"""Magic Formula identified from a declared peak and one or two further points (locked-wheel values).
+
+    The peak point gives two conditions, its value (:math:`D = \mu_{peak}`) and its position
+    (:func:`magic_formula_peak_B`); each further point :math:`(s_i, \mu_i)` one more:
+
+    * one point: B, C, D with E given (0 by default): the usual three-point identification from the peak and
+      the locked value (e.g. peak 1.156 at 11 %, 0.679 at 93 %);
+    * two points: B, C, D and E.
+
+    Parameters
+    ----------
+    peak_slip, peak_mu : float
+        The declared peak: slip ratio in (0, 1) and its friction value (> 0).
+    slip, mu : float or array_like
+        One or two further points, slips in (peak_slip, 1] (the falling branch) or below the peak, mu > 0 and below
+        ``peak_mu``.
+    E : float, optional
+        Curvature factor held (one point only; default 0).
+    sigma : float or array_like, optional
+        Standard uncertainties of the friction values: one value for all, or one per value in the order
+        (peak_mu, mu_1[, mu_2]). With ``peak_slip_std`` they give the standard uncertainties of B, C, D, E and of the
+        curve's characteristics, by linear propagation through the identification (central differences).
+        Without them the uncertainties are 0 and a note says so.
+    peak_slip_std : float
+        Standard uncertainty of the declared peak slip.
+
+    Returns
+    -------
+    MagicFormulaFit
+        ``law = "magic_formula"``, exact through the points (``rms`` 0, ``dof`` 0); ``slip_at_peak`` and
+        ``peak_mu`` are the declared ones.
+
+    Raises
+    ------
+    InputError
+        Bad points, or no Magic Formula with a peak (C > 1, E < 1) through them.
+    """
+    sp = number(peak_slip, "peak_slip")
+    mp = number(peak_mu, "peak_mu")
+    if not 0 < sp < 1:
+        raise InputError(f"peak_slip: expected a slip ratio in (0, 1), got {sp:g}")
+    if mp <= 0:
+        raise InputError(f"peak_mu: expected a friction value > 0, got {mp:g}")
+    xs = finite_array(slip, "slip").ravel()
+    ys = finite_array(mu, "mu").ravel()
+    if xs.size != ys.size or xs.size not in (1, 2):
+        raise InputError(f"slip, mu: expected one or two further points, got {xs.size} slips and {ys.size} values")
+    if np.any((xs <= 0) | (xs > 1)) or np.any(np.isclose(xs, sp)):
+        raise InputError("slip: expected slip ratios in (0, 1], different from the peak slip")
+    if np.any((ys <= 0) | (ys >= mp)):
+        raise InputError("mu: expected values > 0 and below the declared peak")
+    if xs.size == 2 and E is not None:
+        raise InputError("E: with two further points E is identified; give E only with one point")
+    if xs.size == 2 and np.isclose(xs[0], xs[1]):
+        raise InputError("slip: the two further points must differ")
+    E0 = 0.0 if E is None else number(E, "E")
+    solve_E = xs.size == 2
+    inputs = np.concatenate([[sp, mp], ys])
+    sig = None
+    if sigma is not None:
+        sg = finite_array(sigma, "sigma").ravel()
+        if sg.size not in (1, 1 + ys.size) or np.any(sg < 0):
+            raise InputError(f"sigma: expected one value or {1 + ys.size} values >= 0 (peak_mu, then the points)")
+        sig = np.broadcast_to(sg, (1 + ys.size,)).astype(float)
+    sps = number(peak_slip_std, "peak_slip_std")
+    if sps < 0:
+        raise InputError(f"peak_slip_std: expected a value >= 0, got {sps:g}")
+
+    def identify(inp):
+        return _identify_peak(inp[0], inp[1], xs, inp[2:], E0, solve_E)
+
+    B, C, D, Ev = identify(inputs)
+    values = np.array([B, C, D, Ev])
+    var_in = np.concatenate([[sps**2], (sig**2 if sig is not None else np.zeros(1 + ys.size))])
+    cov = np.zeros((4, 4))
+    if np.any(var_in > 0):
+        J = np.zeros((4, inputs.size))
+        for i in np.flatnonzero(var_in > 0):
+            h = 1e-6 * max(abs(inputs[i]), 1e-3)
+            up, dn = inputs.copy(), inputs.copy()
+            up[i] += h
+            dn[i] -= h
+            J[:, i] = (np.array(identify(up)) - np.array(identify(dn))) / (2 * h)
+        cov = J @ np.diag(var_in) @ J.T
+    notes = () if np.any(var_in > 0) else ("exact identification: give sigma= (and peak_slip_std=) for the "
+                                           "uncertainties",)
+    stderr = np.sqrt(np.clip(np.diag(cov), 0.0, None))
+    func = magic_formula
+    fixed = () if solve_E else ("E",)
+    x_all = np.concatenate([[sp], xs])
+    y_all = np.concatenate([[mp], ys])
+    # curve characteristics: the peak is the declared one; its uncertainty is that of the inputs
+    lk, lk_std = _propagate(lambda v: func(1.0, *v), values, cov)
+    return MagicFormulaFit(law="magic_formula", names=("B", "C", "D", "E"), values=values, stderr=stderr,
+                           covariance=cov, fixed=fixed, x=x_all, y=y_all, sigma=sig, rms=0.0, dof=0, notes=notes,
+                           citations=(MAGIC_FORMULA, PACEJKA_BOOK), func=func, peak_mu=mp,
+                           peak_mu_std=float(sig[0]) if sig is not None else 0.0, slip_at_peak=sp,
+                           slip_at_peak_std=sps, locked_mu=float(lk), locked_mu_std=lk_std)
+
+
+def _identify_peak(sp, mp, xs, ys, E0, solve_E):
+    """(B, C, D, E) through the peak (sp, mp) with zero slope there and the points (xs, ys)."""
+    from scipy.optimize import brentq, least_squares
+
+    def curve(C, E, x):
+        B = magic_formula_peak_B(sp, C, E)
+        return magic_formula(x, B, C, mp, E)
+
+    if not solve_E:
+        def f(C):
+            return float(curve(C, E0, xs[0])) - ys[0]
+
+        grid = np.linspace(1.0 + 1e-6, 2.0 - 1e-9, 400) if xs[0] > sp else np.linspace(1.0 + 1e-6, 3.0, 400)
+        vals = np.array([f(c) for c in grid])
+        idx = np.flatnonzero(np.sign(vals[:-1]) * np.sign(vals[1:]) <= 0)
+        if idx.size == 0:
+            raise InputError(f"slip, mu: no Magic Formula (E = {E0:g}) with its peak at ({sp:g}, {mp:g}) passes "
+                             f"through ({xs[0]:g}, {ys[0]:g})")
+        j = int(idx[0])
+        C = brentq(f, grid[j], grid[j + 1], xtol=1e-14, rtol=1e-14)
+        return magic_formula_peak_B(sp, C, E0), C, mp, E0
+
+    def res(p):
+        C, E = p
+        return (curve(C, E, xs) - ys) / ys
+
+    best = None
+    for C0 in (1.2, 1.5, 1.7, 1.9):
+        for Ei in (-1.0, 0.0, 0.5):
+            try:
+                r = least_squares(res, [C0, Ei], bounds=([1.0 + 1e-6, -20.0], [3.0, 1.0 - 1e-6]), xtol=1e-15,
+                                  ftol=1e-15, gtol=1e-15, max_nfev=2000)
+            except (ValueError, InputError):
+                continue
+            if best is None or r.cost < best.cost:
+                best = r
+    if best is None or not np.max(np.abs(res(best.x))) < 1e-9:
+        raise InputError(f"slip, mu: no Magic Formula with its peak at ({sp:g}, {mp:g}) passes through "
+                         f"{list(zip(np.round(xs, 6), np.round(ys, 6)))}")
+    C, E = (float(v) for v in best.x)
+    return magic_formula_peak_B(sp, C, E), C, mp, E
+
+
+def _fit_with_peak(x, y, sig, peak, fixed, p0):
+    """Magic Formula fit with the peak held at the declared point (see fit_magic_formula)."""
+    try:
+        sp, mp = (float(v) for v in peak)
+    except (TypeError, ValueError):
+        raise InputError(f"peak: expected (slip_at_peak, peak_mu), got {peak!r}") from None
+    sp = number(sp, "peak[0]")
+    mp = number(mp, "peak[1]")
+    if not 0 < sp < 1 or mp <= 0:
+        raise InputError(f"peak: expected a slip in (0, 1) and a value > 0, got ({sp:g}, {mp:g})")
+    fixed = dict(fixed or {})
+    unknown = sorted(set(fixed) - {"E"})
+    if unknown:
+        raise InputError(f"fixed: with a declared peak only E can be fixed, got {unknown}")
+
+    def func(xx, C, E):
+        return magic_formula(xx, magic_formula_peak_B(sp, C, E), C, mp, E)
+
+    starts = [dict(C=c, E=e) for c in (1.3, 1.6, 1.9) for e in (0.0, -0.5, 0.5)]
+    if p0:
+        starts.insert(0, {**starts[0], **{k: number(v, f"p0[{k!r}]") for k, v in p0.items() if k in ("C", "E")}})
+    bounds = {"C": (1.0 + 1e-6, 3.0), "E": (-20.0, 1.0 - 1e-6)}
+    parts = _fit("magic_formula", func, ("C", "E"), bounds, x, y, sig, fixed, starts, (MAGIC_FORMULA, PACEJKA_BOOK))
+    C, E = parts["values"]
+    covCE = parts["covariance"]
+    B = magic_formula_peak_B(sp, C, E)
+    J = np.zeros((4, 2))  # d(B, C, D, E) / d(C, E)
+    for i, h in enumerate((1e-6, 1e-6)):
+        up = [C, E]
+        dn = [C, E]
+        up[i] += h
+        dn[i] -= h
+        J[0, i] = (magic_formula_peak_B(sp, *up) - magic_formula_peak_B(sp, *dn)) / (2 * h)
+    J[1, 0] = 1.0
+    J[3, 1] = 1.0
+    cov = J @ covCE @ J.T
+    values = np.array([B, C, mp, E])
+    stderr = np.sqrt(np.clip(np.diag(cov), 0.0, None))
+    lk, lk_std = _propagate(lambda v: magic_formula(1.0, *v), values, cov)
+    notes = tuple(parts["notes"]) + (f"peak held at the declared ({sp:g}, {mp:g})",)
+    return MagicFormulaFit(law="magic_formula", names=("B", "C", "D", "E"), values=values, stderr=stderr,
+                           covariance=cov, fixed=("D",) + tuple(parts["fixed"]), x=x, y=y, sigma=sig,
+                           rms=parts["rms"], dof=parts["dof"], notes=notes, citations=parts["citations"],
+                           func=magic_formula, peak_mu=mp, peak_mu_std=0.0, slip_at_peak=sp, slip_at_peak_std=0.0,
+                           locked_mu=float(lk), locked_mu_std=lk_std)
+
+
 # =========================================================================================================
 # Fit results
 # =========================================================================================================
@@ -326,7 +553,8 @@ def _propagate(quantity, values, cov) -> tuple[float, float]:
     return v0, math.sqrt(max(var, 0.0))
 
 
-def _fit(law, func, names, bounds, x, y, sigma, fixed, starts, citations) -> dict:
+def _fit(law, func, names, bounds, x, y, sigma, fixed, starts, citations, *, tol: float = 1e-14,
+         maxfev: int = 20000) -> dict:
     """Multi-start curve_fit of ``func(x, *params)`` with some parameters fixed; the pieces of a FitResult."""
     from scipy.optimize import OptimizeWarning, curve_fit
 
@@ -362,8 +590,8 @@ def _fit(law, func, names, bounds, x, y, sigma, fixed, starts, citations) -> dic
             warnings.simplefilter("ignore", OptimizeWarning)
             try:
                 p, cov = curve_fit(f, x, y, p0=p0, sigma=sigma, absolute_sigma=sigma is not None,
-                                   bounds=(lo, hi), maxfev=20000, method="trf", x_scale="jac",
-                                   ftol=1e-14, xtol=1e-14, gtol=1e-14)
+                                   bounds=(lo, hi), maxfev=maxfev, method="trf", x_scale="jac",
+                                   ftol=tol, xtol=tol, gtol=tol)
             except (RuntimeError, ValueError):
                 continue
         r = y - f(x, *p)
@@ -404,7 +632,7 @@ _MFS_BOUNDS = {"a": (1e-6, 10.0), "b": (1e-3, 3.0), "c": (1e-3, 1e4), "d": (-5.0
 
 @doi(MAGIC_FORMULA, PACEJKA_BOOK)
 def fit_magic_formula(slip, mu, *, form: str = "BCDE", sigma=None, fixed: dict | None = None,
-                      p0: dict | None = None) -> MagicFormulaFit:
+                      p0: dict | None = None, peak=None) -> MagicFormulaFit:
     r"""Fit the Magic Formula to a measured or computed mu(slip) curve.
 
     Parameters
@@ -420,6 +648,10 @@ def fit_magic_formula(slip, mu, *, form: str = "BCDE", sigma=None, fixed: dict |
         Parameters held fixed, e.g. ``{"E": 0.0}`` or ``{"d": 0.0}``.
     p0 : dict, optional
         A starting point (tried in addition to the built-in ones).
+    peak : (float, float), optional
+        A declared peak ``(slip_at_peak, peak_mu)`` the curve must have (``form="BCDE"`` only): D is the peak value
+        and B follows from C and E through the peak condition (:func:`magic_formula_peak_B`), so only C (> 1) and
+        E are fitted; their covariance is propagated to B (D is held, standard uncertainty 0).
 
     Returns
     -------
@@ -432,6 +664,10 @@ def fit_magic_formula(slip, mu, *, form: str = "BCDE", sigma=None, fixed: dict |
         raise InputError("slip: expected slip ratios in [0, 1]")
     if form not in ("BCDE", "simple"):
         raise InputError(f"form: expected \"BCDE\" or \"simple\", got {form!r}")
+    if peak is not None:
+        if form != "BCDE":
+            raise InputError("peak: a declared peak is supported for form=\"BCDE\" only")
+        return _fit_with_peak(x, y, sig, peak, fixed, p0)
     # characteristic points of the data for the starting values (Pacejka's relations between B, C, D, E and
     # the peak D, the asymptote y_a, the slope BCD and the slip of the peak x_m)
     j = int(np.argmax(y))

@@ -1,6 +1,6 @@
 """Surface roughness: profiles, height maps, power spectral densities (PSD), cut-offs, texture metrics.
 
-Conventions (see DESIGN.md): SI units, wavevector q in rad/m, 2D isotropic PSD in Persson's convention
+Conventions (see ``docs/conventions.md``): SI units, wavevector q in rad/m, 2D isotropic PSD in Persson's convention
 
 .. math:: C(q) = (2\\pi)^{-2} \\int d^2x \\langle h(\\mathbf{x}) h(0) \\rangle e^{-i\\mathbf{q}\\cdot\\mathbf{x}},
    \\qquad h_{rms}^2 = 2\\pi \\int q C(q) dq ,
@@ -10,7 +10,7 @@ and the two-sided 1D PSD of line scans :math:`C_{1D}(q) = (2\\pi)^{-1}\\int dx \
 Typical use::
 
     import surfaces
-    ps = surfaces.read_profiles("scan.csv")        # ProfileSet (DESIGN.md CSV or a CAPTIF export)
+    ps = surfaces.read_profiles("scan.csv")        # ProfileSet (profile CSV or a CAPTIF export)
     p1 = ps.psd()                                  # PSD1D, averaged over profiles, log-binned
     s = p1.to_isotropic()                          # surfaces.PSD, exact inverse Abel transform
     s = s.extrapolate(1e7)                         # tail past q_r, flagged as extrapolated

@@ -60,6 +60,25 @@ def band(q: np.ndarray, q_min, q_max, what: str) -> np.ndarray:
     return mask
 
 
+def span(a: np.ndarray, unit: str) -> str:
+    """``"-1.2e-05 to 3.4e-05 m"`` for reprs (NaN ignored; ``"all missing"`` when nothing is left)."""
+    a = np.asarray(a, dtype=float)
+    if not np.isfinite(a).any():
+        return "all missing"
+    return f"{np.nanmin(a):.4g} to {np.nanmax(a):.4g} {unit}"
+
+
+def flat_after_detrend(raw: np.ndarray, detrended: np.ndarray, rtol: float = 1e-9) -> bool:
+    """True when heights are constant (or pure trend): the detrended rms is round-off of the raw heights.
+
+    A constant or straight-line profile leaves residuals of about 1e-16 of its height after detrending, so the
+    test is relative to the largest raw height (an all-zero profile is flat too).
+    """
+    scale = float(np.nanmax(np.abs(raw))) if np.isfinite(raw).any() else 0.0
+    resid = float(np.sqrt(np.nanmean(np.square(detrended)))) if np.isfinite(detrended).any() else 0.0
+    return resid <= rtol * scale
+
+
 def atomic_write_text(path, text: str) -> Path:
     """Write ``text`` to ``path`` completely or not at all (temporary file in the same folder, then rename)."""
     path = Path(path)

@@ -1,6 +1,6 @@
 r"""Cut-offs of measured PSDs: self-affine fit, roll-off, instrument reliability limit.
 
-Conventions (DESIGN.md): :math:`q_L = 2\pi/L` (longest wavelength measured), :math:`q_0` the roll-off
+Conventions (``docs/conventions.md``): :math:`q_L = 2\pi/L` (longest wavelength measured), :math:`q_0` the roll-off
 (PSD flat below), :math:`q_r` the reliability limit of the instrument, :math:`q_1` the short-distance
 cut-off of the physics; :math:`q_1 > q_r` means the tail is extrapolated (see :meth:`surfaces.PSD.extrapolate`).
 """

@@ -20,7 +20,7 @@ from scipy import fft, signal
 
 from frictioncite import doi
 
-from ._util import positive
+from ._util import flat_after_detrend, positive, span
 from .errors import InputError
 from .profiles import Profile, ProfileSet
 from .psd import PSD
@@ -66,6 +66,11 @@ class HeightMap:
         object.__setattr__(self, "z", z)
         object.__setattr__(self, "dx", positive(self.dx, "dx"))
         object.__setattr__(self, "dy", positive(self.dx if self.dy is None else self.dy, "dy"))
+
+    def __repr__(self) -> str:
+        ny, nx = self.z.shape
+        return (f"HeightMap({ny} x {nx}, dx={self.dx:.4g} m, dy={self.dy:.4g} m, z {span(self.z, 'm')}"
+                + (", periodic" if self.periodic else "") + (f", source={self.source!r}" if self.source else "") + ")")
 
     @property
     def shape(self) -> tuple[int, int]:
@@ -143,6 +148,10 @@ class HeightMap:
         """
         kind = detrend if detrend != "auto" else ("mean" if self.periodic else "plane")
         h = self.detrend(kind).z
+        if flat_after_detrend(self.z, h):
+            raise InputError(f"{self.source or 'HeightMap'}: no roughness: the heights are constant (or a {kind} "
+                             f"only) after detrending ({kind}); the PSD would be zero, the contact full (A/A0 = 1) "
+                             "and mu = 0")
         ny, nx = h.shape
         win = (None if self.periodic else "hann") if window == "auto" else window
         if win in (None, "none", "boxcar"):

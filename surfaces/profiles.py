@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 import types
+import warnings
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -16,7 +17,7 @@ from scipy import ndimage, stats
 
 from frictioncite import doi
 
-from ._util import optional_positive, positive
+from ._util import flat_after_detrend, optional_positive, positive, span
 from .errors import InputError
 from .spectra import PSD1D, log_bin, periodogram_1d
 
@@ -84,6 +85,11 @@ class Profile:
         object.__setattr__(self, "z", z)
         object.__setattr__(self, "dropouts", drop)
         object.__setattr__(self, "history", tuple(self.history))
+
+    def __repr__(self) -> str:
+        return (f"Profile({self.name!r}, {self.n} samples, dx={self.dx:.4g} m, length={self.length:.4g} m, "
+                f"z {span(self.z, 'm')}, dropouts {self.dropout_fraction:.1%}"
+                + (", periodic" if self.periodic else "") + (f", source={self.source!r}" if self.source else "") + ")")
 
     @property
     def where(self) -> str:
@@ -156,6 +162,13 @@ class ProfileSet:
             raise InputError("ProfileSet: expected Profile objects")
         object.__setattr__(self, "profiles", profiles)
         object.__setattr__(self, "meta", types.MappingProxyType(dict(self.meta)))
+
+    def __repr__(self) -> str:
+        n = [p.n for p in self.profiles]
+        samples = f"{n[0]} samples" if min(n) == max(n) else f"{min(n)}-{max(n)} samples"
+        names = ", ".join(self.names[:4]) + (", ..." if len(self) > 4 else "")
+        return (f"ProfileSet({len(self)} profile{'s' if len(self) != 1 else ''} [{names}], {samples}, "
+                f"dx={self.profiles[0].dx:.4g} m" + (f", source={self.source!r}" if self.source else "") + ")")
 
     # ------------------------------------------------------------------ container
     def __len__(self) -> int:
@@ -363,6 +376,7 @@ class ProfileSet:
         periodic = all(p.periodic for p in ps)
         kind = detrend if detrend != "auto" else ("mean" if periodic else "linear")
         ps = ps.detrend(kind)
+        _refuse_flat(self, ps, kind)
         wins = [(None if p.periodic else "hann") if window == "auto" else window for p in ps]
         q_list, C_list = [None] * len(ps), [None] * len(ps)
         for idx in _shared_x_groups(ps.profiles, extra=wins):  # one FFT call per group sharing x and window
@@ -428,3 +442,22 @@ def _require_filled(p: Profile, step: str) -> None:
     if np.isnan(p.z).any():
         raise InputError(f"{p.where}: {step} needs complete data; {np.isnan(p.z).mean():.1%} of the samples are "
                          "dropouts (NaN): call fill_dropouts() first")
+
+
+def _refuse_flat(raw: "ProfileSet", detrended: "ProfileSet", kind: str) -> None:
+    """A surface without roughness has no PSD: Persson's theory would give full contact (A/A0 = 1) and mu = 0.
+
+    All profiles flat is an error; some flat ones are warned about (they add zero power to the average).
+    """
+    flat = [p.name for p, d in zip(raw, detrended) if flat_after_detrend(p.z, d.z)]
+    if not flat:
+        return
+    what = f"constant (or a {kind} trend only) after detrending ({kind})"
+    if len(flat) == len(raw):
+        raise InputError(f"{raw.source or '<array>'}: no roughness: the heights of "
+                         f"{'the profile' if len(flat) == 1 else 'every profile'} ({', '.join(flat[:5])}) are "
+                         f"{what}; the PSD would be zero, the contact full (A/A0 = 1) and mu = 0. Check the height "
+                         "column (a constant or reference column?)")
+    warnings.warn(f"{raw.source or '<array>'}: profile(s) {', '.join(flat[:5])}"
+                  f"{' ...' if len(flat) > 5 else ''} have heights {what}; they add no roughness and lower the "
+                  "averaged PSD", UserWarning, stacklevel=3)

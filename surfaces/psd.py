@@ -10,7 +10,7 @@ Both expose ``C(q)``, ``hrms()``, ``rms_slope()``, ``moment(n)``, ``with_cutoff(
 ``q_range = (q_start, q_end)`` over which the physics integrals run. ``C`` is zero outside the support.
 Both carry their cut-offs (:class:`Cutoffs`: qL, roll-off q0, reliability limit q_r, q1) and say whether the
 tail past q_r is measured or extrapolated. :func:`read_psd` and :meth:`PSD.to_csv` read and write the
-DESIGN.md PSD table (columns ``q`` in rad/m and ``C`` in m^4, ``#`` comments).
+PSD table of ``docs/conventions.md`` (columns ``q`` in rad/m and ``C`` in m^4, ``#`` comments).
 """
 
 from __future__ import annotations
@@ -32,7 +32,7 @@ __all__ = ["SelfAffine", "PSD", "Cutoffs", "read_psd"]
 
 @dataclass(frozen=True)
 class Cutoffs:
-    """The cut-offs of a PSD (DESIGN.md), all in rad/m.
+    """The cut-offs of a PSD (``docs/conventions.md``, "Power spectral densities"), all in rad/m.
 
     Attributes
     ----------
@@ -83,11 +83,16 @@ class SelfAffine:
     q1 : float
         Short-distance cut-off, rad/m (> q0).
     hrms : float, optional
-        Root-mean-square height over the whole support, m. Give exactly one of ``hrms`` and ``C0``.
+        Root-mean-square height over the whole support, m. Give exactly one of ``hrms``, ``C0`` and
+        ``rms_slope``.
     C0 : float, optional
         Prefactor of the power law, m^4 (rad/m)^(2(1+H)).
     qL : float, optional
         Smallest wavevector (2 pi / L). ``None`` (default) means no roll-off plateau: C = 0 below q0.
+    rms_slope : float, optional
+        Root-mean-square slope over the whole support (dimensionless, :math:`\xi^2 = 2\pi\int q^3 C dq`), the
+        amplitude used by contact mechanics (e.g. the contact-mechanics challenge, Müser et al., Tribol. Lett.
+        65, 118 (2017), specifies a slope of 1).
     """
 
     hurst: float
@@ -97,7 +102,7 @@ class SelfAffine:
     qL: float | None
 
     def __init__(self, hurst: float, q0: float, q1: float, hrms: float | None = None, C0: float | None = None,
-                 qL: float | None = None):
+                 qL: float | None = None, rms_slope: float | None = None):
         H = finite_float(hurst, "hurst")
         if not 0.0 < H < 1.0:
             raise InputError(f"hurst: expected 0 < H < 1, got {H}")
@@ -109,11 +114,17 @@ class SelfAffine:
             qL = positive(qL, "qL")
             if qL > q0:
                 raise InputError(f"qL: expected qL <= q0 = {q0:g} rad/m, got {qL:g}")
-        if (hrms is None) == (C0 is None):
-            raise InputError("SelfAffine: give exactly one of hrms= (m) and C0= (m^4 (rad/m)^(2+2H))")
-        if C0 is None:
+        given = [name for name, v in (("hrms", hrms), ("C0", C0), ("rms_slope", rms_slope)) if v is not None]
+        if len(given) != 1:
+            conflict = f"; got {' and '.join(given)}" if given else ""
+            raise InputError("SelfAffine: give exactly one amplitude: hrms= (m), C0= (m^4 (rad/m)^(2+2H)) or "
+                             f"rms_slope= (dimensionless){conflict}")
+        if hrms is not None:
             h = positive(hrms, "hrms")
             C0 = h**2 / (2.0 * math.pi * _moment_selfaffine(1.0, H, q0, q1, qL, 1))
+        elif rms_slope is not None:
+            g = positive(rms_slope, "rms_slope")
+            C0 = g**2 / (2.0 * math.pi * _moment_selfaffine(1.0, H, q0, q1, qL, 3))
         else:
             C0 = positive(C0, "C0")
         for name, value in (("hurst", H), ("q0", q0), ("q1", q1), ("C0", float(C0)), ("qL", qL)):
@@ -131,6 +142,10 @@ class SelfAffine:
         lo = self.q_range[0]
         out = np.where(q < self.q0, self.C0 * self.q0 ** (-2 * (1 + H)), self.C0 * np.abs(q) ** (-2 * (1 + H)))
         return np.where((q >= lo * (1 - 1e-12)) & (q <= self.q1 * (1 + 1e-12)), out, 0.0)
+
+    def breakpoints(self) -> np.ndarray:
+        """Wavevectors (rad/m) where C(q) has a kink: the roll-off q0 when a plateau (qL < q0) precedes it."""
+        return np.array([self.q0]) if self.qL is not None and self.qL < self.q0 else np.empty(0)
 
     def moment(self, n: int) -> float:
         r"""Spectral moment :math:`2\pi \int q^n C(q)\, dq` over the support (exact)."""
@@ -260,6 +275,12 @@ class PSD:
         object.__setattr__(self, "q_rolloff", None if q_rolloff is None else positive(q_rolloff, "q_rolloff"))
         object.__setattr__(self, "hurst", hurst)
 
+    def __repr__(self) -> str:
+        return (f"PSD({self.q.size} points, q {self.q0:.4g}-{self.q1:.4g} rad/m, hrms={self.hrms():.4g} m, "
+                f"rms slope={self.rms_slope():.3g}" + (f", q_r={self.q_r:.4g}" if self.q_r is not None else "")
+                + (", extrapolated" if self.extrapolated else "")
+                + (f", source={self.source!r}" if self.source else "") + ")")
+
     @property
     def q0(self) -> float:
         """First wavevector of the table, rad/m."""
@@ -287,6 +308,10 @@ class PSD:
         out = np.exp(np.interp(lq, np.log(self.q), np.log(self.C_values)))
         inside = (q >= self.q[0] * (1 - 1e-12)) & (q <= self.q[-1] * (1 + 1e-12))
         return np.where(inside, out, 0.0)
+
+    def breakpoints(self) -> np.ndarray:
+        """Wavevectors (rad/m) where the log-log interpolant changes slope: the rows of the table."""
+        return self.q
 
     def moment(self, n: int) -> float:
         r"""Spectral moment :math:`2\pi\int q^n C(q) dq`, exact for the log-log interpolant."""
@@ -363,7 +388,7 @@ class PSD:
                    extrapolated=True, source=self.source, qL=self.qL, q_rolloff=self.q_rolloff, hurst=H)
 
     def to_csv(self, path) -> Path:
-        """Write the DESIGN.md PSD table (``q,C`` with ``#`` metadata comments), atomically.
+        """Write the PSD table of ``docs/conventions.md`` (``q,C`` with ``#`` metadata comments), atomically.
 
         The comments record ``source``, ``q_r``, ``extrapolated``, ``qL``, ``q_rolloff`` and ``hurst``;
         :func:`read_psd` reads them back.
@@ -383,7 +408,7 @@ class PSD:
 
 
 def read_psd(path) -> PSD:
-    """Read a PSD table (DESIGN.md): CSV with columns ``q`` (rad/m) and ``C`` (m^4), ``#`` comments.
+    """Read a PSD table (``docs/conventions.md``, "Files"): CSV with columns ``q`` (rad/m) and ``C`` (m^4), ``#`` comments.
 
     Comments of the form ``# key: value`` written by :meth:`PSD.to_csv` (``q_r``, ``extrapolated``, ``qL``,
     ``q_rolloff``, ``hurst``, ``source``) are read back; other comments and extra columns are ignored.

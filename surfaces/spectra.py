@@ -1,6 +1,6 @@
 r"""Line-scan (1D) power spectra and their exact link to the isotropic 2D PSD.
 
-Persson convention (DESIGN.md). A line scan has the two-sided 1D PSD
+Persson's convention (``docs/conventions.md``). A line scan has the two-sided 1D PSD
 
 .. math:: C_{1D}(q) = \frac{1}{2\pi}\int dx\,\langle h(x)h(0)\rangle e^{-iqx}, \qquad
           h_{rms}^2 = \int_{-\infty}^{\infty} C_{1D}(q)\,dq ,
@@ -130,6 +130,12 @@ class PSD1D:
         object.__setattr__(self, "q_r", optional_positive(q_r, "q_r"))
         object.__setattr__(self, "source", str(source))
         object.__setattr__(self, "history", tuple(history))
+
+    def __repr__(self) -> str:
+        return (f"PSD1D({self.q.size} points, q {self.q[0]:.4g}-{self.q[-1]:.4g} rad/m, hrms={self.hrms():.4g} m, "
+                f"{self.n_profiles} profile{'s' if self.n_profiles != 1 else ''}"
+                + (f", q_r={self.q_r:.4g}" if self.q_r is not None else "")
+                + (f", source={self.source!r}" if self.source else "") + ")")
 
     # ------------------------------------------------------------------ construction from a 2D PSD
     @classmethod

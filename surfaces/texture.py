@@ -91,6 +91,11 @@ class MPDResult:
     settings: dict
     source: str = ""
 
+    def __repr__(self) -> str:
+        return (f"MPDResult(mpd={self.mpd * 1e3:.4g} mm, {len(self.per_profile)} profiles, "
+                f"{self.n_valid}/{self.valid.size} valid segments, is_valid={self.is_valid}"
+                + (f", source={self.source!r}" if self.source else "") + ")")
+
     @property
     def etd(self) -> float:
         """Estimated texture depth from the MPD (m), see :func:`etd`."""
@@ -213,6 +218,10 @@ class HDC:
     C_z: np.ndarray
     counts: np.ndarray
     source: str = ""
+
+    def __repr__(self) -> str:
+        return (f"HDC({self.lag.size} lags, {self.lag[0]:.4g}-{self.lag[-1]:.4g} m"
+                + (f", source={self.source!r}" if self.source else "") + ")")
 
     def fit(self, lag_min: float | None = None, lag_max: float | None = None) -> "HDCFit":
         """Klüppel's self-affine fit; see :func:`fit_hdc`."""

@@ -35,8 +35,30 @@ def test_help_lists_the_commands(capsys):
         main(["--help"])
     assert exc.value.code == 0
     out = capsys.readouterr().out
-    for name in ("demo", "friction"):
-        assert name in out
+    for name in ("demo", "friction", "compare", "diagnose", "report", "sweep"):
+        assert f"    {name} " in out
+
+
+def test_the_engine_does_not_import_the_validation_package():
+    """The validation commands come in through the ``persson.commands`` entry points, not an import."""
+    code = ("import sys, persson, persson.cli, persson.commands.friction, persson.commands.sweep, persson.case; "
+            "print('validation' in sys.modules)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "False"
+
+
+def test_readme_command_table_shows_what_each_command_takes():
+    """Every command is in the README table, written with the arguments its parser takes (CASE where it takes one)."""
+    from persson.cli import build_parser
+
+    rows = dict(re.findall(r"^\| `persson (\w+)([^`]*)` \|", (ROOT / "README.md").read_text(), re.M))
+    sub = next(a for a in build_parser()._actions if a.dest == "==SUPPRESS==" or a.__class__.__name__ ==
+               "_SubParsersAction")
+    assert set(rows) == set(sub.choices)
+    for name, p in sub.choices.items():
+        positional = [(a.metavar or a.dest).upper() for a in p._actions if not a.option_strings]
+        shown = re.findall(r"\b[A-Z][A-Z_]+\b", rows[name].split("[")[0])
+        assert shown == positional, (name, shown, positional)
 
 
 def test_python_dash_m_runs_the_cli():

@@ -1,4 +1,4 @@
-"""The public API of DESIGN.md, called exactly as outside scripts call it."""
+"""The documented public API, called exactly as outside scripts call it."""
 
 import json
 
@@ -48,7 +48,7 @@ def test_design_md_validation_calls(tmp_path):
     out = validation.write_report([cmp, dx], tmp_path / "report.html")
     assert (tmp_path / "report.html").is_file() and out is not None
     js = json.loads(dx.to_json())
-    assert set(js) == {"baseline", "candidates"}
+    assert {"baseline", "candidates"} <= set(js)  # the contract's keys; more may be added
     assert {"rmse", "effects"} <= set(js["baseline"])
     for c in js["candidates"]:
         assert {"effect", "rmse", "delta_bic", "significant", "parameters"} <= set(c)

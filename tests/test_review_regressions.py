@@ -1,7 +1,7 @@
 """Regression tests for defects found in review (slip / validation input handling).
 
 Each test failed before its fix: bad or merely unusual input must give a clear InputError naming the argument,
-row and column (DESIGN.md, "Errors and bad input"), and plausible measurement files must be read.
+row and column (docs/conventions.md, errors and bad input), and plausible measurement files must be read.
 """
 
 import numpy as np
@@ -66,5 +66,5 @@ def test_slip_helpers_report_shapes_that_do_not_broadcast():
         ps.drft_kinematics([1.0, 2.0], [3.0, 4.0, 5.0])
     with pytest.raises(PerssonInputError, match="slip, speed"):
         ps.drft_speeds([0.1, 0.2], [3.0, 4.0, 5.0])
-    with pytest.raises(PerssonInputError, match="wheel_speed, disk_speed"):
+    with pytest.raises(PerssonInputError, match="omega_wheel, omega_disk"):
         ps.drft_from_angular([1.0, 2.0], [3.0, 4.0, 5.0], wheel_radius=0.1, track_radius=0.2)

@@ -1,7 +1,7 @@
 """Specification of the steady-state brush model (persson.slip), against independent closed forms.
 
 Slip definition used throughout: braking slip s = (V - omega r)/V, sliding speed v_s = s V, bristle displacement
-u(x) = x s/(1-s) from the leading edge (DESIGN.md, "Slip"). For s -> 0 the whole patch sticks and
+u(x) = x s/(1-s) from the leading edge (docs/slip.md). For s -> 0 the whole patch sticks and
 mu = (1/(sigma0 l)) int_0^l k x s/(1-s) dx = k l s / (2 sigma0 (1-s)), so d mu/ds(0) = k l/(2 sigma0).
 
 Closed forms for a constant local friction mu (theta = s/(1-s), a = k theta l/sigma0):
@@ -280,8 +280,10 @@ def test_drft_kinematics():
     assert np.allclose(back.sliding_speed, [0.0, 0.1, 1.0])
     locked = ps.drft_kinematics(0.0, 2.5)
     assert locked.slip == 1.0 and locked.sliding_speed == 2.5
+    driving = ps.drft_kinematics(1.1, 1.0)  # the wheel faster than the disk: driving (tests/test_slip_kinematics.py)
+    assert driving.driving and driving.slip == pytest.approx(-0.1)
     with pytest.raises(InputError, match="wheel_speed"):
-        ps.drft_kinematics(1.1, 1.0)
+        ps.drft_kinematics(-0.1, 1.0)
     with pytest.raises(InputError, match="disk_speed"):
         ps.drft_kinematics(0.5, 0.0)
     with pytest.raises(InputError, match="slip"):

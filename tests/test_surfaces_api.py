@@ -1,4 +1,4 @@
-"""Public API contract of :mod:`surfaces` (DESIGN.md), citations and plots."""
+"""Public API contract of :mod:`surfaces` (docs/conventions.md), citations and plots."""
 
 import math
 

@@ -267,3 +267,94 @@ def test_mpd_validity_rules():
     with pytest.warns(UserWarning, match="no valid segment"):
         bad = surfaces.mpd(surfaces.profiles_from_array(z, x=x), max_dropout_ratio=-1.0)
     assert math.isnan(bad.mpd) and not bad.is_valid
+
+
+# ---------------------------------------------------------------------- block reader, flat profiles, reprs
+
+
+def _reference_read(path):
+    """Independent reading with the csv module: x and z columns, empty/NaN/NA cells as NaN."""
+    import csv
+
+    rows = [r for r in csv.reader(open(path)) if r and not r[0].startswith("#")]
+    header, body = rows[0], rows[1:]
+    return {name: np.array([float("nan") if r[j].strip() in ("", "NA", "na") else float(r[j]) for r in body])
+            for j, name in enumerate(header) if name.startswith(("x_", "z"))}
+
+
+@pytest.mark.parametrize("block", [40, 97, 1 << 23])
+def test_block_reader_matches_a_line_by_line_reading(tmp_path, monkeypatch, block):
+    """Blocks of any size (one line, a few lines, the whole file) give the same numbers, dropouts included."""
+    from surfaces import io as sio
+
+    monkeypatch.setattr(sio, "_BLOCK_CHARS", block)
+    rng = np.random.default_rng(1)
+    lines = ["x_mm,z1_um,z2_mm,note"]
+    for i in range(300):
+        z1 = "" if i % 37 == 5 else ("NA" if i % 53 == 7 else f"{rng.normal():.6f}")
+        z2 = "NaN" if i % 41 == 3 else f"{rng.normal() * 1e-2:.6g}"
+        lines.append(f"{i * 0.01:.4f},{z1},{z2},text {i}")
+        if i == 150:
+            lines.append("# a comment in the middle")
+    path = _write(tmp_path / "p.csv", "\n".join(lines) + "\n")
+    ps = surfaces.read_profiles(path)
+    ref = _reference_read(path)
+    np.testing.assert_array_equal(ps[0].x, ref["x_mm"] * 1e-3)
+    np.testing.assert_array_equal(ps[0].z, ref["z1_um"] * 1e-6)
+    np.testing.assert_array_equal(ps[1].z, ref["z2_mm"] * 1e-3)
+    assert np.isnan(ps[0].z).sum() == np.isnan(ref["z1_um"]).sum() > 0
+
+
+@pytest.mark.parametrize("block", [40, 1 << 23])
+def test_block_reader_names_the_line_of_a_bad_cell_far_down(tmp_path, monkeypatch, block):
+    from surfaces import io as sio
+
+    monkeypatch.setattr(sio, "_BLOCK_CHARS", block)
+    rows = [f"{i},{i % 7}" for i in range(500)]
+    rows[417] = "417,oops"
+    path = _write(tmp_path / "p.csv", "x_mm,z_mm\n" + "\n".join(rows) + "\n")
+    with pytest.raises(surfaces.InputError, match=r"p\.csv, line 419, column z_mm: expected a number, got 'oops'"):
+        surfaces.read_profiles(path)
+    rows[417] = "416,1"
+    rows[300] = "299"
+    path.write_text("x_mm,z_mm\n" + "\n".join(rows) + "\n")
+    with pytest.raises(surfaces.InputError, match=r"line 302: expected 2 fields"):
+        surfaces.read_profiles(path)
+    rows[300] = "300,1"
+    path.write_text("x_mm,z_mm\n" + "\n".join(rows) + "\n")
+    with pytest.raises(surfaces.InputError, match=r"line 419, column x_mm: x must be strictly increasing"):
+        surfaces.read_profiles(path)
+
+
+@pytest.mark.parametrize("z", [np.full(400, 2.5e-3), np.linspace(-1e-3, 1e-3, 400), np.zeros(400)])
+def test_flat_profile_has_no_psd(z):
+    """A constant (or straight) profile would give A/A0 = 1 and mu = 0 silently: refused, saying why."""
+    ps = surfaces.profiles_from_array(z, dx=1e-5, source="flat.csv")
+    with pytest.raises(surfaces.InputError, match=r"flat\.csv: no roughness.*A/A0 = 1\) and mu = 0"):
+        ps.psd()
+
+
+def test_one_flat_profile_among_rough_ones_is_warned_about():
+    rng = np.random.default_rng(0)
+    z = np.vstack([rng.normal(size=512) * 1e-5, np.full(512, 1e-3), rng.normal(size=512) * 1e-5])
+    ps = surfaces.profiles_from_array(z, dx=1e-5)
+    with pytest.warns(UserWarning, match="z2 have heights constant"):
+        ps.psd()
+
+
+def test_flat_height_map_has_no_psd():
+    with pytest.raises(surfaces.InputError, match="no roughness"):
+        surfaces.HeightMap(np.full((16, 16), 3e-4), dx=1e-4).psd()
+
+
+def test_reprs_are_short_and_informative():
+    rng = np.random.default_rng(0)
+    ps = surfaces.profiles_from_array(rng.normal(size=(2, 5000)) * 1e-5, dx=1e-5, source="scan.csv")
+    p1 = ps.psd()
+    items = {"ProfileSet(2 profiles": ps, "Profile('z1', 5000 samples": ps[0], "PSD1D(": p1,
+             "PSD(": surfaces.example_road().tabulate(), "SelfAffine(": surfaces.example_road(),
+             "HeightMap(16 x 16": surfaces.HeightMap(rng.normal(size=(16, 16)) * 1e-5, dx=1e-4),
+             "MPDResult(": surfaces.mpd(surfaces.profiles_from_array(rng.normal(size=8000) * 1e-4, dx=5e-5))}
+    for start, obj in items.items():
+        text = repr(obj)
+        assert text.startswith(start) and len(text) < 300 and "array(" not in text and "\n" not in text, text

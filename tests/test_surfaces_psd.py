@@ -1,4 +1,4 @@
-"""Specification of the PSD conventions and conversions of :mod:`surfaces` (DESIGN.md, issue 3).
+"""Specification of the PSD conventions and conversions of :mod:`surfaces` (docs/conventions.md, issue 3).
 
 Reference numbers are independent of the code under test: closed forms (Gamma functions), adaptive
 quadrature (scipy.integrate.quad on the defining integrals) and the discrete Parseval identity.
@@ -66,7 +66,7 @@ def test_gamma_form_and_inverse_abel_agree_on_pure_power_law(H):
 
 
 def test_gamma_factor_published_shortcuts():
-    """DESIGN.md: C = C1D/(2q) is exact at H = 0.5 and 15 % low at H = 0.8."""
+    """docs/conventions.md: C = C1D/(2q) is exact at H = 0.5 and 15 % low at H = 0.8."""
     assert surfaces.gamma_factor(0.5) == pytest.approx(0.5, rel=1e-12)
     assert 0.5 / surfaces.gamma_factor(0.8) == pytest.approx(0.854, abs=0.002)
 

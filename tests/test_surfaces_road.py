@@ -1,7 +1,7 @@
 """The real CAPTIF chip-seal road profiles (shared/data/road_profiles): load, PSD, MPD (issue 3, Must show 4).
 
-The MPD is checked against an independent ISO 13473-1 implementation, captif-slp (optional test
-dependency, ``pip install captif-slp``), within 5 %.
+The MPD is checked against the values of an independent ISO 13473-1 implementation, captif-slp (recorded below
+with their provenance), within 0.5 %.
 """
 
 import math
@@ -76,11 +76,20 @@ def test_road_mpd(road):
     np.testing.assert_allclose(starts, 0.1 * np.arange(starts.size), atol=1e-12)  # 100 mm segments
 
 
+# MPD of each file by captif-slp 0.22 (an independent ISO 13473-1 implementation by the data's authors), computed
+# with captif_slp.Reading.from_file(path, parallel=False, detect_plates=True, alpha=6).mpd()["mpd"] (mm), under
+# numpy 1.26.4 / pandas 2.1.4. Kept as numbers: captif-slp pins pandas < 2.2 and would downgrade the numpy that
+# users get if it were a test dependency.
+CAPTIF_SLP_MPD_MM = {
+    "captif_aylesbury_station_0.dat": 3.2777511155882353,
+    "captif_aylesbury_station_1.dat": 3.03319923875,
+    "captif_aylesbury_station_10.dat": 3.4201597089285714,
+}
+
+
 @pytest.mark.parametrize("index", [0, 1, 2])
 def test_mpd_agrees_with_captif_slp(road, index):
-    """Must show: MPD within 5 % of captif-slp (ISO 13473-1, plates detected, spike alpha 6)."""
-    captif_slp = pytest.importorskip("captif_slp")
-    reading = captif_slp.Reading.from_file(FILES[index], parallel=False, detect_plates=True, alpha=6)
-    expected = reading.mpd()["mpd"] * 1e-3
+    """Must show: MPD within 0.5 % of captif-slp (ISO 13473-1, plates detected, spike alpha 6)."""
+    expected = CAPTIF_SLP_MPD_MM[FILES[index].name] * 1e-3
     ours = surfaces.mpd(road[index], spike_alpha=6.0).mpd
-    assert ours == pytest.approx(expected, rel=0.05)
+    assert ours == pytest.approx(expected, rel=0.005)

@@ -32,7 +32,9 @@ def model(road):
                                      ([62.83185307179586, 3.3e3, 4.7e4, 9.1e5, 1e7], None), ("continuous", None)])
 def test_restrict_bands_add_up_to_the_total(model, kind, n):
     t = sweeps.bands(model, kind, n=n, mode="restrict", speed=SPEEDS, params={"pressure": [0.1e6, 0.5e6]})
-    r = model.friction(SPEEDS, temperature=20.0, pressure=0.5e6)
+    # the sweep makes the band edges wavevector nodes of the engine (exact band sums)
+    edges = () if kind == "continuous" else tuple(np.ravel(sweeps.band_edges(kind, model.surface.q_range, n)))
+    r = model.replace(grid=persson.GridSettings(extra_q=edges)).friction(SPEEDS, temperature=20.0, pressure=0.5e6)
     for pt in (0, 1):
         for v in SPEEDS:
             rows = t.where(point=pt, speed_m_s=v, mode="restrict")
@@ -60,18 +62,25 @@ def test_band_contributions_are_additive_when_a_band_is_split(model):
     whole = sweeps.band_contributions(r, [[1e3, 2e5]])
     split = sweeps.band_contributions(r, [[1e3, 1.234e4], [1.234e4, 2e5]])
     np.testing.assert_allclose(split.sum(axis=1), whole[:, 0], rtol=1e-12)
-    # edges on grid nodes give the engine's own partial sum: its quadrature weights restricted to the band
+    # edges on grid nodes give the engine's own partial sums: differences of its cumulative friction
     q = r.q
-    from persson._kernels import quadrature_weights_ln
+    np.testing.assert_allclose(r.mu_cumulative[:, -1], r.mu_hysteresis, rtol=1e-12)
+    band = sweeps.band_contributions(r, [[q[10], q[39]]])[:, 0]
+    np.testing.assert_allclose(band, r.mu_cumulative[:, 39] - r.mu_cumulative[:, 10], rtol=1e-12)
 
-    w = quadrature_weights_ln(np.log10(q))
-    whole_rule = r.dmu_dlnq @ w
-    np.testing.assert_allclose(whole_rule, r.mu_hysteresis, rtol=1e-12)
-    # interior interval i (i + 2 < n) of the engine's rule is h/12 (5 f_i + 8 f_i+1 - f_i+2)
-    h = np.log(q[1] / q[0])
-    f = r.dmu_dlnq
-    direct = sum(h / 12 * (5 * f[:, i] + 8 * f[:, i + 1] - f[:, i + 2]) for i in range(10, 39))
-    np.testing.assert_allclose(sweeps.band_contributions(r, [[q[10], q[39]]])[:, 0], direct, rtol=1e-12)
+
+def test_band_contributions_match_an_independent_quadrature(model):
+    """Bands of the full surface against an adaptive ODE quadrature (persson.reference) at the band edges."""
+    from persson.reference import reference_friction
+
+    edges = np.geomspace(*model.surface.q_range, 4)
+    t = sweeps.bands(model, edges, speed=[1e-3, 1.0], params={"pressure": [0.3e6]})
+    mu_at = reference_friction(model.surface, model.material, [1e-3, 1.0], 20.0, 0.3e6, gamma=model.gamma,
+                               q_eval=edges).mu_at
+    for i, v in enumerate([1e-3, 1.0]):
+        rows = t.where(speed_m_s=v, mode="restrict")
+        # the accuracy target is relative to the friction coefficient: 1e-4 of mu, ten times below 1e-3
+        np.testing.assert_allclose(rows["mu_hysteresis"], np.diff(mu_at[i]), rtol=0, atol=1e-4 * mu_at[i, -1])
 
 
 # ------------------------------------------------------------------------------------------------- mode (b)

@@ -1,8 +1,10 @@
 """validation: the shipped cases, the improvement loop, user-defined effects, the CLI and the HTML report.
 
-Must show (issue 7): on every shipped hidden-effect case the top-ranked candidate is the hidden effect and is
-significant, and with it the RMSE is within 1.3x the noise level; on the null case no candidate is significant; a
-user-defined effect is diagnosed like a built-in one; bad input and failures leave no partial report.
+Must show (issues 7 and 12): on every shipped hidden-effect case the top-ranked candidate is the hidden effect, is
+significant and plausible, the verdict is "explained" by it, and with it the RMSE is within 1.3x the noise level;
+on the null case the verdict is "nothing_missing"; a user-defined effect is diagnosed like a built-in one; the JSON
+keeps its contract; bad input and failures leave no partial report. (The blind cases, generated independently, are
+in test_validation_blind.py.)
 """
 
 import json
@@ -54,6 +56,8 @@ def test_hidden_effect_is_ranked_first_and_significant(name, diagnosis_of):
     top = dx.top
     assert top.effect == truth["hidden"], dx.table_text()
     assert top.significant and top.delta_bic < -10 and top.p_value < 0.01
+    assert top.plausible and dx.verdict.verdict == "explained" and dx.verdict.effect == top.effect, dx.text()
+    assert dx.explanation.startswith("Verdict: EXPLAINED by " + top.effect)
     assert dx.baseline.rmse > 3 * noise            # the baseline really fails on these data
     assert top.rmse <= 1.3 * noise, (top.rmse, noise)
     # the refitted model's predictions of the sliding rows, recomputed directly with the engine (the rows share
@@ -76,31 +80,50 @@ def test_null_case_has_no_significant_candidate(diagnosis_of):
     assert dx.best is None
     assert all(c.delta_bic > -10 for c in dx.candidates if c.status == "ok")
     assert dx.baseline.rmse <= 1.3 * truth["noise"]["rms"]
-    assert "No candidate is significant" in dx.explanation
+    assert dx.verdict.verdict == "nothing_missing" and dx.baseline.lack.consistent, dx.text()
+    assert dx.explanation.startswith("Verdict: NOTHING MISSING")
 
 
 def test_json_layout(diagnosis_of, tmp_path):
     case, dx = diagnosis_of("hidden_adhesion")
     data = json.loads(dx.to_json(tmp_path / "dx.json"))
     assert json.loads((tmp_path / "dx.json").read_text()) == data
-    assert set(data) == {"baseline", "candidates"}
+    assert dx.to_dict() == dx.as_dict()
+    # the contract: the verdict and the noise at the top level, beside the baseline and the candidates
+    assert set(data) >= {"verdict", "noise", "noise_source", "lack_of_fit_p", "remaining_pattern", "baseline",
+                         "candidates"}
+    assert data["verdict"] == "explained" and data["noise_source"] == "mu_std"
+    assert data["noise"] == pytest.approx(np.sqrt(np.mean(case.measurements.mu_std ** 2)))
+    assert 0.01 <= data["lack_of_fit_p"] <= 1 and data["remaining_pattern"].startswith("none detected")
     assert set(data["baseline"]) >= {"rmse", "effects"} and data["baseline"]["effects"] == []
     assert data["baseline"]["rmse"] == pytest.approx(dx.baseline.rmse)
     cands = data["candidates"]
     assert [c["effect"] for c in cands] == [c.effect for c in dx.candidates]
     for c in cands:
-        assert set(c) >= {"effect", "rmse", "delta_bic", "significant", "parameters"}
+        assert set(c) >= {"effect", "rmse", "delta_bic", "significant", "parameters", "parameters_std",
+                          "intervals"}
         assert isinstance(c["significant"], bool) and isinstance(c["parameters"], dict)
+        assert set(c["parameters_std"]) == set(c["intervals"]) == set(c["free"]) or c["status"] != "ok"
     ok = [c["delta_bic"] for c in cands if c["rmse"] is not None]
     assert ok == sorted(ok)                       # best first
     assert cands[0]["effect"] == "adhesion" and set(cands[0]["parameters"]) == {"tau_f0", "c", "v_ref"}
+    # the true parameters (truth.json) lie within 3 standard errors of the fit
+    truth = _truth(case)
+    for k, v in truth["parameters"].items():
+        std = cands[0]["parameters_std"][k]
+        assert abs(cands[0]["parameters"][k] - v) <= 3 * std, (k, cands[0]["parameters"][k], std, v)
 
 
 def test_improvement_loop_on_the_example(example_loop):
     case, cmp, imp = example_loop
     truth = _truth(case)
     assert imp.added == (truth["hidden"],)          # adds the hidden effect, then stops
-    assert imp.stopped == "no candidate is significant"
+    assert imp.verdict == "explained" and imp.stopped.startswith("explained")
+    # the first diagnosis is reused, and the step carries exactly its candidate's parameters
+    dx = imp.steps[0].diagnosis
+    cand = dx.candidate(truth["hidden"])
+    assert imp.steps[1].parameters[truth["hidden"]] == pytest.approx(cand.parameters)
+    assert imp.steps[1].parameters["adhesion"]["tau_f0"] == pytest.approx(cand.baseline_parameters["adhesion.tau_f0"])
     rmse = imp.rmse
     assert rmse[1] < rmse[0] / 5
     assert rmse[1] <= 1.3 * truth["noise"]["rms"]

@@ -178,3 +178,25 @@ def test_fit_names_are_checked(tmp_path):
     (d / "case.toml").write_text(text)
     with pytest.raises(InputError, match="nonsense"):
         validation.load_case(d)
+
+
+def test_duplicated_rows_are_flagged_naming_the_lines(tmp_path):
+    from validation.measurements import DuplicateRowsWarning
+
+    text = GOOD + "1,0.1,20,300000,0.72,0.012,0,run A\n0.05,1.0,20,300000,0.55,0.02,1,\"run B, wet\"\n"
+    with pytest.warns(DuplicateRowsWarning) as rec:
+        m = read_measurements(_write(tmp_path, text))
+    msg = str(rec[0].message)
+    assert m.n == 5 and "2 row(s) repeat" in msg and "line 7 = line 5" in msg and "line 8 = line 6" in msg
+    # same conditions with another mu, or another pressure, are data, not duplicates
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", DuplicateRowsWarning)
+        read_measurements(_write(tmp_path, GOOD + "1,0.1,20,300000,0.73,0.012,0,run A\n"
+                                                  "1,0.1,20,310000,0.72,0.012,0,run A\n"))
+
+
+def test_measurements_repr_is_one_line():
+    m = Measurements.from_arrays(slip=1.0, speed=[0.01, 0.1, 1.0], temperature=20.0, pressure=3e5,
+                                 mu=[0.5, 0.6, 0.7])
+    text = repr(m)
+    assert text.startswith("Measurements(3 rows") and "array(" not in text and "\n" not in text

@@ -5,6 +5,7 @@ the bounded nonlinear refit must reproduce the linear least-squares solution, an
 and the score statistic must equal the textbook formulas computed here with numpy and scipy.
 """
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -69,15 +70,17 @@ def test_predictions_equal_direct_engine_and_brush_calls():
         temperature=[20, 20, 20, 20, 20, 40, 20], pressure=[3e5, 3e5, 3e5, 3e5, 3e5, 2e5, 3e5],
         mu=0.5, wet=[0, 0, 0, 0, 0, 0, 1])
     p = validation.predict(model, m, contact).mu
-    np.testing.assert_allclose(p[:3], model.friction([0.01, 0.1, 1.0], 20.0, 3e5).mu, rtol=1e-12)
+    # the same engine and grid; the modulus table spans all the speeds of a call, so its convolution sums differ
+    # by rounding (1e-12) from those of a call with fewer speeds
+    np.testing.assert_allclose(p[:3], model.friction([0.01, 0.1, 1.0], 20.0, 3e5).mu, rtol=1e-10)
     np.testing.assert_allclose(p[3:5], mu_slip(model, [0.02, 0.2], 1.0, temperature=20.0, pressure=3e5,
-                                               contact=contact).mu, rtol=1e-12)
+                                               contact=contact).mu, rtol=1e-10)
     # rows at another temperature share the engine call (and its modulus table) through time-temperature
     # superposition, so they agree with a separate call to the table's interpolation accuracy
     assert p[5] == pytest.approx(float(model.friction(0.1, 40.0, 2e5).mu), rel=1e-5)
     wet = model.with_effect(Wet())
     assert p[6] == pytest.approx(float(mu_slip(wet, 0.1, 0.5, temperature=20.0, pressure=3e5, contact=contact).mu),
-                                 rel=1e-12)
+                                 rel=1e-10)
     # wet: no adhesion, so lower than the dry prediction at the same condition
     dry = float(mu_slip(model, 0.1, 0.5, temperature=20.0, pressure=3e5, contact=contact).mu)
     assert p[6] < dry
@@ -227,3 +230,139 @@ def test_bad_arguments():
     slip_rows = validation.Measurements.from_arrays(slip=0.1, speed=1.0, temperature=20, pressure=3e5, mu=0.5)
     with pytest.raises(validation.InputError, match="contact"):
         validation.compare(model, slip_rows)
+
+
+# ---- global fits, uncertainties, plausibility (issue 12) -------------------------------------------------------
+def _linear_rows(n_speed=10, temps=(10.0, 30.0)):
+    v = np.geomspace(1e-3, 1.0, n_speed)
+    return validation.Measurements.from_arrays(slip=1.0, speed=np.tile(v, len(temps)),
+                                               temperature=np.repeat(temps, n_speed), pressure=3e5,
+                                               mu=np.full(n_speed * len(temps), 0.5))
+
+
+def _offset_class(bounds=(-0.5, 0.5), plausible=None, physical=()):
+    @dataclass(frozen=True)
+    class Offset(Effect):
+        name = "test_offset"
+        parameters = (Parameter("c", 0.01, bounds, "1", "constant added to mu", plausible=plausible,
+                                physical_limits=physical),)
+        c: float = 0.01
+
+        def friction_term(self, state):
+            return np.full_like(state.conditions.speed, self.c)
+
+    return Offset
+
+
+def test_standard_error_of_a_linear_refit_is_the_least_squares_one(registry):
+    """Offset with known mu_std: the estimate is the weighted mean, its standard error 1/sqrt(sum w)."""
+    Offset = _offset_class()
+    model = persson.Model(SURFACE, TREAD)
+    m0 = _linear_rows()
+    f0 = validation.predict(model, m0).mu
+    std = np.linspace(0.004, 0.012, f0.size)
+    y = f0 + 0.03 + np.random.default_rng(21).normal(0, 1, f0.size) * std
+    m = validation.Measurements.from_arrays(slip=m0.slip, speed=m0.speed, temperature=m0.temperature,
+                                            pressure=m0.pressure, mu=y, mu_std=std)
+    dx = validation.diagnose(model, m, candidates=[Offset()], probe=False)
+    c = dx.top
+    w = 1 / std ** 2
+    (est,) = c.estimates
+    assert est.value == pytest.approx(np.sum(w * (y - f0)) / np.sum(w), rel=1e-4)
+    assert est.std == pytest.approx(1 / np.sqrt(np.sum(w)), rel=1e-3)
+    assert est.method == "quadratic" and est.issue == "" and c.plausible
+    assert dx.verdict.verdict == "explained" and dx.noise_estimate.source == "mu_std"
+    d = c.as_dict()
+    assert d["parameters_std"]["c"] == pytest.approx(est.std) and d["intervals"]["c"] == list(est.interval)
+
+
+def test_parameter_on_a_search_bound_is_implausible_and_never_the_explanation(registry):
+    """The data want an offset of 0.1; the search stops at 0.05. The fit is significant but not credible, the
+    profile interval is open at the bound, and the verdict is 'unexplained'."""
+    Offset = _offset_class(bounds=(-0.05, 0.05))
+    model = persson.Model(SURFACE, TREAD)
+    m0 = _linear_rows()
+    f0 = validation.predict(model, m0).mu
+    sigma = 0.005
+    y = f0 + 0.1 + np.random.default_rng(22).normal(0, sigma, f0.size)
+    m = validation.Measurements.from_arrays(slip=m0.slip, speed=m0.speed, temperature=m0.temperature,
+                                            pressure=m0.pressure, mu=y, mu_std=np.full(f0.size, sigma))
+    dx = validation.diagnose(model, m, candidates=[Offset()], probe=False)
+    c = dx.top
+    (est,) = c.estimates
+    assert c.significant and not c.plausible and not c.credible
+    assert est.bound == "search bound" and "upper search bound" in est.issue
+    assert est.method.startswith("profile") and est.interval[1] == pytest.approx(0.05)
+    # the profile's lower end, independently: chi2(c) - chi2(0.05) = s2 with chi2 = W (c - c_u)^2 + const about the
+    # unconstrained optimum c_u; the model fails its lack-of-fit test, so the unit s2 is chi2_min / (n - 1) (Birge)
+    W = f0.size / sigma ** 2
+    c_u = float(np.mean(y - f0))
+    s2 = float(np.sum(((y - f0 - 0.05) / sigma) ** 2)) / (f0.size - 1)
+    assert not c.lack.consistent
+    lower = c_u - math.sqrt((0.05 - c_u) ** 2 + s2 / W)
+    assert est.interval[0] == pytest.approx(lower, abs=1e-4)
+    assert dx.verdict.verdict == "unexplained" and dx.best is None
+    assert "search bound" in dx.explanation and "Not credible" in dx.explanation
+
+
+def test_value_outside_the_declared_plausible_range_demotes(registry):
+    Offset = _offset_class(plausible=(0.0, 0.02))
+    model = persson.Model(SURFACE, TREAD)
+    m0 = _linear_rows()
+    f0 = validation.predict(model, m0).mu
+    y = f0 + 0.05 + np.random.default_rng(23).normal(0, 0.005, f0.size)
+    dx = validation.diagnose(model, m0.with_mu(y), candidates=[Offset()], probe=False)
+    assert dx.top.significant and not dx.top.plausible
+    assert "outside the plausible range" in dx.top.issues[0]
+    assert dx.verdict.verdict == "unexplained"
+
+
+def test_a_physical_limit_is_a_legitimate_optimum(registry):
+    Offset = _offset_class(bounds=(0.0, 0.5), physical=(0.0,))
+    model = persson.Model(SURFACE, TREAD)
+    m0 = _linear_rows()
+    f0 = validation.predict(model, m0).mu
+    y = f0 - 0.01 + np.random.default_rng(24).normal(0, 0.002, f0.size)
+    dx = validation.diagnose(model, m0.with_mu(y), candidates=[Offset()], probe=False)
+    (est,) = dx.top.estimates
+    assert est.value == pytest.approx(0.0, abs=1e-6)
+    assert est.bound == "physical limit" and est.issue == "" and dx.top.plausible
+
+
+def test_the_global_fit_finds_the_optimum_a_local_fit_from_the_given_values_misses(registry):
+    """A friction bump in log speed: started far from the data (x0 = 1.5, beyond the speeds), a local fit sees a
+    flat objective; the Halton starts find the bump at x0 = -2.2."""
+
+    @dataclass(frozen=True)
+    class Bump(Effect):
+        name = "test_bump"
+        parameters = (Parameter("a", 0.05, (0.0, 0.3), "1", "height of the bump", physical_limits=(0.0,)),
+                      Parameter("x0", 1.5, (-4.0, 2.0), "1", "log10 of the speed of the bump, m/s"))
+        a: float = 0.05
+        x0: float = 1.5
+
+        def friction_term(self, state):
+            return self.a * np.exp(-((np.log10(state.conditions.speed) - self.x0) / 0.3) ** 2)
+
+    model = persson.Model(SURFACE, TREAD)
+    m0 = _linear_rows(n_speed=13)
+    f0 = validation.predict(model, m0).mu
+    lv = np.log10(m0.speed)
+    y = f0 + 0.08 * np.exp(-((lv + 2.2) / 0.3) ** 2) + np.random.default_rng(25).normal(0, 0.004, f0.size)
+    dx = validation.diagnose(model, m0.with_mu(y), candidates=[Bump()], probe=False)
+    c = dx.top
+    assert c.parameters["x0"] == pytest.approx(-2.2, abs=0.05) and c.parameters["a"] == pytest.approx(0.08, rel=0.1)
+    est = {e.name: e for e in c.estimates}
+    assert abs(est["x0"].value + 2.2) <= 3 * est["x0"].std + 1e-3
+    assert c.n_starts >= 2 and dx.verdict.verdict == "explained"
+
+
+def test_placeholders_are_not_free_parameters():
+    from validation.fitting import free_parameters
+
+    assert [p.name for p in free_parameters(persson.effects.FlashTemperature())] == ["macro_scale_ratio"]
+    with pytest.raises(validation.InputError, match="contact_diameter"):
+        free_parameters(persson.effects.FlashTemperature(), names=["contact_diameter"])
+    assert [p.name for p in free_parameters(persson.effects.Microtexture())] == ["q1"]
+    (h,) = free_parameters(persson.effects.Microtexture(), names=["hurst"])
+    assert (h.lo, h.hi) == (0.5, 1.0)       # the plausible range, which excludes the placeholder 0

@@ -1,13 +1,13 @@
 """Validation against measured friction: datasets, comparison, diagnosis of missing effects, reports.
 
-The loop of DESIGN.md: compare the model with measured friction, see where it fails, learn which physical effect
+The validation loop: compare the model with measured friction, see where it fails, learn which physical effect
 is missing, add it and watch the error fall::
 
     import validation
     case = validation.load_case("case.toml")                 # model + measurements (+ contact, fit)
     cmp = validation.compare(case.model, case.measurements, case.contact)
-    dx = validation.diagnose(case)                           # ranked candidate effects
-    imp = validation.improve(case)                           # add the best significant effect, repeat
+    dx = validation.diagnose(case)                           # verdict + ranked candidate effects
+    imp = validation.improve(case, diagnosis=dx)             # add credible effects until the verdict says stop
     validation.write_report([cmp, dx, imp], "report.html")
 """
 
@@ -17,13 +17,18 @@ from .diagnose import (SIGNIFICANCE_RULE, Ambiguity, Baseline, Candidate, Diagno
 from .errors import InputError, UnitWarning
 from .improve import Improvement, Step, improve
 from .measurements import Measurements, read_measurements
+from .noise import LackOfFit, NoiseEstimate, Pattern, estimate_noise, lack_of_fit, remaining_pattern
 from .predict import Prediction, predict
+from .refit import Estimate
 from .report import write_report
+from .verdict import VERDICTS, Verdict
 
 __all__ = [
     "InputError", "UnitWarning",
     "Measurements", "read_measurements", "Case", "load_case", "shipped_cases", "case_path",
     "Prediction", "predict", "Comparison", "GroupStat", "compare",
     "Diagnosis", "Baseline", "Candidate", "Ambiguity", "Separation", "diagnose", "SIGNIFICANCE_RULE",
+    "Verdict", "VERDICTS", "Estimate", "NoiseEstimate", "LackOfFit", "Pattern", "estimate_noise", "lack_of_fit",
+    "remaining_pattern",
     "Improvement", "Step", "improve", "write_report",
 ]

@@ -52,19 +52,26 @@ class Case:
     fit: tuple = ()
     spec: object = field(default=None, repr=False)
 
+    def __repr__(self) -> str:
+        return (f"Case({self.name!r}, path={str(self.path)!r}, effects={list(self.model.effect_names)}, "
+                f"fit={list(self.fit)}, {self.measurements.describe()}"
+                + (", with contact" if self.contact is not None else "") + ")")
+
     @property
     def folder(self) -> Path:
         """The folder of the case file."""
         return self.path.parent
 
 
-def load_case(path) -> Case:
+def load_case(path, *, progress=None) -> Case:
     """Read a ``case.toml`` (or its folder, or the name of a shipped case) with its measurements.
 
     Parameters
     ----------
     path : str or path-like
         The case file, its folder, or the name of a case shipped in ``validation/cases`` (e.g. ``"example"``).
+    progress : callable, optional
+        Called with short status texts while slow parts run (see :mod:`persson.progress`).
 
     Returns
     -------
@@ -84,7 +91,7 @@ def load_case(path) -> Case:
     if p.is_dir():
         p = p / "case.toml"
     try:
-        spec = read_case(p)
+        spec = read_case(p, progress=progress)
     except InputError:
         raise
     except ValueError as exc:  # persson / surfaces / materials InputError (all ValueError subclasses)
@@ -121,6 +128,14 @@ def parse_fit_names(names, model, where: str = "fit") -> tuple[str, ...]:
         eff, dot, par = n.partition(".")
         if not dot:
             raise InputError(f"{where}: [model] fit: {n!r} is not of the form \"effect.parameter\" (or gamma)")
+        if eff == "contact":
+            from .fitting import CONTACT_PARAMETERS
+
+            if par not in CONTACT_PARAMETERS:
+                raise InputError(f"{where}: [model] fit: {n!r}: the contact has no fittable parameter {par!r} "
+                                 f"(fittable: {sorted(CONTACT_PARAMETERS)})")
+            out.append(n)
+            continue
         if eff not in model.effect_names:
             raise InputError(f"{where}: [model] fit: {n!r} names the effect {eff!r}, which is not in the baseline "
                              f"(effects = {list(model.effect_names)})")

@@ -1,12 +1,12 @@
-"""Bounded least-squares refits of effect parameters against measurements (used by diagnose and improve).
+"""Bounded least squares of model parameters against measurements: the parameter space and the fitter.
 
 Parameters are mapped to ``u`` in [0, 1]: linearly between their bounds, or linearly in log10 for parameters
-documented with ``log_scale=True`` (and a positive lower bound). ``scipy.optimize.least_squares`` (trust-region
-reflective, bounds [0, 1], two-point finite differences with a step of 5e-3 of the range) minimises the weighted
-residuals ``(mu_measured - mu_model) / mu_std`` (weights 1 without ``mu_std``), from the effect's given values and
-the best point of a small screening design (a scrambled Halton sequence over the bounds, seeded, so the result is
-reproducible). A single parameter is instead scanned on a grid and refined by bounded Brent minimisation
-(:meth:`Fitter.scan_1d`), which is robust to small jumps of the response.
+documented with ``log_scale=True`` (and a positive lower bound). :class:`Fitter` evaluates the weighted residuals
+``(mu_measured - mu_model) / mu_std`` (weights 1 without ``mu_std``) at any ``u``, caches every prediction, and
+runs ``scipy.optimize.least_squares`` (trust-region reflective, bounds [0, 1], two-point finite differences) from
+a start, optionally with some coordinates held fixed (for profile likelihoods); :mod:`validation.refit` builds the
+multi-start global fit and the uncertainties on it. Besides effect parameters and ``gamma``, a space may hold the
+brush model's contact parameters (:data:`CONTACT_PARAMETERS`, keys ``"contact.<name>"``).
 """
 
 from __future__ import annotations
@@ -20,7 +20,11 @@ from scipy import optimize
 
 from .errors import InputError
 
-__all__ = ["FreeParameter", "ParameterSpace", "free_parameters", "Fitter", "FitResult"]
+__all__ = ["FreeParameter", "ParameterSpace", "free_parameters", "contact_parameters", "contact_value", "Fitter",
+           "BudgetExhausted", "halton", "CONTACT", "CONTACT_PARAMETERS"]
+
+#: Pseudo-effect name of the brush model's contact parameters (``"contact.stiffness"`` ...).
+CONTACT = "contact"
 
 
 @dataclass(frozen=True)
@@ -30,14 +34,18 @@ class FreeParameter:
     Attributes
     ----------
     effect : str
-        Effect name ("" for the model's ``gamma``).
+        Effect name ("" for the model's ``gamma``, ``"contact"`` for the brush model's contact).
     name : str
         Parameter name.
     lo, hi : float
-        Bounds.
+        Bounds of the search.
     log : bool
         Varied in log10.
     unit : str
+    physical_limits : tuple of float
+        Bounds that are physical limits (an optimum there is legitimate); the others are search bounds.
+    plausible : (float, float), callable or None
+        The documented plausible range (see :class:`persson.effects.Parameter`); None: the bounds.
     """
 
     effect: str
@@ -46,6 +54,8 @@ class FreeParameter:
     hi: float
     log: bool
     unit: str = ""
+    physical_limits: tuple = ()
+    plausible: object = None
 
     @property
     def key(self) -> str:
@@ -65,6 +75,23 @@ class FreeParameter:
         else:
             x = self.lo + u * (self.hi - self.lo)
         return min(max(x, self.lo), self.hi)
+
+    def dx_du(self, x: float) -> float:
+        """Derivative of the value with respect to u at value ``x``."""
+        if self.log:
+            return float(x) * math.log(10.0) * (math.log10(self.hi) - math.log10(self.lo))
+        return self.hi - self.lo
+
+    def plausible_range(self, data_range=None) -> tuple[float, float]:
+        """The plausible (lo, hi) (callables evaluated on ``data_range``); the bounds when none is declared."""
+        p = self.plausible
+        if p is None or (callable(p) and data_range is None):
+            return self.lo, self.hi
+        lo, hi = p(data_range) if callable(p) else p
+        return float(lo), float(hi)
+
+    def is_physical_limit(self, x: float) -> bool:
+        return any(abs(float(x) - float(b)) <= 1e-9 * max(1.0, abs(float(b))) for b in self.physical_limits)
 
 
 class ParameterSpace:
@@ -97,6 +124,8 @@ class ParameterSpace:
         changes: dict[str, dict] = {}
         gamma = None
         for p in self.params:
+            if p.effect == CONTACT:
+                continue
             if p.effect:
                 changes.setdefault(p.effect, {})[p.name] = vals[p.key]
             else:
@@ -110,28 +139,98 @@ class ParameterSpace:
             kw["gamma"] = gamma
         return model.replace(**kw)
 
-    def u_of(self, model) -> np.ndarray:
-        """Current values of the parameters in ``model`` as u."""
-        out = []
-        for p in self.params:
-            x = getattr(model.effect(p.effect), p.name) if p.effect else model.gamma
-            out.append(p.to_u(x))
-        return np.asarray(out, dtype=float)
+    @property
+    def has_contact(self) -> bool:
+        """Whether some parameters belong to the brush model's contact."""
+        return any(p.effect == CONTACT for p in self.params)
 
-    def values(self, model) -> dict[str, float]:
-        """Current values of the parameters in ``model``."""
-        return {p.key: float(getattr(model.effect(p.effect), p.name) if p.effect else model.gamma)
-                for p in self.params}
+    def apply_contact(self, contact, u):
+        """``contact`` with its ``contact.*`` parameters set from ``u`` (``contact`` itself when there are none)."""
+        if not self.has_contact:
+            return contact
+        from persson.slip import Contact
+
+        vals = self.values_from_u(u)
+        kw = dict(length=contact.length, width=contact.width, stiffness=contact.stiffness,
+                  pressure_distribution=contact.pressure_distribution, n_points=contact.n_points)
+        for p in self.params:
+            if p.effect == CONTACT:
+                if p.name == "sakai_n":
+                    kw["pressure_distribution"] = {"sakai_n": vals[p.key]}
+                else:
+                    kw[p.name] = vals[p.key]
+        return Contact(**kw)
+
+    def u_of(self, model, contact=None) -> np.ndarray:
+        """Current values of the parameters in ``model`` (and ``contact``) as u."""
+        vals = self.values(model, contact)
+        return np.asarray([p.to_u(vals[p.key]) for p in self.params], dtype=float)
+
+    def values(self, model, contact=None) -> dict[str, float]:
+        """Current values of the parameters in ``model`` (and ``contact``)."""
+        out = {}
+        for p in self.params:
+            if p.effect == CONTACT:
+                out[p.key] = contact_value(contact, p.name)
+            else:
+                out[p.key] = float(getattr(model.effect(p.effect), p.name) if p.effect else model.gamma)
+        return out
+
+
+#: The brush model's contact parameters a fit may vary (``"contact.<name>"`` in ``[model] fit``): search bounds and
+#: plausible ranges. The stiffness per unit area is k ~ G / h (tread shear modulus G of 0.5-5 MPa over a tread
+#: depth h of 1-20 mm, lowered by the carcass in series), so 1e7-3e10 Pa/m is plausible; contact lengths run from a
+#: few mm (laboratory wheels) to 0.3 m (truck tires); Sakai's exponent n is 2 for the parabolic law and grows
+#: towards the uniform one (Sakai, Int. J. Vehicle Design 2 (1981)).
+CONTACT_PARAMETERS = {
+    "stiffness": dict(lo=1e6, hi=1e12, log=True, unit="Pa/m", plausible=(1e7, 3e10)),
+    "length": dict(lo=1e-3, hi=0.5, log=True, unit="m", plausible=(3e-3, 0.3)),
+    "sakai_n": dict(lo=0.5, hi=50.0, log=True, unit="1", plausible=(1.0, 20.0)),
+}
+
+
+def contact_parameters(contact, names) -> list[FreeParameter]:
+    """The :class:`FreeParameter` of the contact parameters ``names`` (keys of :data:`CONTACT_PARAMETERS`)."""
+    out = []
+    for n in names:
+        if n not in CONTACT_PARAMETERS:
+            raise InputError(f"contact.{n}: not a fittable contact parameter; fittable: "
+                             f"{sorted(CONTACT_PARAMETERS)}")
+        if contact is None:
+            raise InputError(f"contact.{n}: the case has no contact (add a [contact] table)")
+        contact_value(contact, n)   # checks that the value exists (e.g. a Sakai exponent)
+        spec = CONTACT_PARAMETERS[n]
+        out.append(FreeParameter(effect=CONTACT, name=n, lo=spec["lo"], hi=spec["hi"], log=spec["log"],
+                                 unit=spec["unit"], plausible=spec["plausible"]))
+    return out
+
+
+def contact_value(contact, name: str) -> float:
+    """The value of the contact parameter ``name`` (the parabolic law is Sakai's n = 2)."""
+    if name == "sakai_n":
+        n = contact.sakai_n
+        if n is None:
+            raise InputError(f"contact.sakai_n: the contact's pressure distribution "
+                             f"{contact.pressure_distribution!r} has no Sakai exponent to fit (give "
+                             "\"parabolic\" or { sakai_n = ... })")
+        return float(n)
+    return float(getattr(contact, name))
 
 
 def free_parameters(effect, names=None, release: bool = False) -> list[FreeParameter]:
     """The parameters of ``effect`` a refit varies.
 
-    Rule (when ``names`` is None): every documented parameter (``effect.parameters``) with a numeric value and
-    finite bounds lo < hi, except those whose documented default lies on a bound -- such a default is a switch
-    or an "automatic" sentinel (e.g. ``Microtexture.hurst = 0`` meaning "fitted", ``Wet.seal_fraction = 0``
-    meaning "off") and is held fixed, unless ``release`` is True (used when the effect has no signature at all
-    at its given values). ``names`` lists the parameters to vary explicitly.
+    Rule (when ``names`` is None): every documented parameter (``effect.parameters``) with a numeric value, finite
+    bounds lo < hi and ``fittable`` set, except
+
+    * one holding its ``sentinel`` (a placeholder such as ``Microtexture.hurst = 0``, "fitted on the PSD", or
+      ``FlashTemperature.contact_diameter = 0``, "pi / q_m"): never varied, since the placeholder is not a value
+      on the scale of the others and would make the objective discontinuous;
+    * one whose documented default lies on a bound (a switch, e.g. ``Wet.seal_fraction = 0`` meaning "off"),
+      unless ``release`` is True (used when the effect has no signature at all at its given values).
+
+    ``names`` lists the parameters to vary explicitly; a named parameter with a sentinel is varied over its
+    plausible range (which excludes the placeholder), and one declared not ``fittable`` is an error.
     """
     specs = {p.name: p for p in getattr(effect, "parameters", ())}
     if names is not None:
@@ -146,40 +245,45 @@ def free_parameters(effect, names=None, release: bool = False) -> list[FreeParam
         v = getattr(effect, p.name, None)
         if isinstance(v, bool) or not isinstance(v, (int, float, np.integer, np.floating)):
             continue
+        if not getattr(p, "fittable", True):
+            if names is not None:
+                raise InputError(f"{effect.name}.{p.name}: cannot be fitted ({p.doc})")
+            continue
         try:
             lo, hi = (float(b) for b in p.bounds)
         except (TypeError, ValueError):
             continue
         if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
             continue
-        if names is None and not release:
+        sentinel = getattr(p, "sentinel", None)
+        if sentinel is not None:
+            if names is None:
+                continue
+            plo, phi = p.plausible_range() if hasattr(p, "plausible_range") else (lo, hi)
+            lo, hi = (max(lo, plo), min(hi, phi))
+            if not (lo < hi) or lo <= sentinel <= hi:
+                raise InputError(f"{effect.name}.{p.name}: its plausible range does not exclude the placeholder "
+                                 f"{sentinel:g}; it cannot be fitted")
+        elif names is None and not release:
             d = float(p.default)
             if abs(d - lo) <= 1e-12 * max(1.0, abs(lo)) or abs(d - hi) <= 1e-12 * max(1.0, abs(hi)):
                 continue
         log = bool(getattr(p, "log_scale", False)) and lo > 0
-        out.append(FreeParameter(effect=effect.name, name=p.name, lo=lo, hi=hi, log=log, unit=p.unit))
+        out.append(FreeParameter(effect=effect.name, name=p.name, lo=lo, hi=hi, log=log, unit=p.unit,
+                                 physical_limits=tuple(getattr(p, "physical_limits", ())),
+                                 plausible=getattr(p, "plausible", None)))
     return out
 
 
-@dataclass(frozen=True, eq=False)
-class FitResult:
-    """Outcome of a :class:`Fitter` run."""
-
-    u: np.ndarray
-    model: object
-    mu: np.ndarray
-    chi2: float
-    jac: np.ndarray | None
-    n_evals: int
-    notes: tuple = ()
-
-
-class _Budget(Exception):
-    pass
+class BudgetExhausted(Exception):
+    """Raised by :meth:`Fitter.mu` when the fit's budget of model evaluations is spent."""
 
 
 class Fitter:
     """Weighted least squares of ``predictor.predict(space.apply(model, u))`` against ``y``.
+
+    Every prediction is cached by ``u`` (rounded to 1e-12), so revisiting a point is free, and the best point
+    seen is remembered.
 
     Parameters
     ----------
@@ -192,19 +296,22 @@ class Fitter:
         The model whose parameters ``space`` varies.
     space : ParameterSpace
     max_evals : int
-        Budget of model evaluations (the best point seen is returned when it runs out).
+        Budget of model evaluations (:class:`BudgetExhausted` is raised when it runs out).
+    contact : persson.slip.Contact, optional
+        The brush model's contact, varied by the ``contact.*`` parameters of ``space``.
     """
 
-    def __init__(self, predictor, y, w, model, space: ParameterSpace, max_evals: int = 200):
+    def __init__(self, predictor, y, w, model, space: ParameterSpace, max_evals: int = 200, contact=None):
         self.predictor = predictor
         self.y = np.asarray(y, dtype=float)
         self.w = np.asarray(w, dtype=float)
         self.model = model
         self.space = space
+        self.contact = contact
         self.max_evals = int(max_evals)
         self.n_evals = 0
         self._cache: dict = {}
-        self._best = (math.inf, None)
+        self.best = (math.inf, None)
         self.errors: dict[str, None] = {}
         self.notes: dict[str, None] = {}
         self._penalty = (np.abs(self.y) + 10.0) * self.w * 10.0
@@ -216,34 +323,33 @@ class Fitter:
         if key in self._cache:
             return self._cache[key]
         if self.n_evals >= self.max_evals:
-            raise _Budget()
+            raise BudgetExhausted()
         self.n_evals += 1
         try:
             with warnings.catch_warnings(record=True) as caught:
                 warnings.simplefilter("always")
-                pred = self.predictor.predict(self.space.apply(self.model, u))
-            mu = pred.mu
+                mu = self._predict(u)
             for w in caught:
                 self.notes[f"{w.category.__name__}: {w.message}"] = None
             if not np.all(np.isfinite(mu)):
                 raise InputError("non-finite prediction")
-        except _Budget:
-            raise
         except Exception as exc:  # noqa: BLE001  (an effect may fail at some parameters; the fit avoids them)
             self.errors[f"{type(exc).__name__}: {exc}"] = None
             mu = None
         self._cache[key] = mu
         if mu is not None:
             c = float(np.sum(((self.y - mu) * self.w) ** 2))
-            if c < self._best[0]:
-                self._best = (c, np.array(u))
+            if c < self.best[0]:
+                self.best = (c, np.array(u))
         return mu
 
     def chi2(self, u) -> float:
+        """Weighted residual sum of squares at ``u`` (inf where the model failed)."""
         mu = self.mu(u)
         return math.inf if mu is None else float(np.sum(((self.y - mu) * self.w) ** 2))
 
     def resid(self, u):
+        """Weighted residuals at ``u`` (a large penalty where the model failed)."""
         mu = self.mu(u)
         if mu is None:
             return self._penalty
@@ -263,76 +369,59 @@ class Fitter:
         for p in points:
             try:
                 out.append((self.chi2(p), np.asarray(p, dtype=float)))
-            except _Budget:
+            except BudgetExhausted:
                 break
         return sorted(out, key=lambda t: t[0])
 
-    def run(self, starts, max_nfev: int | None = None) -> FitResult:
-        """Least squares from each start; the best result (or best point seen if the budget runs out)."""
-        k = len(self.space)
-        jac = None
-        best_jac = None
-        if k == 0:
-            self.mu(np.zeros(0))
-        for x0 in starts:
-            x0 = np.clip(np.asarray(x0, dtype=float), 0.0, 1.0)
-            if k == 0:
-                break
-            try:
-                res = optimize.least_squares(self.resid, x0, bounds=(np.zeros(k), np.ones(k)), method="trf",
-                                             diff_step=5e-3, x_scale=1.0, ftol=1e-4, xtol=1e-3, gtol=1e-8,
-                                             max_nfev=max_nfev or 30 * (k + 1))
-                jac = res.jac
-                c = self.chi2(res.x)
-                if c <= self._best[0] + 1e-12 * max(1.0, c):
-                    best_jac = jac
-            except _Budget:
-                self.notes["fit stopped at its evaluation budget"] = None
-                break
-        c, u = self._best
-        if u is None:
-            raise InputError("the model failed at every parameter value tried: " + "; ".join(list(self.errors)[:3]))
-        mu = self._cache[tuple(np.round(np.clip(u, 0, 1), 12))]
-        return FitResult(u=u, model=self.space.apply(self.model, u), mu=mu, chi2=c, jac=best_jac,
-                         n_evals=self.n_evals, notes=tuple(self.notes))
+    def local(self, u0, fixed=(), max_nfev: int | None = None) -> tuple[np.ndarray, float]:
+        """Bounded least squares (trust-region reflective) from ``u0``; the coordinates in ``fixed`` stay put.
 
-
-    def scan_1d(self, u_given: float, n_grid: int = 13) -> FitResult:
-        """One parameter: a grid of ``n_grid`` interior points plus the given value, then bounded Brent
-        minimisation (``scipy.optimize.minimize_scalar``) between the best point's neighbours.
-
-        Robust where the response is piecewise smooth with small jumps (e.g. a parameter that moves a scale
-        across the solver's q grid), where finite-difference gradients mislead least squares.
+        Returns the end point and its chi2. Raises :class:`BudgetExhausted` when the budget runs out.
         """
-        if len(self.space) != 1:
-            raise InputError("scan_1d needs exactly one parameter")
-        grid = (np.arange(n_grid) + 0.5) / n_grid
-        pts = np.concatenate([[float(u_given)], grid])
-        vals = []
-        for x in pts:
-            try:
-                vals.append(self.chi2([x]))
-            except _Budget:
-                vals.append(math.inf)
-                break
-        i = int(np.argmin(vals))
-        x0 = float(pts[i])
-        h = 1.0 / n_grid
-        lo, hi = max(0.0, x0 - h), min(1.0, x0 + h)
+        u0 = np.clip(np.asarray(u0, dtype=float), 0.0, 1.0)
+        free = np.array([j for j in range(u0.size) if j not in set(fixed)], dtype=int)
+        if free.size == 0:
+            return u0, self.chi2(u0)
 
-        def f(x):
-            return self.chi2([x])
+        def full(v):
+            u = u0.copy()
+            u[free] = v
+            return u
 
-        try:
-            optimize.minimize_scalar(f, bounds=(lo, hi), method="bounded", options={"xatol": 2e-3, "maxiter": 14})
-        except _Budget:
-            self.notes["fit stopped at its evaluation budget"] = None
-        c, u = self._best
-        if u is None:
-            raise InputError("the model failed at every parameter value tried: " + "; ".join(list(self.errors)[:3]))
-        mu = self._cache[tuple(np.round(np.clip(u, 0, 1), 12))]
-        return FitResult(u=u, model=self.space.apply(self.model, u), mu=mu, chi2=c, jac=None,
-                         n_evals=self.n_evals, notes=tuple(self.notes))
+        res = optimize.least_squares(lambda v: self.resid(full(v)), u0[free], bounds=(0.0, 1.0), method="trf",
+                                     diff_step=2e-3, x_scale=1.0, ftol=1e-5, xtol=1e-4, gtol=1e-10,
+                                     max_nfev=max_nfev or 12 * (free.size + 1))
+        u = full(np.clip(res.x, 0.0, 1.0))
+        return u, self.chi2(u)
+
+    def jacobian(self, u, h: float = 2e-3) -> np.ndarray:
+        """Jacobian d mu / d u at ``u`` by central differences (one-sided at a bound), unweighted."""
+        u = np.clip(np.asarray(u, dtype=float), 0.0, 1.0)
+        cols = []
+        for j in range(u.size):
+            up, dn = u.copy(), u.copy()
+            up[j] = min(u[j] + h, 1.0)
+            dn[j] = max(u[j] - h, 0.0)
+            f_up, f_dn = self.mu(up), self.mu(dn)
+            if f_up is None or f_dn is None or up[j] <= dn[j]:
+                cols.append(np.zeros_like(self.y))
+                continue
+            cols.append((f_up - f_dn) / (up[j] - dn[j]))
+        return np.column_stack(cols) if cols else np.zeros((self.y.size, 0))
+
+    def model_at(self, u):
+        """The model with the effect parameters set from ``u``."""
+        return self.space.apply(self.model, u)
+
+    def contact_at(self, u):
+        """The contact with the ``contact.*`` parameters set from ``u`` (the fitter's contact when none)."""
+        return self.space.apply_contact(self.contact, u)
+
+    def _predict(self, u):
+        model = self.space.apply(self.model, u)
+        if self.space.has_contact:
+            return self.predictor.predict(model, contact=self.space.apply_contact(self.contact, u)).mu
+        return self.predictor.predict(model).mu
 
 
 def halton(k: int, n: int, seed: int = 0) -> np.ndarray:

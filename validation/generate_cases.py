@@ -12,9 +12,11 @@ For every case the script
    compound at its reference temperature (``master_curve.csv``: ``f_Hz, E_storage_Pa, E_loss_Pa`` of
    :func:`materials.example_tread`, 8 points per decade) and ``case.toml``;
 2. loads the case back with :func:`persson.case.read_case` -- so the truth is computed with exactly the model
-   a user of the case gets (the master curve is re-fitted from the table by :func:`materials.read_master_curve`);
+   a user of the case gets (the master curve table is read by :func:`materials.read_master_curve`);
 3. computes the truth = the case's baseline + the hidden effect (none for ``null``) on the case's measurement
-   conditions with :func:`validation.predict` (sliding rows, brush-model slip rows, wet rows);
+   conditions with :func:`validation.predict` (sliding rows, brush-model slip rows, wet rows), on a converged
+   grid (128 wavevector and 160 modulus nodes per decade, ``CONVERGED_GRID``), not the default grid the
+   diagnosis uses;
 4. adds Gaussian noise from ``numpy.random.default_rng(SEED + index)`` -- absolute (``sigma`` in mu) or
    relative (``rel`` times the true mu, then written as the ``mu_std`` column) -- and writes
    ``measurements.csv``;
@@ -37,6 +39,15 @@ import numpy as np
 
 SEED = 20250607
 CASES_DIR = Path(__file__).resolve().parent / "cases"
+
+
+def _converged_grid():
+    from persson import GridSettings
+
+    return GridSettings(q_per_decade=128, omega_per_decade=160)
+
+
+CONVERGED_GRID = _converged_grid()
 
 __all__ = ["SEED", "CASES", "CaseDef", "generate", "main"]
 
@@ -229,7 +240,9 @@ def generate(case: CaseDef, index: int, out_dir: Path = CASES_DIR, verbose: bool
                                         wet=wet, series=series, source=str(folder / "measurements.csv"))
     skeleton.to_csv(folder / "measurements.csv", comments=("placeholder: being generated",))
     spec = read_case(folder / "case.toml")
-    model = spec.model
+    # the truth is computed on a converged grid, far finer than the default the diagnosis uses, so that the
+    # engine's own discretisation error cannot cancel out when the diagnosis is tested on these data
+    model = spec.model.replace(grid=CONVERGED_GRID)
     truth = model if case.hidden is None else model.with_effect(fx.get(case.hidden, **case.hidden_params))
     mu_true = predict(truth, skeleton, spec.contact_model()).mu
     mu_base = predict(model, skeleton, spec.contact_model()).mu
@@ -253,6 +266,7 @@ def generate(case: CaseDef, index: int, out_dir: Path = CASES_DIR, verbose: bool
     info = {"name": case.name, "description": case.description, "hidden": case.hidden,
             "parameters": {k: float(v) for k, v in case.hidden_params.items()}, "noise": noise,
             "seed": SEED + index, "rows": meas.n,
+            "grid": {"q_per_decade": CONVERGED_GRID.q_per_decade, "omega_per_decade": CONVERGED_GRID.omega_per_decade},
             "rmse_truth_vs_baseline": float(np.sqrt(np.mean((mu_true - mu_base) ** 2))),
             "rmse_noise_realised": float(np.sqrt(np.mean((mu - mu_true) ** 2)))}
     (folder / "truth.json").write_text(json.dumps(info, indent=2) + "\n", encoding="utf-8")

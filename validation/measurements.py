@@ -1,6 +1,6 @@
 """Measured friction (DRFT-style): reading, checking and holding the rows.
 
-Format (DESIGN.md "Formats on disk"): a CSV with a header row; lines starting with ``#`` are comments. Columns
+Format (``docs/conventions.md``, "Files"): a CSV with a header row; lines starting with ``#`` are comments. Columns
 ``slip, speed_m_s, T_C, pressure_Pa, mu`` are required; ``mu_std`` (standard deviation of mu, e.g. from
 repeats), ``wet`` (0/1, also true/false/yes/no) and ``series`` (a free label, e.g. the name of a run) are
 optional. ``speed_m_s`` is the rolling reference speed V; the sliding speed is ``slip * V``; ``slip = 1`` is
@@ -18,7 +18,9 @@ column; values that merely look odd give a :class:`~validation.UnitWarning`):
 * ``pressure_Pa <= 0``; pressures that all lie below 1000 Pa are refused as "looks like kPa, MPa or bar" (tread
   contact pressures are 1e4-1e7 Pa); a pressure below 1e4 Pa or above 1e8 Pa is warned about;
 * ``mu < 0``; ``mu`` above 5 is warned about;
-* ``mu_std <= 0`` or given on some rows and empty on others; ``wet`` not 0/1.
+* ``mu_std <= 0`` or given on some rows and empty on others; ``wet`` not 0/1;
+* rows of a file that repeat another row exactly (same slip, speed, temperature, pressure, wet and mu) are
+  warned about (:class:`DuplicateRowsWarning`, naming the lines): a copy-pasted block counts twice in every fit.
 """
 
 from __future__ import annotations
@@ -32,7 +34,7 @@ import numpy as np
 
 from .errors import InputError, UnitWarning
 
-__all__ = ["Measurements", "read_measurements", "REQUIRED_COLUMNS", "OPTIONAL_COLUMNS"]
+__all__ = ["Measurements", "read_measurements", "REQUIRED_COLUMNS", "OPTIONAL_COLUMNS", "DuplicateRowsWarning"]
 
 #: Columns every measurement file must have.
 REQUIRED_COLUMNS = ("slip", "speed_m_s", "T_C", "pressure_Pa", "mu")
@@ -40,6 +42,10 @@ REQUIRED_COLUMNS = ("slip", "speed_m_s", "T_C", "pressure_Pa", "mu")
 OPTIONAL_COLUMNS = ("mu_std", "wet", "series")
 
 _TRUE = {"1", "1.0", "true", "yes", "y", "wet"}
+
+
+class DuplicateRowsWarning(UserWarning):
+    """Rows of a measurement file repeat other rows exactly (conditions and mu): likely pasted twice."""
 _FALSE = {"0", "0.0", "false", "no", "n", "dry", ""}
 
 
@@ -217,6 +223,9 @@ class Measurements:
                 fh.write(",".join(cells) + "\n")
         return Path(path)
 
+    def __repr__(self) -> str:
+        return f"Measurements({self.describe()}; source={self.source!r})"
+
     def describe(self) -> str:
         """One line: rows, slip rows, speed/temperature/pressure ranges, wet rows."""
         vs = self.sliding_speed
@@ -330,9 +339,27 @@ def read_measurements(path) -> Measurements:
     if "series" in col:
         j = col["series"]
         series = tuple((cells[j] if j < len(cells) else "") for _, cells in rows)
-    return Measurements(slip=values["slip"], speed=values["speed_m_s"], temperature=values["T_C"],
+    meas = Measurements(slip=values["slip"], speed=values["speed_m_s"], temperature=values["T_C"],
                         pressure=values["pressure_Pa"], mu=values["mu"], mu_std=values.get("mu_std"), wet=wet,
                         series=series, source=str(path), lines=lines)
+    _warn_duplicates(meas)
+    return meas
+
+
+def _warn_duplicates(meas: Measurements) -> None:
+    """Warn about rows identical to an earlier row in conditions and mu, naming both lines."""
+    rows = np.column_stack([meas.slip, meas.speed, meas.temperature, meas.pressure, meas.wet.astype(float),
+                            meas.mu])
+    _, first, inverse = np.unique(rows, axis=0, return_index=True, return_inverse=True)
+    inverse = np.asarray(inverse).ravel()
+    dup = np.flatnonzero(first[inverse] != np.arange(meas.n))
+    if dup.size == 0:
+        return
+    pairs = [f"line {int(meas.lines[i])} = line {int(meas.lines[first[inverse[i]]])}" for i in dup[:5]]
+    more = f" and {dup.size - 5} more" if dup.size > 5 else ""
+    warnings.warn(f"{meas.source}: {dup.size} row(s) repeat an earlier row exactly (slip, speed, temperature, "
+                  f"pressure, wet and mu): {'; '.join(pairs)}{more}. Duplicated rows count twice in every fit: "
+                  "remove them unless they are genuine repeats", DuplicateRowsWarning, stacklevel=3)
 
 
 # ==========================================================================================================

@@ -8,7 +8,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-__all__ = ["plot_mu_speed", "plot_mu_slip", "plot_residuals", "plot_signatures", "plot_steps"]
+__all__ = ["plot_mu_speed", "plot_mu_slip", "plot_residuals", "plot_signatures", "plot_steps", "plot_residual_slip"]
 
 _MAX_PANELS = 4
 _MAX_SLIP_CURVES = 8
@@ -205,4 +205,29 @@ def plot_steps(improvement):
     ax.set_ylim(bottom=0)
     ax.grid(alpha=0.3)
     ax.set_title("RMSE after each added effect", fontsize=10)
+    return fig
+
+
+def plot_residual_slip(dx):
+    """Residual against slip ratio (rows with slip < 1, and the sliding rows at slip = 1): the baseline's, and the
+    explaining candidate's when the verdict names one, with the noise band."""
+    m = dx.measurements
+    fig, ax = plt.subplots(figsize=(6.4, 4.0), constrained_layout=True)
+    s = m.slip
+    series = [("baseline", dx.baseline.residual, "ko")]
+    cand = dx.explaining
+    if cand is not None:
+        series.append((f"with {cand.effect}", m.mu - cand.predicted, "C3s"))
+    for label, r, style in series:
+        ax.plot(s, r, style, ms=4, alpha=0.8, label=label, mfc="none" if style.startswith("C") else None)
+    if np.isfinite(dx.noise):
+        ax.axhspan(-2 * dx.noise, 2 * dx.noise, color="0.85", zorder=0,
+                   label=f"+- 2 x noise ({dx.noise_estimate.source})")
+    ax.axhline(0.0, color="k", lw=0.8)
+    ax.set_xscale("log")
+    ax.set_xlabel("slip ratio s (1 = pure sliding)")
+    ax.set_ylabel("residual (measured - predicted)")
+    ax.set_title("residual vs slip ratio", fontsize=10)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7)
     return fig

@@ -5,9 +5,14 @@
   mu(v_s) is the same model at the sliding speeds v_s = s V;
 * ``wet`` rows: the model with :class:`persson.effects.Wet` (the model's own ``wet`` effect when it has one, else
   ``Wet()`` at its defaults); dry rows use the model without any ``wet`` effect.
+* a model with :class:`persson.effects.PatchHeating`: every row, sliding ones included (``slip = 1``, the locked
+  wheel), goes through the contact patch with the local pressure and the background temperature along it
+  (:func:`persson.effects.patch.patch_friction`); this needs the contact.
 
 All sliding speeds a group needs (V of its sliding rows and s V of its slip rows) go into one
-``model.friction`` call; the slip rows then reuse those values through the callable form of ``mu_slip``.
+``model.friction`` call; the slip rows then reuse those values through the callable form of ``mu_slip``. With
+patch heating each wet/dry group takes two engine calls (the friction table at T0, then over the heated
+temperatures) for all its rows.
 """
 
 from __future__ import annotations
@@ -32,7 +37,8 @@ class Prediction:
     mu : ndarray
         Predicted friction coefficient per row.
     mu_local : ndarray
-        Local sliding friction mu(v_s) at each row's sliding speed (equals ``mu`` on sliding rows).
+        Local sliding friction mu(v_s) at each row's sliding speed, T0 and sigma0 (equals ``mu`` on sliding rows
+        unless the model has patch heating, which heats the locked wheel's patch too).
     converged : bool
         Whether every self-consistent iteration (flash temperature) converged.
     notes : tuple of str
@@ -101,6 +107,7 @@ class Predictor:
         self.measurements = m
         self.contact = contact
         self.n_calls = 0
+        self._patch_tables: dict = {}  # friction tables of patch heating, per wet/dry group
         # One engine call per wet/dry group: every distinct (sliding speed, temperature, pressure) of the rows
         # is one "speed" of that call (the engine takes a temperature and a pressure per speed).
         by_wet: dict[bool, list[int]] = {}
@@ -126,8 +133,18 @@ class Predictor:
             self.groups.append(_Group(wet=wet, idx=idx, points=points, inverse=inverse, slide=idx[s >= 1.0],
                                       sweeps=tuple(sweeps)))
 
-    def predict(self, model) -> Prediction:
-        """Predictions of ``model`` for every row."""
+    def predict(self, model, contact=None) -> Prediction:
+        """Predictions of ``model`` for every row (with ``contact`` instead of the predictor's, when given: e.g.
+        a refitted one)."""
+        if contact is not None and contact is not self.contact:
+            import copy
+
+            other = copy.copy(self)
+            other.contact = contact
+            try:
+                return other.predict(model)
+            finally:
+                self.n_calls = other.n_calls
         if not (hasattr(model, "friction") and hasattr(model, "effect_names")):
             raise InputError(f"model: expected a persson.Model, got {type(model).__name__}")
         m = self.measurements
@@ -145,6 +162,13 @@ class Predictor:
                 if dry is None:
                     dry = dry_model(model)
                 mg = dry
+            if "patch_heating" in mg.effect_names:
+                sol = self._patch(mg, g.idx, g.wet)
+                mu[g.idx] = sol.mu
+                mu_loc[g.idx] = sol.mu_local
+                notes.update(dict.fromkeys(sol.notes))
+                converged = converged and bool(sol.converged)
+                continue
             with warnings.catch_warnings(record=True) as caught:
                 warnings.simplefilter("always")
                 r = mg.friction(g.points[:, 0], temperature=g.points[:, 1], pressure=g.points[:, 2])
@@ -167,6 +191,23 @@ class Predictor:
                                           m.speed[sw.rows])
         return Prediction(mu=mu, mu_local=mu_loc, converged=converged, notes=tuple(notes))
 
+    def _patch(self, model, rows, key):
+        """Patch-heating predictions of ``rows`` (one table, two engine calls; the table is kept per wet/dry group
+        and reused while only the contact changes, e.g. in a fit of the contact stiffness)."""
+        from persson.effects.patch import patch_friction
+
+
+        if self.contact is None:
+            raise InputError("patch_heating: the model heats the contact patch, which needs the contact: give "
+                             "contact= (persson.slip.Contact) or a [contact] table in the case file")
+        m = self.measurements
+        sol = patch_friction(model, model.effect("patch_heating"), self.contact, m.slip[rows], m.speed[rows],
+                             m.temperature[rows], m.pressure[rows], tables=self._patch_tables.setdefault(key, {}))
+        self.n_calls += sol.engine_calls
+        if not np.all(np.isfinite(sol.mu)):
+            raise InputError("model: non-finite friction along the contact patch")
+        return sol
+
     def _brush(self, sw, speeds, mu_s, slip, V):
         """mu(slip, V) of the brush model for the rows of one (T, p) slip sweep, from precomputed mu(v_s)."""
         from persson.slip import mu_slip
@@ -188,8 +229,18 @@ class Predictor:
 
     # ---- curves for plots -----------------------------------------------------------------------------------
     def curve(self, model, speeds, T: float, p: float, wet: bool) -> np.ndarray:
-        """Sliding friction of ``model`` at ``speeds`` (one call), dry or wet."""
+        """Sliding friction of ``model`` at ``speeds`` (one call), dry or wet (with patch heating and a contact:
+        the locked wheel's patch, as on sliding rows)."""
         mg = wet_model(model) if wet else dry_model(model)
+        if "patch_heating" in mg.effect_names and self.contact is not None:
+            from persson.effects.patch import patch_friction
+
+            v = np.atleast_1d(np.asarray(speeds, dtype=float))
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                sol = patch_friction(mg, mg.effect("patch_heating"), self.contact, np.ones(v.size), v, T, p)
+            self.n_calls += sol.engine_calls
+            return sol.mu
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             r = mg.friction(np.asarray(speeds, dtype=float), temperature=T, pressure=p)

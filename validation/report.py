@@ -25,6 +25,9 @@ h1{font-size:1.6em;border-bottom:2px solid #444}h2{margin-top:2em;border-bottom:
 table{border-collapse:collapse;margin:0.6em 0;font-size:0.88em}
 th,td{border:1px solid #ccc;padding:3px 8px;text-align:right}th{background:#f0f0f0}
 td.l,th.l{text-align:left}.sig{background:#e3f6e3}.bad{color:#a00}.note{color:#555;font-size:0.9em}
+.verdict{font-size:1.15em;padding:0.7em 1em;margin:1em 0;border-radius:4px;border:2px solid}
+.v-explained,.v-nothing_missing{background:#e8f6e8;border-color:#3a3}.v-partly_explained{background:#fff6e0;
+border-color:#c90}.v-unexplained{background:#fdeaea;border-color:#c33}
 img{max-width:100%;border:1px solid #ddd;margin:0.5em 0}p.expl{white-space:pre-wrap;background:#fafafa;
 border-left:4px solid #4a7;padding:0.6em 1em}
 """
@@ -83,6 +86,9 @@ def render_report(items, title: str | None = None) -> str:
             f"<p class='note'>Generated {_e(_dt.datetime.now().isoformat(timespec='seconds'))} by "
             f"persson-friction {_e(_version())}. Residual = measured - predicted (positive: the model predicts "
             "too little friction).</p>"]
+    banner = _verdict_banner(items)
+    if banner:
+        body.append(banner)
     pending_steps: list = []
     for it in items + [None]:
         if isinstance(it, Step):
@@ -179,7 +185,9 @@ def _case_html(case) -> str:
 
 def _comparison_html(cmp) -> str:
     out = [f"<h2>Comparison: {_e(cmp.name or 'model')} vs measurements</h2>"]
-    out.append(_table(["effects", "rows", "RMSE", "bias", "max |residual|", "chi2 / n"],
+    out.append("<p class='note'>The model with its parameters as given in the case (nothing refitted); the "
+               "diagnosis below refits the baseline's fitted parameters first.</p>")
+    out.append(_table(["effects", "rows", "RMSE (as given)", "bias", "max |residual|", "chi2 / n"],
                       [[_e(", ".join(cmp.effects) or "none"), _num(cmp.n, "d"), _num(cmp.rmse), _num(cmp.bias, "+.4g"),
                         _num(cmp.max_abs), _num(None if cmp.chi2 is None else cmp.chi2 / cmp.n)]], left=(0,)))
     for note in cmp.notes:
@@ -201,22 +209,38 @@ def _comparison_html(cmp) -> str:
 
 def _diagnosis_html(dx) -> str:
     b = dx.baseline
-    out = [f"<h2>Diagnosis: which effect is missing{(' (' + _e(dx.name) + ')') if dx.name else ''}</h2>"]
-    out.append(f"<p>Baseline: {_e(', '.join(b.effects) or 'hysteresis only')}; RMSE {_num(b.rmse)}"
-               + (f"; refitted {_e(', '.join(f'{k} = {v:.4g}' for k, v in b.fitted.items()))}" if b.fitted else "")
-               + f"; BIC {_num(b.bic, '.1f')}. Rule: {_e(dx.rule)}.</p>")
+    v = dx.verdict
+    ne = dx.noise_estimate
+    out = [f"<h2>Diagnosis: which effect is missing{(' (' + _e(dx.name) + ')') if dx.name else ''}</h2>",
+           f"<div class='verdict v-{_e(v.verdict)}'>{_e(v.headline)}</div>",
+           f"<p><b>Noise</b>: {_num(dx.noise)} in mu, from <b>{_e(ne.source)}</b>: {_e(ne.description)}.</p>"]
+    out.append(_table(["baseline", "RMSE as given", "RMSE refitted", "BIC", "lack of fit", "refitted parameters"],
+                      [[_e(", ".join(b.effects) or "hysteresis only"), _num(b.rmse_given), _num(b.rmse),
+                        _num(b.bic, ".1f"), _e(b.lack.describe()), _estimates_html(b.estimates)]],
+                      left=(0, 4, 5)))
+    out.append(f"<p class='note'>Rule: {_e(dx.rule)}. A candidate is plausible when no fitted parameter sits on "
+               "a search bound or outside its declared plausible range; only a significant and plausible "
+               "candidate can explain the data. Parameters: value &plusmn; standard error, or a 68 % interval "
+               "(profile likelihood where the quadratic approximation fails).</p>")
     rows, classes = [], []
     for i, c in enumerate(dx.candidates, 1):
-        par = ", ".join(f"{k} = {v:.4g}" for k, v in c.parameters.items() if k in c.free) or "-"
         if c.status != "ok":
-            rows.append([_num(i, "d"), _e(c.effect), "-", "-", "-", "-", "-", "no", _e(c.status)])
-        else:
-            rows.append([_num(i, "d"), _e(c.effect), _num(c.rmse), _num(c.delta_bic, "+.1f"), _num(c.p_value, ".2g"),
-                         _num(c.score_z, "+.1f"), _num(100 * c.explained, ".0f") + " %",
-                         "YES" if c.significant else "no", _e(par)])
-        classes.append("sig" if c.significant else "")
-    out.append(_table(["rank", "effect", "RMSE", "delta BIC", "p", "score z", "explained", "significant",
-                       "refitted parameters"], rows, left=(1, 8), classes=classes))
+            rows.append([_num(i, "d"), _e(c.effect), "-", "-", "-", "-", "-", "no", "-", _e(c.status)])
+            classes.append("")
+            continue
+        par = _estimates_html(c.estimates)
+        if c.placeholders:
+            par += "<br><span class='note'>kept: " + _e(", ".join(f"{k} = {t}" for k, t in c.placeholders.items())) \
+                + "</span>"
+        if c.notes:
+            par += "<br><span class='note'>fit notes: " + _e("; ".join(c.notes)) + "</span>"
+        rows.append([_num(i, "d"), _e(c.effect), _num(c.rmse), _num(c.delta_bic, "+.1f"), _num(c.p_value, ".2g"),
+                     _num(c.lack.p_value, ".2g"), _num(100 * c.explained, ".0f") + " %",
+                     "YES" if c.significant else "no",
+                     "yes" if c.plausible else "<span class='bad'>NO</span>: " + _e("; ".join(c.issues)), par])
+        classes.append("sig" if c.credible else "")
+    out.append(_table(["rank", "effect", "RMSE", "delta BIC", "p", "lack-of-fit p", "explained", "significant",
+                       "plausible", "refitted parameters"], rows, left=(1, 8, 9), classes=classes))
     out.append(f"<p class='expl'>{_e(dx.explanation)}</p>")
     for cl in dx.clusters:
         out.append(f"<h4>Ambiguity cluster: {_e(', '.join(cl.effects))}</h4>")
@@ -232,14 +256,42 @@ def _diagnosis_html(dx) -> str:
     return "\n".join(out)
 
 
+def _estimates_html(estimates) -> str:
+    if not estimates:
+        return "-"
+    parts = []
+    for e in estimates:
+        txt = _e(e.describe())
+        parts.append(f"<span class='bad'>{txt}</span>" if e.issue else txt)
+    return "<br>".join(parts)
+
+
+def _verdict_banner(items) -> str:
+    """The verdict first: the improvement loop's when there is one, else the first diagnosis'."""
+    from .diagnose import Diagnosis
+    from .improve import Improvement
+
+    imp = next((i for i in items if isinstance(i, Improvement)), None)
+    if imp is not None and imp.verdict:
+        added = ", ".join(imp.added) or "nothing"
+        text = (f"Verdict: {imp.verdict.replace('_', ' ').upper()} -- effects added: {added}; RMSE "
+                f"{imp.rmse[0]:.4g} -> {imp.rmse[-1]:.4g} against a noise of {imp.noise:.3g} "
+                f"({imp.noise_source}). {imp.stopped}.")
+        return f"<div class='verdict v-{_e(imp.verdict)}'>{_e(text)}</div>"
+    dx = next((i for i in items if isinstance(i, Diagnosis)), None)
+    if dx is not None and dx.verdict is not None:
+        return f"<div class='verdict v-{_e(dx.verdict.verdict)}'>{_e(dx.verdict.headline)}</div>"
+    return ""
+
+
 def _steps_table(steps) -> str:
     rows = []
     for s in steps:
-        par = "; ".join(f"{e}: " + ", ".join(f"{k} = {v:.4g}" for k, v in p.items())
-                        for e, p in s.parameters.items() if isinstance(p, dict) and p)
         rows.append([_num(s.index, "d"), _e(s.added or "(baseline)"), _e(", ".join(s.effects) or "none"),
-                     _num(s.rmse), _num(s.delta_bic, "+.1f"), _e(par or "-")])
-    return _table(["step", "added", "effects", "RMSE", "delta BIC", "parameters"], rows, left=(1, 2, 5))
+                     _num(s.rmse), _num(s.delta_bic, "+.1f"), _num(s.lack_of_fit_p, ".2g"),
+                     _estimates_html(s.estimates)])
+    return _table(["step", "added", "effects", "RMSE (refitted)", "delta BIC", "lack-of-fit p",
+                   "fitted parameters"], rows, left=(1, 2, 6))
 
 
 def _improvement_html(imp) -> str:
@@ -247,7 +299,8 @@ def _improvement_html(imp) -> str:
            "<p class='note'>Each step: the model with every effect so far, its fitted parameters refitted to the "
            "measurements (step 0 is the baseline with its <code>[model] fit</code> parameters refitted).</p>"]
     out.append(_steps_table(imp.steps))
-    out.append(f"<p>Noise level {_num(imp.noise)}; stopped: {_e(imp.stopped)}.</p>")
+    out.append(f"<p>Verdict: <b>{_e(imp.verdict)}</b>; noise level {_num(imp.noise)} (from {_e(imp.noise_source)}); "
+               f"stopped: {_e(imp.stopped)}.</p>")
     for name, fig in imp.figures().items():
         out.append(_img(fig, f"improvement {name}"))
     if len(imp.steps) > 1:

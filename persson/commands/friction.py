@@ -6,43 +6,62 @@ from pathlib import Path
 
 import numpy as np
 
+from ._common import (CASE_HELP, add_effects, add_force, add_quiet, condition_flags, effect_scripts, print_notes,
+                      status_line)
+
 NAME = "friction"
-HELP = "compute mu(v), A/A0(v) for a case.toml; writes CSV (and PNG with --plot)"
+HELP = "compute mu(v), A/A0(v) for a case; writes CSV (and PNG with --plot)"
 
 
 def add_arguments(p):
-    p.add_argument("case", help="case.toml (or its folder)")
+    p.add_argument("case", help=CASE_HELP)
     p.add_argument("-o", "--output", default=None, help="output CSV (default: <case name>_friction.csv here)")
     p.add_argument("--temperature", type=float, default=None, help="background temperature, deg C")
     p.add_argument("--pressure", type=float, default=None, help="nominal pressure, Pa")
     p.add_argument("--speeds", default=None, help="min:max:n log-spaced sliding speeds, m/s")
     p.add_argument("--plot", action="store_true", help="also write a PNG plot beside the CSV")
+    add_force(p)
+    add_effects(p)
+    add_quiet(p)
 
 
 def run(args) -> int:
-    from ..case import read_case
+    from ..case import parse_case, read_case
     from ..errors import InputError
-    from ..io import write_csv
+    from ..io import Outputs, write_csv
 
-    case = read_case(args.case)
-    speeds = case.speeds
+    scripts = effect_scripts(args)
+    T_flag, p_flag = condition_flags(args)
+    speeds = None
     if args.speeds:
         try:
             lo, hi, n = args.speeds.split(":")
             speeds = np.geomspace(float(lo), float(hi), int(n))
         except ValueError:
             raise InputError(f"--speeds: expected min:max:n, got {args.speeds!r}") from None
-    T = case.temperature if args.temperature is None else args.temperature
-    p = case.pressure if args.pressure is None else args.pressure
-    r = case.model.friction(speeds, temperature=T, pressure=p)
+        if not (np.all(np.isfinite(speeds)) and np.all(speeds > 0)):
+            raise InputError(f"--speeds: expected speeds > 0 m/s, got {args.speeds!r}")
+    case = parse_case(args.case)
     out = Path(args.output) if args.output else Path(f"{case.name}_friction.csv")
-    comments = (f"case {case.path}", f"temperature_C={T}", f"pressure_Pa={p}",
-                f"effects={','.join(r.effects) or 'none'}", *r.notes)
-    write_csv(out, r.as_table(), comments=comments)
-    print(f"wrote {out.resolve()}")
-    if args.plot:
-        from ..plots import plot_friction, save_figure
+    status = status_line(args, NAME)
+    with Outputs(f"persson {NAME}", inputs=case.inputs + scripts, force=args.force) as outs:
+        csv = outs.file(out, "-o")
+        png = outs.file(out.with_suffix(".png"), "--plot") if args.plot else None
+        with status.phase(f"reading {case.path.name}"):
+            spec = read_case(case.path, progress=status)
+        print_notes(spec.notes)
+        speeds = spec.speeds if speeds is None else speeds
+        T = spec.temperature if T_flag is None else T_flag
+        p = spec.pressure if p_flag is None else p_flag
+        with status.phase(f"friction at {speeds.size} speeds"):
+            r = spec.model.friction(speeds, temperature=T, pressure=p)
+        comments = (f"case {spec.path}", f"temperature_C={T}", f"pressure_Pa={p}",
+                    f"effects={','.join(r.effects) or 'none'}", *r.notes)
+        write_csv(csv, r.as_table(), comments=comments)
+        if png is not None:
+            from ..plots import plot_friction, save_figure
 
-        png = save_figure(plot_friction(r, title=case.name), out.with_suffix(".png"))
-        print(f"wrote {png.resolve()}")
+            save_figure(plot_friction(r, title=spec.name), png)
+    for path in outs.written:
+        print(f"wrote {path.resolve()}")
     return 0

@@ -5,8 +5,11 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
+from ._common import (CASE_HELP, add_effects, add_force, add_quiet, condition_flags, effect_scripts, print_notes,
+                      status_line)
+
 NAME = "sweep"
-HELP = ("friction by length-scale band and/or over a parameter grid for a case.toml; writes a CSV with one row "
+HELP = ("friction by length-scale band and/or over a parameter grid for a case; writes a CSV with one row "
         "per point (serial, local processes or a Dask cluster)")
 
 _EPILOG = """\
@@ -15,6 +18,10 @@ examples:
   persson sweep case.toml --param surface.q1=1e5:1e7:5:log --param temperature=0,20,40 --speeds 1e-3:1:7
   persson sweep case.toml --bands continuous --speeds 1.0 --plot
   persson sweep case.toml --param adhesion.tau_f0=1e6:4e6:4 --scheduler tcp://scheduler:8786
+  persson sweep example --bands decades -o example_bands.csv
+
+An existing output is overwritten only with --force; Ctrl-C keeps it and writes the finished rows to
+<output>.partial.csv beside it.
 
 values: lo:hi:n (linear), lo:hi:n:log (log-spaced), v1,v2,... or a single v.
 parameters: speed, temperature, pressure, nu, gamma, grid.<field>, surface.<name> (hurst, hrms, q0, q1, qL, C0),
@@ -27,7 +34,7 @@ def add_arguments(p):
 
     p.formatter_class = argparse.RawDescriptionHelpFormatter
     p.epilog = _EPILOG
-    p.add_argument("case", help="case.toml (or its folder)")
+    p.add_argument("case", help=CASE_HELP)
     p.add_argument("--bands", default=None,
                    help="length-scale bands: decades, linear_q, linear_length, continuous, or edges q0,q1,... "
                         "in rad/m")
@@ -51,21 +58,31 @@ def add_arguments(p):
     g.add_argument("--progress", dest="progress", action="store_true", default=None,
                    help="always show the progress bar (default: on sweeps longer than 2 s)")
     g.add_argument("--no-progress", dest="progress", action="store_false", help="never show the progress bar")
+    add_force(p)
+    add_effects(p)
+    add_quiet(p)
 
 
 def run(args) -> int:
-    from ..case import read_case
+    from .._checks import plausible_pressure, plausible_temperature
+    from ..case import parse_case, read_case
     from ..errors import InputError
+    from ..io import Outputs, check_output
     from .. import sweeps
 
-    case = read_case(args.case)
+    scripts = effect_scripts(args)
+    T_flag, p_flag = condition_flags(args)
     params = {}
     for spec in args.param:
         name, values = sweeps.parse_param(spec, "--param")
         if name in params:
             raise InputError(f"--param {spec!r}: parameter {name!r} given twice")
+        if name == "pressure":
+            plausible_pressure(values, f"--param {spec!r} (Pa)", strict=True)
+        elif name == "temperature":
+            plausible_temperature(values, f"--param {spec!r} (deg C)", strict=True)
         params[name] = values
-    speeds = case.speeds if args.speeds is None else _speeds(args.speeds)
+    speeds = None if args.speeds is None else _speeds(args.speeds)
     bands = None
     if args.bands is not None:
         text = args.bands.strip()
@@ -78,35 +95,49 @@ def run(args) -> int:
             bands = text
     elif args.n_bands is not None or args.band_mode is not None:
         raise InputError("--n-bands / --band-mode: give --bands too")
-    T = case.temperature if args.temperature is None else args.temperature
-    p = case.pressure if args.pressure is None else args.pressure
+    case = parse_case(args.case)
     out = Path(args.output) if args.output else Path(f"{case.name}_sweep.csv")
-    try:
-        table = sweeps.grid(case.model, params, speed=speeds, temperature=T, pressure=p, bands=bands,
-                            n_bands=args.n_bands, band_mode=args.band_mode, scheduler=args.scheduler,
-                            workers=args.workers, progress=args.progress, checkpoint=args.checkpoint)
-    except sweeps.SweepInterrupted as exc:
-        path = exc.table.with_comments(f"case {case.path}", *exc.table.comments).to_csv(out) \
-            if len(exc.table) else None
-        print(f"persson sweep: interrupted after {exc.done} of {exc.total} tasks", file=sys.stderr)
-        if path is not None:
-            print(f"wrote {path.resolve()} (partial: {len(exc.table)} rows)")
-        return 130
-    table = table.with_comments(f"case {case.path}", *table.comments)
-    path = table.to_csv(out)
-    print(f"wrote {path.resolve()} ({len(table)} rows)")
+    inputs = case.inputs + scripts
+    status = status_line(args, NAME)
+    progress = False if args.quiet and args.progress is None else args.progress
+    with Outputs(f"persson {NAME}", inputs=inputs, force=args.force) as outs:
+        csv = outs.file(out, "-o")
+        png = outs.file(out.with_suffix(".png"), "--plot") if args.plot else None
+        if args.checkpoint:
+            # the checkpoint is rewritten as the sweep runs: it is the user's running copy, not staged
+            check_output(args.checkpoint, inputs=(*inputs, out), force=args.force, what="--checkpoint")
+        partial = outs.partial_for(out)
+        with status.phase(f"reading {case.path.name}"):
+            spec = read_case(case.path, progress=status)
+        print_notes(spec.notes)
+        speeds = spec.speeds if speeds is None else speeds
+        T = spec.temperature if T_flag is None else T_flag
+        p = spec.pressure if p_flag is None else p_flag
+        try:
+            table = sweeps.grid(spec.model, params, speed=speeds, temperature=T, pressure=p, bands=bands,
+                                n_bands=args.n_bands, band_mode=args.band_mode, scheduler=args.scheduler,
+                                workers=args.workers, progress=progress, checkpoint=args.checkpoint,
+                                partial=partial)
+        except sweeps.SweepInterrupted as exc:
+            print(f"persson {NAME}: stopped after {exc.done} of {exc.total} tasks ({len(exc.table)} rows)",
+                  file=sys.stderr)
+            raise
+        table = table.with_comments(f"case {spec.path}", *table.comments)
+        table.to_csv(csv)
+        if png is not None:
+            from ..views import plot_bands, plot_sweep, save_figure
+
+            if bands is not None:
+                fig = plot_bands(table, title=spec.name)
+            else:
+                x = next((n for n in params if n != "speed"), "speed")
+                fig = plot_sweep(table, x=x, title=spec.name)
+            save_figure(fig, png)
+    print(f"wrote {outs.written[0].resolve()} ({len(table)} rows)")
+    for path in outs.written[1:]:
+        print(f"wrote {path.resolve()}")
     if args.checkpoint:
         print(f"wrote {Path(args.checkpoint).resolve()} (checkpoint)")
-    if args.plot:
-        from ..views import plot_bands, plot_sweep, save_figure
-
-        if bands is not None:
-            fig = plot_bands(table, title=case.name)
-        else:
-            x = next((n for n in params if n != "speed"), "speed")
-            fig = plot_sweep(table, x=x, title=case.name)
-        png = save_figure(fig, out.with_suffix(".png"))
-        print(f"wrote {png.resolve()}")
     return 0
 
 

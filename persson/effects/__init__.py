@@ -1,14 +1,16 @@
 """Effects: physics switched on top of the baseline (hysteresis friction and contact area).
 
 Built in: :class:`FlashTemperature` (``flash_temperature``), :class:`Adhesion` (``adhesion``),
-:class:`Microtexture` (``microtexture``), :class:`StrainSoftening` (``strain_softening``), :class:`Wet` (``wet``).
+:class:`Microtexture` (``microtexture``), :class:`StrainSoftening` (``strain_softening``), :class:`Wet` (``wet``),
+:class:`PatchHeating` (``patch_heating``: temperature and pressure along the contact patch of a slipping wheel).
 See :mod:`persson.effects.base` for how to write one.
 """
 
 from .base import Conditions, Effect, Parameter, SolverState, available, effect_class, get
 from .builtin import Adhesion, FlashTemperature, Microtexture, StrainSoftening, Wet
+from .patch import PatchHeating
 
 __all__ = [
     "Effect", "Parameter", "Conditions", "SolverState", "available", "effect_class", "get",
-    "FlashTemperature", "Adhesion", "Microtexture", "StrainSoftening", "Wet",
+    "FlashTemperature", "Adhesion", "Microtexture", "StrainSoftening", "Wet", "PatchHeating",
 ]

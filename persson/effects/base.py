@@ -67,6 +67,22 @@ class Parameter:
         One-line meaning.
     log_scale : bool
         Whether fits should vary the parameter in log space (positive, spans decades).
+    plausible : (float, float) or callable, optional
+        Physically plausible range, narrower than ``bounds`` where the physics says so (e.g. a frictional shear
+        stress of at most 10 MPa). A callable receives the measured ranges of a data set (an object with
+        ``speed``, ``shifted_speed``, ``temperature`` and ``pressure``, each a ``(min, max)`` pair; the shifted
+        speed is the sliding speed times a_T(T), i.e. referred to the material's reference temperature) and
+        returns ``(lo, hi)``. None (default): ``bounds``. A fitted value outside it is flagged as implausible.
+    physical_limits : tuple of float
+        The bounds that are physical limits (e.g. 0 for "none of it", 1 for "a factor of one"): a fit that ends
+        there has found a legitimate optimum. Any other bound is only the edge of the range searched.
+    sentinel : float, optional
+        A placeholder value with a special meaning (e.g. 0 for "computed automatically"); it is never varied by
+        a fit and never reported as a fitted value.
+    sentinel_doc : str
+        What the placeholder means, e.g. ``"pi / q_m"``.
+    fittable : bool
+        Whether a fit may vary the parameter (default True).
     """
 
     name: str
@@ -75,6 +91,26 @@ class Parameter:
     unit: str
     doc: str
     log_scale: bool = False
+    plausible: Any = None
+    physical_limits: tuple = ()
+    sentinel: float | None = None
+    sentinel_doc: str = ""
+    fittable: bool = True
+
+    def plausible_range(self, data_range=None) -> tuple[float, float]:
+        """The plausible ``(lo, hi)``: ``plausible`` (evaluated on ``data_range`` when callable), else ``bounds``.
+
+        A callable ``plausible`` without a ``data_range`` gives the bounds.
+        """
+        p = self.plausible
+        if p is None or (callable(p) and data_range is None):
+            return float(self.bounds[0]), float(self.bounds[1])
+        lo, hi = p(data_range) if callable(p) else p
+        return float(lo), float(hi)
+
+    def is_physical_limit(self, value: float) -> bool:
+        """Whether ``value`` is one of the ``physical_limits`` (to 1e-9 relative)."""
+        return any(abs(float(value) - float(b)) <= 1e-9 * max(1.0, abs(float(b))) for b in self.physical_limits)
 
 
 @dataclass(frozen=True)
@@ -195,6 +231,16 @@ class Effect:
 
     def friction_term(self, state: SolverState):
         """Return an additional friction coefficient per speed (shape (n_speed,)) or None."""
+        return None
+
+    def modulus_factors(self, slope, temperature):
+        r"""Factors (f, g) on E' and E'' at each length scale, or None (the default: no per-scale modulus).
+
+        ``slope`` is the rms slope of the surface up to each scale, :math:`\xi(q)` (so the local strain of a
+        scale can be estimated from it) and ``temperature`` the temperature there (deg C); both are arrays that
+        broadcast together, and f, g must have their broadcast shape. The solver tabulates them once per call
+        and multiplies E' by f and E'' by g inside G(q), the friction integral and the flash temperature.
+        """
         return None
 
     def transform_result(self, result):

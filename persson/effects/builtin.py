@@ -6,23 +6,22 @@ fields that diagnosis refits. Formulas cite their sources.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import warnings
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.special import erfcx
 
 from frictioncite import doi
 
-from .. import _kernels
 from ..errors import ConvergenceWarning, InputError
 from .base import Conditions, Effect, Parameter, SolverState
 
 __all__ = ["FlashTemperature", "Adhesion", "Microtexture", "StrainSoftening", "Wet"]
 
 
-@doi("10.1088/0953-8984/18/32/025")
+@doi("10.1088/0953-8984/18/32/025", "arxiv:2602.22078")
 @dataclass(frozen=True)
 class FlashTemperature(Effect):
     r"""Persson's multiscale flash temperature, solved self-consistently with :math:`E(\omega, T_q)`.
@@ -38,10 +37,19 @@ class FlashTemperature(Effect):
     the macro-asperity contact regions, of area fraction P(q_m), during the contact time t0 = d / v of a
     macro-asperity contact of diameter d. Thermal properties come from ``material.thermal``.
 
+    The macro-asperity geometry is a property of the surface, not of the scan: the macro-asperity contacts are
+    those seen at the scale of the largest asperities, the PSD's roll-off (the aggregate size of a road), and
+    their diameter is nearly independent of the modulus and the pressure for a large nominal contact
+    (Persson & Miyashita, arXiv:2602.22078 (2026)). So q_m = ``macro_scale_ratio`` times the roll-off
+    wavevector of the PSD (``SelfAffine.q0``, ``PSD.q_rolloff``; the first q of a table that declares no
+    roll-off, with a note in the result) and d = pi / q_m (half its wavelength) unless ``contact_diameter`` is
+    given. On a road with a 5 mm roll-off that is d = 1.25 mm; a scan 0.4 m long no longer makes it 10 cm.
+    A larger q_m (smaller, hotter hot spots of shorter contact time) lowers the friction at high speed.
+
     Parameters
     ----------
     macro_scale_ratio : float
-        q_m / q0, the magnification at which the macro-asperity contact regions are defined (default 2).
+        q_m / q_roll-off, the magnification at which the macro-asperity contact regions are defined (default 2).
     contact_diameter : float
         Diameter d of a macro-asperity contact region, m; 0 (default) means pi / q_m (half the wavelength).
     tol : float
@@ -53,9 +61,11 @@ class FlashTemperature(Effect):
     name = "flash_temperature"
     solver_role = "temperature"
     parameters = (
-        Parameter("macro_scale_ratio", 2.0, (1.0, 100.0), "1", "q_m / q0 of the macro-asperity contact regions",
-                  log_scale=True),
-        Parameter("contact_diameter", 0.0, (0.0, 1.0), "m", "macro-asperity contact diameter (0: pi / q_m)"),
+        Parameter("macro_scale_ratio", 2.0, (1.0, 1000.0), "1",
+                  "q_m / q_roll-off of the macro-asperity contact regions",
+                  log_scale=True, physical_limits=(1.0,)),
+        Parameter("contact_diameter", 0.0, (0.0, 1.0), "m", "macro-asperity contact diameter (0: pi / q_m)",
+                  sentinel=0.0, sentinel_doc="pi / q_m", fittable=False),
     )
     macro_scale_ratio: float = 2.0
     contact_diameter: float = 0.0
@@ -69,44 +79,51 @@ class FlashTemperature(Effect):
         if not (isinstance(self.max_iter, (int, np.integer)) and self.max_iter >= 1):
             raise InputError(f"flash_temperature.max_iter: expected a positive integer, got {self.max_iter!r}")
 
-    def solve_temperature(self, *, q, C, lq10, lv10, q4C, wq, lcphi, cphi, wphi, table, shift_table, scale,
-                          gamma, nu, conditions: Conditions, material, out, solved_type):
-        """Run the self-consistent solver (called by the model; see :func:`persson._kernels.flash_kernel`)."""
+    def solve_temperature(self, *, prep, conditions: Conditions, material):
+        """Run the self-consistent solver (called by the model; see :func:`persson.solver.run_flash`)."""
+        from .. import solver
+
         thermal = getattr(material, "thermal", None)
         if thermal is None:
             raise InputError("flash_temperature: the material has no thermal properties (material.thermal)")
         if not hasattr(material, "log10_aT"):
             raise InputError("flash_temperature: the material has no temperature dependence (log10_aT); "
                              "the flash temperature would not change the friction")
-        G, P, loss, dmu, mu = out
-        v = 10.0**lv10
-        q_m = self.macro_scale_ratio * q[0]
-        pos = float(np.interp(math.log(q_m), np.log(q), np.arange(q.size)))  # fractional node index of q_m
-        i_m = min(int(pos), q.size - 1)
-        f_m = pos - i_m
+        q = prep.q
+        q_roll = _rolloff(prep.surface)
+        notes = ()
+        if q_roll is None or not q[0] <= q_roll < q[-1]:
+            q_roll = q[0]
+            notes = (f"flash temperature: the PSD declares no roll-off; the macro-asperity scale q_m is "
+                     f"{self.macro_scale_ratio:g} x its first q ({q[0]:.4g} rad/m): give the PSD's q_rolloff or "
+                     "FlashTemperature(contact_diameter=...)",)
+        q_m = min(self.macro_scale_ratio * q_roll, q[-1])
         d = self.contact_diameter if self.contact_diameter > 0 else math.pi / q_m
         D = thermal.diffusivity
-        a = D * d / v
-        EX = erfcx(2.0 * q[None, :] * np.sqrt(a)[:, None])
-        pressure = np.broadcast_to(np.asarray(conditions.pressure, dtype=float), v.shape)
-        heat_factor = np.ascontiguousarray(pressure / thermal.heat_capacity)
-        T0 = np.ascontiguousarray(np.broadcast_to(np.asarray(conditions.temperature, dtype=float), v.shape))
-        nv, nq = G.shape
-        T_q = np.empty((nv, nq))
-        iters = np.zeros(nv, dtype=np.int64)
-        res = np.zeros(nv)
-        _kernels.flash_kernel(q, lq10, lv10, v, q4C, wq, lcphi, cphi, wphi, table.lw0, 1.0 / table.dlw,
-                              table.ln_re, table.ln_im, scale, gamma, T0, shift_table.T_lo,
-                              1.0 / shift_table.dT, shift_table.shift, shift_table.vshift, EX, a, D, heat_factor,
-                              i_m, f_m, self.tol,
-                              int(self.max_iter), G, P, loss, dmu, mu, T_q, iters, res)
-        top = shift_table.T_hi
-        if np.any(T_q > top):
+        solved = solver.run_flash(prep, q_m=q_m, a_t0=D * d / prep.v, diffusivity=D,
+                                  heat_factor=prep.pressure / thermal.heat_capacity, tol=self.tol,
+                                  max_iter=int(self.max_iter))
+        top = prep.shift_table.T_hi
+        if np.any(solved.T_q > top):
             warnings.warn(f"flash temperature exceeds the tabulated range (T > {top:g} C); the modulus is "
                           "clamped there: raise GridSettings.max_temperature_rise", ConvergenceWarning,
                           stacklevel=4)
-        ok = res < self.tol
-        return solved_type(q, G, P, T_q, dmu, loss, mu, bool(ok.all()), ok, iters, res)
+        return dataclasses.replace(solved, notes=solved.notes + notes) if notes else solved
+
+
+def _rolloff(surface):
+    """The roll-off wavevector of a PSD (rad/m): ``q_rolloff`` of a table, ``q0`` of a self-affine model, looked
+    up through wrappers (``base``, ``surface``); None when not declared."""
+    for _ in range(8):
+        qr = getattr(surface, "q_rolloff", None)
+        if qr is not None:
+            return float(qr)
+        if hasattr(surface, "hurst") and hasattr(surface, "C0") and hasattr(surface, "q0"):
+            return float(surface.q0)
+        surface = getattr(surface, "base", None) or getattr(surface, "surface", None)
+        if surface is None:
+            return None
+    return None
 
 
 @doi("10.1088/0953-8984/17/1/R01")
@@ -123,6 +140,11 @@ class Adhesion(Effect):
     temperature at q1 (the flash temperature when that effect is on, else T0); a_T from the material.
     ``sigma0`` is the total nominal pressure. On a wet surface (:class:`Wet`) the term is zero.
 
+    ``v_ref`` is the sliding speed of the shear-stress peak at the temperature ``v_ref_temperature``: by default
+    the material's reference temperature (where a_T = 1), or any temperature of the user's choice, e.g. the test
+    temperature at which the peak was observed; the peak then lies at :math:`v_{ref}\, a_T(T_{ref,v})/a_T(T)`
+    at temperature T (time-temperature superposition of the shear-stress process, Grosch 1963).
+
     Parameters
     ----------
     tau_f0 : float
@@ -130,24 +152,43 @@ class Adhesion(Effect):
     c : float
         Width parameter of the log-normal speed dependence, 1/decade^2 (default 0.1).
     v_ref : float
-        Speed of the peak at the material's reference temperature, m/s (default 1e-2).
+        Speed of the peak at ``v_ref_temperature``, m/s (default 1e-2).
+    v_ref_temperature : float or None
+        Temperature of ``v_ref``, deg C; None (default) is the material's reference temperature.
     """
 
     name = "adhesion"
     term_kind = "adhesion"
     parameters = (
-        Parameter("tau_f0", 2.0e6, (0.0, 50.0e6), "Pa", "peak frictional shear stress in the real contact"),
-        Parameter("c", 0.1, (0.0, 2.0), "1/decade^2", "width of the log-normal speed dependence"),
+        # plausible: tau_f of rubber on rough and smooth substrates is of order 1-10 MPa (Persson et al. 2005,
+        # Sec. 8; Lorenz et al. 2015); a peak narrower than ~1.4 decades (c > 0.5) is not seen in those data; the
+        # peak must lie where the measurements can see it (measured sliding speeds times a_T, +- one decade)
+        Parameter("tau_f0", 2.0e6, (0.0, 50.0e6), "Pa", "peak frictional shear stress in the real contact",
+                  plausible=(0.0, 10.0e6), physical_limits=(0.0,)),
+        Parameter("c", 0.1, (0.0, 2.0), "1/decade^2", "width of the log-normal speed dependence",
+                  plausible=(0.0, 0.5), physical_limits=(0.0,)),
         Parameter("v_ref", 1.0e-2, (1e-12, 1e6), "m/s", "speed of the shear-stress peak at T_ref",
-                  log_scale=True),
+                  log_scale=True,
+                  plausible=lambda r: (r.shifted_speed[0] / 10.0, r.shifted_speed[1] * 10.0)),
     )
     tau_f0: float = 2.0e6
     c: float = 0.1
     v_ref: float = 1.0e-2
+    v_ref_temperature: float | None = None
+
+    def __post_init__(self):
+        super().__post_init__()
+        t = self.v_ref_temperature
+        if t is not None and (isinstance(t, bool) or not isinstance(t, (int, float, np.integer, np.floating))
+                              or not math.isfinite(t) or t < -273.15):
+            raise InputError(f"adhesion.v_ref_temperature: expected a temperature in deg C or None, got {t!r}")
 
     def shear_stress(self, speed, temperature, material) -> np.ndarray:
         """tau_f(v, T), Pa, for speeds (m/s) and temperatures (deg C) broadcast together."""
-        log_aT = material.log10_aT(temperature) if hasattr(material, "log10_aT") else 0.0
+        has_shift = hasattr(material, "log10_aT")
+        log_aT = material.log10_aT(temperature) if has_shift else 0.0
+        if has_shift and self.v_ref_temperature is not None:
+            log_aT = np.asarray(log_aT, dtype=float) - float(material.log10_aT(float(self.v_ref_temperature)))
         x = np.log10(np.asarray(speed, dtype=float)) + np.asarray(log_aT, dtype=float) - math.log10(self.v_ref)
         return self.tau_f0 * np.exp(-self.c * x * x)
 
@@ -180,9 +221,11 @@ class Microtexture(Effect):
 
     name = "microtexture"
     parameters = (
+        # plausible q1: the microtexture (wavelengths below 0.5 mm, ISO 13473-1) is kept, down to ~6 nm
         Parameter("q1", 1.0e7, (1.0e2, 1.0e10), "rad/m", "short-distance cut-off of the extrapolated tail",
-                  log_scale=True),
-        Parameter("hurst", 0.0, (0.0, 1.0), "1", "Hurst exponent of the tail (0: fitted)"),
+                  log_scale=True, plausible=(1.2e4, 1.0e9)),
+        Parameter("hurst", 0.0, (0.0, 1.0), "1", "Hurst exponent of the tail (0: fitted)",
+                  plausible=(0.5, 1.0), sentinel=0.0, sentinel_doc="fitted on the PSD's last decade"),
     )
     q1: float = 1.0e7
     hurst: float = 0.0
@@ -199,37 +242,77 @@ class Microtexture(Effect):
             raise InputError(f"microtexture: {exc}; give hurst= explicitly") from None
 
 
+@doi("10.1063/1.4919221")
 @dataclass(frozen=True)
 class StrainSoftening(Effect):
-    r"""Large-strain modulus: constant factors on E' and E'' (Payne effect of filled rubber).
+    r"""Large-strain modulus of filled rubber (Payne effect): constant factors, or measured factors at the local
+    strain of every length scale.
 
-    .. math:: E_{large}(\omega, T) = f\, E'(\omega, T) + i\, g\, E''(\omega, T)
+    With constant factors (the default)
 
-    In tread compounds the asperity-induced strains are of order unity, where the storage modulus of a filled
-    compound drops to a fraction of its small-strain value (Payne, J. Appl. Polym. Sci. 6, 57 (1962);
-    Lorenz, Persson et al., Eur. Phys. J. E 38, 1 (2015) use a strain-softened master curve for the
-    friction). The factors are taken constant over frequency.
+    .. math:: E_{large}(\omega, T) = f\, E'(\omega, T) + i\, g\, E''(\omega, T).
+
+    With measured strain sweeps (``factors``, a :class:`materials.StrainFactors` built by
+    :func:`materials.strain_factors`), each length scale sees the modulus at its own strain:
+
+    .. math:: E(\omega, T, q) = f(\varepsilon(q), T)\, E'(\omega, T) + i\, g(\varepsilon(q), T)\, E''(\omega, T),
+              \qquad \varepsilon(q) = \kappa\, \xi(q),\quad
+              \xi(q)^2 = 2\pi\int_{q_0}^{q} q'^3 C(q')\, dq'
+
+    inside G(q), the friction integral and the flash temperature (T the temperature of the scale). The strain
+    of the asperity contacts at magnification q grows with the rms slope :math:`\xi(q)` of the roughness up to
+    that scale; Persson's estimate takes half of it, :math:`\kappa = 1/2` (Persson, J. Phys.: Condens. Matter 18,
+    7789 (2006); the strain-sweep modulus of Lorenz, Oh, Nam, Jeon & Persson, J. Chem. Phys. 142, 194701
+    (2015)); :math:`\kappa` = ``strain_per_slope`` is a parameter (kappa = 1 takes the strain equal to the slope).
+    Payne, J. Appl. Polym. Sci. 6, 57 (1962) for the effect itself.
 
     Parameters
     ----------
     storage_factor : float
-        f, factor on E' (default 0.5).
+        f, constant factor on E' (default 0.5); not used when ``factors`` is given.
     loss_factor : float
-        g, factor on E'' (default 0.7).
+        g, constant factor on E'' (default 0.7); not used when ``factors`` is given.
+    factors : materials.StrainFactors, optional
+        Measured f(strain, T), g(strain, T): switches on the per-scale modulus.
+    strain_per_slope : float
+        kappa of the local strain kappa xi(q) (default 0.5).
     """
 
     name = "strain_softening"
     parameters = (
-        Parameter("storage_factor", 0.5, (0.05, 1.0), "1", "factor f on E' at large strain"),
-        Parameter("loss_factor", 0.7, (0.05, 1.5), "1", "factor g on E'' at large strain"),
+        # plausible: filled tread compounds keep 10-100 % of E' at large strain and 10-150 % of E'' (the loss
+        # modulus peaks at intermediate strain; Payne 1962)
+        Parameter("storage_factor", 0.5, (0.05, 1.0), "1", "factor f on E' at large strain",
+                  plausible=(0.1, 1.0), physical_limits=(1.0,)),
+        Parameter("loss_factor", 0.7, (0.05, 1.5), "1", "factor g on E'' at large strain",
+                  plausible=(0.1, 1.5), physical_limits=(1.0,)),
+        Parameter("strain_per_slope", 0.5, (0.05, 2.0), "1", "local strain per unit rms slope (measured factors)",
+                  plausible=(0.25, 1.0), fittable=False),
     )
     storage_factor: float = 0.5
     loss_factor: float = 0.7
+    factors: object = None
+    strain_per_slope: float = 0.5
+
+    def __post_init__(self):
+        super().__post_init__()
+        if self.factors is not None and not callable(getattr(self.factors, "factors", None)):
+            raise InputError("strain_softening.factors: expected materials.StrainFactors (with factors(strain, T)), "
+                             f"got {type(self.factors).__name__}")
 
     def transform_material(self, material, conditions):
+        if self.factors is not None:
+            return material
         import materials
 
         return materials.StrainSoftened(material, self.storage_factor, self.loss_factor)
+
+    def modulus_factors(self, slope, temperature):
+        if self.factors is None:
+            return None
+        f, g = self.factors.factors(self.strain_per_slope * np.asarray(slope, dtype=float),
+                                    np.asarray(temperature, dtype=float))
+        return np.asarray(f, dtype=float), np.asarray(g, dtype=float)
 
 
 @doi("10.1088/0953-8984/17/1/R01")
@@ -271,9 +354,12 @@ class Wet(Effect):
 
     name = "wet"
     parameters = (
-        Parameter("seal_fraction", 0.0, (0.0, 0.95), "1", "roughness fraction removed by sealed pools"),
-        Parameter("seal_q", 1.0e4, (1.0, 1.0e10), "rad/m", "wavevector above which sealing acts", log_scale=True),
-        Parameter("alpha", 1.0, (0.0, 100.0), "1", "empirical factor alpha of the bearing lift"),
+        Parameter("seal_fraction", 0.0, (0.0, 0.95), "1", "roughness fraction removed by sealed pools",
+                  physical_limits=(0.0,)),
+        Parameter("seal_q", 1.0e4, (1.0, 1.0e10), "rad/m", "wavevector above which sealing acts", log_scale=True,
+                  plausible=(1.0e2, 1.0e8)),
+        Parameter("alpha", 1.0, (0.0, 100.0), "1", "empirical factor alpha of the bearing lift",
+                  plausible=(0.0, 10.0), physical_limits=(0.0,)),
     )
     seal_fraction: float = 0.0
     seal_q: float = 1.0e4
@@ -329,6 +415,10 @@ class _Sealed:
     def C(self, q):
         q = np.asarray(q, dtype=float)
         return np.where(q > self.q_seal, 1.0 - self.fraction, 1.0) * self.base.C(q)
+
+    def breakpoints(self):
+        f = getattr(self.base, "breakpoints", None)
+        return np.append(np.asarray(f() if callable(f) else (), dtype=float), self.q_seal)
 
     def __getattr__(self, name):
         if name in ("q_r", "extrapolated", "source"):

@@ -1,4 +1,4 @@
-r"""Length-scale bands: which wavelengths of the surface carry the friction (DESIGN.md "Length-scale bands").
+r"""Length-scale bands: which wavelengths of the surface carry the friction.
 
 Two modes.
 
@@ -10,11 +10,11 @@ Two modes.
     with :math:`d\mu/d\ln q = \tfrac12 q^4 C(q) S(q) P(q) \int_0^{2\pi} d\phi \cos\phi\,
     \mathrm{Im}E(qv\cos\phi, T_q)/((1-\nu^2)\sigma_0)` the engine's per-scale integrand
     (:attr:`FrictionResult.dmu_dlnq`), where :math:`P(q)` and :math:`T_q` are those of the *whole* surface
-    (the band feels the contact already reduced by the longer wavelengths). The band integral here is the
-    exact integral, between the band edges (which need not be grid nodes), of the piecewise-quadratic
-    interpolant (in :math:`\ln q`) the engine's third-order rule integrates, scaled by :func:`load_share` (the
-    share of the load the asperities carry: 1 unless a water film lifts part of it). Bands that tile
-    :math:`[q_0, q_1]` therefore add up to the engine's hysteresis friction to rounding error.
+    (the band feels the contact already reduced by the longer wavelengths). The band integral is the difference
+    of the engine's cumulative friction (:attr:`FrictionResult.mu_cumulative`, the same exact contact-weight
+    quadrature as the total) between the band edges, which :func:`persson.sweeps.bands` makes wavevector nodes
+    (``GridSettings(extra_q=...)``). Bands that tile :math:`[q_0, q_1]` therefore add up to the engine's
+    hysteresis friction to rounding error.
 
 ``"separate"`` (mode b)
     Each band as a surface of its own: the PSD restricted to :math:`[q_a, q_b]` (zero outside,
@@ -156,37 +156,32 @@ def band_contributions(result, bands) -> np.ndarray:
     Parameters
     ----------
     result : FrictionResult
-        A result of :meth:`persson.Model.friction` (its ``q``, ``dmu_dlnq`` and ``mu_hysteresis``).
+        A result of :meth:`persson.Model.friction` (its ``q`` and ``mu_cumulative``).
     bands : array_like, shape (n_bands, 2)
         Band edges in rad/m inside ``[result.q[0], result.q[-1]]`` (see :func:`band_edges`).
 
     Returns
     -------
     ndarray, shape (n_speed, n_bands)
-        The integral of ``dmu_dlnq`` over each band (exact for the engine's piecewise-linear integrand in
-        ln q), times the load share ``mu_hysteresis / int dmu_dlnq d ln q`` (1 unless an effect lets a fluid
-        carry part of the load), so that bands tiling the range add up to ``result.mu_hysteresis``.
+        The engine's integral of d mu over each band: the difference of ``mu_cumulative`` between the band
+        edges. Edges on wavevector nodes give the engine's own interval sums (exact: pass the edges as
+        ``GridSettings(extra_q=...)``, as :func:`persson.sweeps.bands` does); between nodes the cumulative
+        friction is interpolated by a monotone cubic (PCHIP) in ln q. Bands tiling the range add up to
+        ``result.mu_hysteresis`` to rounding error either way.
     """
     q = np.asarray(result.q, dtype=float)
-    x = np.log(q)
-    f = np.atleast_2d(np.asarray(result.dmu_dlnq, dtype=float))
     pairs = check_bands(bands, (q[0], q[-1]))
-    F = _cumulative(x, f)
-    lo = _cumulative_at(x, f, F, np.log(pairs[:, 0]))
-    hi = _cumulative_at(x, f, F, np.log(pairs[:, 1]))
-    return (hi - lo) * load_share(result)[:, None]
+    F = np.atleast_2d(np.asarray(result.mu_cumulative, dtype=float))
+    x = np.log(q)
+    lo = _cumulative_at(x, F, np.log(pairs[:, 0]))
+    hi = _cumulative_at(x, F, np.log(pairs[:, 1]))
+    return hi - lo
 
 
 def load_share(result) -> np.ndarray:
-    """``mu_hysteresis`` over the engine-rule integral of ``dmu_dlnq`` per speed (1 where the integral is 0):
-    the share of the load the asperities carry (below 1 with the hydrodynamic lift of ``Wet``)."""
-    x = np.log(np.asarray(result.q, dtype=float))
-    f = np.atleast_2d(np.asarray(result.dmu_dlnq, dtype=float))
-    total = _cumulative(x, f)[:, -1]
-    mu = np.broadcast_to(np.atleast_1d(np.asarray(result.mu_hysteresis, dtype=float)), total.shape)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        share = np.where(total != 0.0, mu / np.where(total != 0.0, total, 1.0), 1.0)
-    return share
+    """Share of the load the asperities carry, per speed (below 1 with the hydrodynamic lift of ``Wet``)."""
+    n = np.atleast_1d(np.asarray(result.mu_hysteresis, dtype=float)).size
+    return np.broadcast_to(np.atleast_1d(np.asarray(result.load_share, dtype=float)), (n,)).copy()
 
 
 def interp_ln_q(result_q, values, q) -> np.ndarray:
@@ -235,6 +230,12 @@ class BandSurface:
     def q1(self) -> float:
         """End of the band, rad/m."""
         return self.q_high
+
+    def breakpoints(self) -> np.ndarray:
+        """The full surface's breakpoints inside the band, and the band edges (rad/m)."""
+        f = getattr(self.surface, "breakpoints", None)
+        b = np.asarray(f() if callable(f) else (), dtype=float)
+        return np.concatenate([b[(b > self.q_low) & (b < self.q_high)], [self.q_low, self.q_high]])
 
     def C(self, q):
         """The full surface's C(q) inside the band, 0 outside (m^4)."""
@@ -304,47 +305,20 @@ def _count(n, default: int) -> int:
     return int(n)
 
 
-def _cumulative(x: np.ndarray, f: np.ndarray) -> np.ndarray:
-    """Cumulative integral of f (n_speed, n_q) over x from x[0], with the engine's q rule (see _partial)."""
-    full = _partial(x, f, np.arange(x.size - 1), np.ones(x.size - 1))
-    return np.concatenate([np.zeros((f.shape[0], 1)), np.cumsum(full, axis=1)], axis=1)
+def _cumulative_at(x: np.ndarray, F: np.ndarray, xq: np.ndarray) -> np.ndarray:
+    """The cumulative friction F (n_speed, n_q) at ln q = xq: exact on nodes, PCHIP in between."""
+    from scipy.interpolate import PchipInterpolator
 
-
-def _cumulative_at(x: np.ndarray, f: np.ndarray, F: np.ndarray, xq: np.ndarray) -> np.ndarray:
-    """Integral from x[0] to xq of the engine's piecewise-quadratic interpolant of f -> (n_speed, len(xq))."""
     xq = np.clip(xq, x[0], x[-1])
-    i = np.clip(np.searchsorted(x, xq, side="right") - 1, 0, x.size - 2)
-    t = (xq - x[i]) / (x[i + 1] - x[i])
-    return F[:, i] + _partial(x, f, i, t)
-
-
-def _partial(x: np.ndarray, f: np.ndarray, i: np.ndarray, t: np.ndarray) -> np.ndarray:
-    r"""Integral of f over [x_i, x_i + t h] (0 <= t <= 1) of the quadratic the engine integrates on interval i.
-
-    The engine (:func:`persson._kernels._cumulative_quadratic`) integrates interval i with the quadratic through
-    nodes i, i+1, i+2 (i-1, i, i+1 for the last interval), falling back to the trapezoid rule where that would
-    give a negative integral. In Newton form on the nodes u = 0, 1, 2 with differences
-    :math:`\Delta_1 = f_1 - f_0`, :math:`\Delta_2 = f_2 - 2 f_1 + f_0`:
-    :math:`\int_0^{u} p = h [f_0 u + \Delta_1 u^2/2 + \Delta_2 (u^3/3 - u^2/2)/2]`, which at u = 1 gives the
-    engine's h (5 f_0 + 8 f_1 - f_2)/12. Bands that tile the q range thus add up to the engine's integral.
-    """
-    n = x.size
-    h = x[i + 1] - x[i]
-    if n < 3:
-        fi, fj = f[:, i], f[:, i + 1]
-        return h * (fi * t + (fj - fi) * t * t / 2.0)
-    last = i + 2 >= n
-    a = np.where(last, i - 1, i)  # first node of the quadratic
-    u0 = np.where(last, 1.0, 0.0)  # interval start in the quadratic's coordinate
-    f0, f1, f2 = f[:, a], f[:, a + 1], f[:, a + 2]
-    d1 = f1 - f0
-    d2 = f2 - 2.0 * f1 + f0
-
-    def prim(u):
-        return f0 * u + d1 * u * u / 2.0 + d2 * (u**3 / 3.0 - u * u / 2.0) / 2.0
-
-    quad = h * (prim(u0 + t) - prim(u0))
-    whole = h * (prim(u0 + 1.0) - prim(u0))
-    fi, fj = f[:, i], f[:, i + 1]
-    trap = h * (fi * t + (fj - fi) * t * t / 2.0)
-    return np.where(whole < 0.0, trap, quad)
+    out = np.empty((F.shape[0], xq.size))
+    j = np.searchsorted(x, xq)
+    on_node = np.zeros(xq.size, dtype=bool)
+    for k in range(xq.size):
+        for c in (j[k] - 1, j[k]):
+            if 0 <= c < x.size and abs(x[c] - xq[k]) <= 1e-9:
+                out[:, k] = F[:, c]
+                on_node[k] = True
+                break
+    if not on_node.all():
+        out[:, ~on_node] = PchipInterpolator(x, F, axis=1)(xq[~on_node])
+    return out

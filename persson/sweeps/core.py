@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 import math
 import threading
@@ -39,7 +40,7 @@ _WARNINGS_LOCK = threading.RLock()
 
 def grid(model, params=None, *, speed=1.0, temperature: float = 20.0, pressure: float = 0.3e6,
          bands=None, n_bands: int | None = None, band_mode: str | None = None, scheduler=None,
-         workers: int | None = None, progress=None, checkpoint=None) -> Table:
+         workers: int | None = None, progress=None, checkpoint=None, partial=None) -> Table:
     """Friction over a grid of parameter values: one row per point (and speed, and band), as a tidy table.
 
     Parameters
@@ -79,6 +80,10 @@ def grid(model, params=None, *, speed=1.0, temperature: float = 20.0, pressure: 
     checkpoint : path, optional
         CSV rewritten atomically (at most every 2 s, and at the end or on interruption) with the rows
         finished so far.
+    partial : path, optional
+        CSV written (atomically) with the rows finished so far when the sweep stops early, by an exception or
+        Ctrl-C, and nothing else; a complete sweep leaves it alone. The command line puts it beside the output
+        (``out.partial.csv``) so that an interrupted run keeps the previous output intact.
 
     Returns
     -------
@@ -149,12 +154,15 @@ def grid(model, params=None, *, speed=1.0, temperature: float = 20.0, pressure: 
                   on_result=ckpt.update)
     except KeyboardInterrupt as exc:
         bar.close()
-        partial = _assemble(tasks, results, header, model_cols, partial=True)
-        path = ckpt.write(partial)
-        raise SweepInterrupted(partial, len(results), len(tasks), path) from exc
+        table = _assemble(tasks, results, header, model_cols, partial=True)
+        path = ckpt.write(table)
+        _write_partial(partial, table)
+        raise SweepInterrupted(table, len(results), len(tasks), path) from exc
     except BaseException:
         bar.close()
-        ckpt.write(_assemble(tasks, results, header, model_cols, partial=True))
+        table = _assemble(tasks, results, header, model_cols, partial=True)
+        ckpt.write(table)
+        _write_partial(partial, table)
         raise
     bar.close()
     table = _assemble(tasks, results, header, model_cols, partial=False)
@@ -164,7 +172,7 @@ def grid(model, params=None, *, speed=1.0, temperature: float = 20.0, pressure: 
 
 def bands(model, kind="decades", n: int | None = None, mode: str | None = None, *, speed=1.0,
           temperature: float = 20.0, pressure: float = 0.3e6, params=None, scheduler=None,
-          workers: int | None = None, progress=None, checkpoint=None) -> Table:
+          workers: int | None = None, progress=None, checkpoint=None, partial=None) -> Table:
     """Contribution of each length-scale band to the friction, in mode (a), mode (b) or both.
 
     Parameters
@@ -180,7 +188,7 @@ def bands(model, kind="decades", n: int | None = None, mode: str | None = None, 
         (a) ``"restrict"``: the full surface's integrand over the band (bands add up to the total);
         (b) ``"separate"``: each band as a surface of its own (adds up to at least the total);
         default ``"both"`` (``"restrict"`` for ``"continuous"``).
-    speed, temperature, pressure, params, scheduler, workers, progress, checkpoint
+    speed, temperature, pressure, params, scheduler, workers, progress, checkpoint, partial
         As in :func:`grid` (``params`` adds a parameter grid: bands at every point).
 
     Returns
@@ -200,7 +208,8 @@ def bands(model, kind="decades", n: int | None = None, mode: str | None = None, 
     True
     """
     return grid(model, params, speed=speed, temperature=temperature, pressure=pressure, bands=kind, n_bands=n,
-                band_mode=mode, scheduler=scheduler, workers=workers, progress=progress, checkpoint=checkpoint)
+                band_mode=mode, scheduler=scheduler, workers=workers, progress=progress, checkpoint=checkpoint,
+                partial=partial)
 
 
 def effective_q_range(model, speeds, temperature: float, pressure: float) -> tuple[float, float]:
@@ -266,7 +275,12 @@ def _compute(task: _Task) -> dict:
                  r.contact_area, np.full(nv, math.nan), r.max_flash_temperature, r.converged)
         return {"columns": rows.columns, "notes": tuple(r.notes)}
 
-    r = task.model.friction(v, temperature=task.temperature, pressure=task.pressure)
+    model = task.model
+    if task.edges is not None:
+        # band edges as wavevector nodes: band contributions are then exact interval sums of the engine
+        g = model.grid
+        model = model.replace(grid=dataclasses.replace(g, extra_q=g.extra_q + tuple(np.ravel(task.edges))))
+    r = model.friction(v, temperature=task.temperature, pressure=task.pressure)
     rows = _Rows(task, nv)
     q = r.q
     mu_h = np.atleast_1d(r.mu_hysteresis)
@@ -398,6 +412,12 @@ class _Checkpoint:
         if self.path is None or len(table) == 0:
             return None
         return table.to_csv(self.path)
+
+
+def _write_partial(path, table: Table) -> None:
+    """The finished rows of a sweep that stopped early (nothing when no row finished)."""
+    if path is not None and len(table):
+        table.to_csv(path)
 
 
 def _describe(task: _Task) -> str:

@@ -1,0 +1,487 @@
+r"""Temperature shift laws as objects, and the reader of tabulated shift factors.
+
+A shift law maps a temperature to the horizontal shift factor of time-temperature superposition,
+
+.. math:: E(\omega, T) = b_T\, E(\omega\, a_T(T),\ T_{ref}),
+
+and every law of this package offers the same small interface:
+
+* ``log10_aT(T)``: :math:`\log_{10} a_T` at temperatures ``T`` (deg C, vectorized; a float for a scalar);
+* ``T_ref``: the temperature where :math:`a_T = 1`, deg C;
+* ``with_T_ref(T)``: the same law referred to another temperature;
+* ``kind`` (``"wlf"``, ``"arrhenius"``, ``"wlf+arrhenius"``, ``"tabulated"``, ``"single temperature"``) and
+  ``describe()`` (one line).
+
+The laws: :class:`materials.WLF`, :class:`materials.Arrhenius`, :class:`materials.WLFArrhenius` (WLF above
+T_g, Arrhenius below), :class:`TabulatedShift` (measured shift factors interpolated) and
+:class:`SingleTemperature` (a master curve usable at its own temperature only).
+"""
+
+from __future__ import annotations
+
+import math
+import re
+import warnings
+from dataclasses import dataclass, field
+from typing import Mapping
+
+import numpy as np
+from scipy import interpolate
+
+from frictioncite import doi
+
+from .errors import InputError
+from .tts import Arrhenius, TemperatureShift, WLFArrhenius, WLFFit, fit_wlf
+from .viscoelastic import WLF
+
+__all__ = ["TabulatedShift", "SingleTemperature", "read_shift_factors", "as_shift_law", "SHIFT_LAW_TYPES"]
+
+_K0 = 273.15
+
+#: Temperatures this close (K) outside a table are continued without a warning: the measured temperatures of a
+#: DMA isotherm scatter by about this much around the isotherm's own.
+QUIET_MARGIN_K = 1.0
+
+
+@doi("10.1137/0717021", "10.1021/ja01619a008")
+@dataclass(frozen=True, eq=False, repr=False)
+class TabulatedShift:
+    r"""Measured shift factors :math:`\log_{10} a_T(T_k)` used as a shift law.
+
+    Inside the table, :math:`\log_{10} a_T` is interpolated by a monotone piecewise-cubic Hermite interpolant
+    in T (PCHIP, Fritsch & Carlson 1980): it passes through every node, and between nodes it stays within
+    their values (a monotone table gives a monotone law). Outside the table the law continues with
+    ``outside`` (by default the WLF fit of the table, Williams, Landel & Ferry 1955), anchored at the nearest
+    end of the table so that it is continuous there:
+
+    .. math:: \log_{10} a_T(T) = \log_{10} a_T(T_{end}) + L(T) - L(T_{end}),\qquad T \notin [T_1, T_n],
+
+    and a warning says that the shift is extrapolated (not within :data:`QUIET_MARGIN_K` of the table).
+
+    Parameters
+    ----------
+    T_C : array_like
+        Temperatures of the table, deg C (distinct; sorted on construction).
+    log10_aT : array_like
+        :math:`\log_{10} a_T` at those temperatures.
+    T_ref : float, optional
+        Reference temperature, deg C: the table is re-referenced so that :math:`a_T(T_{ref}) = 1`. By default
+        the temperature where the table is 0 (a node, or the crossing of the interpolant).
+    outside : shift law, optional
+        The law that continues the table (any object with ``log10_aT``). Default: the WLF fit of the table.
+    source : str
+        Where the table came from (in messages).
+
+    Attributes
+    ----------
+    outside_fit : WLFFit or None
+        The WLF fit used outside the table (None when ``outside`` was given).
+    """
+
+    T_C: np.ndarray
+    log10_aT_nodes: np.ndarray
+    T_ref_C: float | None = None
+    outside: object | None = None
+    source: str = "<table>"
+    outside_fit: WLFFit | None = field(default=None)
+
+    kind = "tabulated"
+
+    def __init__(self, T_C, log10_aT, T_ref: float | None = None, outside=None, source: str = "<table>"):
+        T = np.array(T_C, dtype=float).ravel()
+        y = np.array(log10_aT, dtype=float).ravel()
+        if T.size != y.size or T.size < 2:
+            raise InputError(f"{source}: a shift-factor table needs at least two (T, log10 aT) pairs of equal "
+                             f"length, got {T.size} and {y.size}")
+        if not (np.all(np.isfinite(T)) and np.all(np.isfinite(y))):
+            raise InputError(f"{source}: temperatures and shift factors must be finite numbers")
+        if np.any(T <= -_K0):
+            raise InputError(f"{source}: temperature {T.min():g} C is below absolute zero; expected deg C")
+        order = np.argsort(T, kind="stable")
+        T, y = T[order], y[order]
+        if np.any(np.diff(T) == 0):
+            i = int(np.flatnonzero(np.diff(T) == 0)[0])
+            raise InputError(f"{source}: temperature {T[i]:g} C appears twice in the shift-factor table")
+        if outside is not None and not callable(getattr(outside, "log10_aT", None)):
+            raise InputError(f"outside: expected a shift law with log10_aT(T), got {type(outside).__name__}")
+        object.__setattr__(self, "source", str(source))
+        object.__setattr__(self, "outside", outside)
+        object.__setattr__(self, "T_C", T)
+        object.__setattr__(self, "log10_aT_nodes", y)
+        object.__setattr__(self, "outside_fit", None)
+        object.__setattr__(self, "_pchip", interpolate.PchipInterpolator(T, y, extrapolate=False))
+        if outside is None:
+            object.__setattr__(self, "outside_fit", _wlf_fit_of_table(T, y, source))
+        T_ref = self._zero() if T_ref is None else float(T_ref)
+        if not math.isfinite(T_ref):
+            raise InputError(f"T_ref: expected a finite temperature in deg C, got {T_ref!r}")
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            offset = float(self._raw(np.array([T_ref]))[0])
+        if offset != 0.0:
+            y = y - offset
+            object.__setattr__(self, "log10_aT_nodes", y)
+            object.__setattr__(self, "_pchip", interpolate.PchipInterpolator(T, y, extrapolate=False))
+        object.__setattr__(self, "T_ref_C", T_ref)
+        for a in (self.T_C, self.log10_aT_nodes):
+            a.setflags(write=False)
+
+    def __reduce__(self):
+        # rebuilt from its defining data (the interpolant is derived)
+        return (_rebuild_tabulated, (self.T_C, self.log10_aT_nodes, self.T_ref_C, self.outside, self.source))
+
+    # ---------------------------------------------------------------- the law
+    @property
+    def T_ref(self) -> float:
+        """Temperature where :math:`a_T = 1`, deg C."""
+        return float(self.T_ref_C)
+
+    @property
+    def T_range(self) -> tuple[float, float]:
+        """Temperatures covered by the table, deg C."""
+        return float(self.T_C[0]), float(self.T_C[-1])
+
+    @property
+    def wlf(self) -> WLF | None:
+        """The WLF law used outside the table (its fit, or ``outside`` when that is a WLF law), else None."""
+        if self.outside_fit is not None:
+            return self.outside_fit.wlf
+        law = self.outside
+        return law if isinstance(law, WLF) else getattr(law, "wlf", None)
+
+    def log10_aT(self, T):
+        """:math:`\\log_{10} a_T` at ``T`` (deg C, vectorized). Outside the table: continued, with a warning."""
+        T = np.asarray(T, dtype=float)
+        if not np.all(np.isfinite(T)):
+            raise InputError(f"temperature: expected finite temperatures in deg C, got {T!r}")
+        out = self._raw(T)
+        return out if out.ndim else float(out)
+
+    def _raw(self, T: np.ndarray) -> np.ndarray:
+        lo, hi = self.T_range
+        T1 = np.atleast_1d(T)
+        out = np.asarray(self._pchip(T1), dtype=float)
+        below, above = T1 < lo, T1 > hi
+        if np.any(T1 < lo - QUIET_MARGIN_K) or np.any(T1 > hi + QUIET_MARGIN_K):
+            warnings.warn(f"{self.source}: temperatures outside the shift-factor table ({lo:g} to {hi:g} C): "
+                          f"a_T extrapolated with {self._outside_text()}, continuous at the table's ends",
+                          stacklevel=3)
+        if below.any() or above.any():
+            for mask, T_end, y_end in ((below, lo, self.log10_aT_nodes[0]), (above, hi, self.log10_aT_nodes[-1])):
+                if mask.any():
+                    out[mask] = y_end + self._continue(T1[mask], T_end)
+        return out.reshape(np.shape(T))
+
+    def _continue(self, T, T_end):
+        law = self.outside if self.outside is not None else self.outside_fit.wlf
+        if law is None:
+            raise InputError(f"{self.source}: cannot extrapolate the shift factors outside {self.T_range[0]:g} to "
+                             f"{self.T_range[1]:g} C (no WLF fit of the table); give outside=<shift law>")
+        try:
+            return np.asarray(law.log10_aT(T), dtype=float) - float(law.log10_aT(T_end))
+        except InputError as exc:
+            raise InputError(f"{self.source}: temperature outside the shift-factor table ({self.T_range[0]:g} to "
+                             f"{self.T_range[1]:g} C) where its continuation fails: {exc}") from None
+
+    def _outside_text(self) -> str:
+        if self.outside is not None:
+            d = getattr(self.outside, "describe", None)
+            # the continuation is used through its differences only: its own reference is beside the point
+            return re.sub(r"[;,] a_T = 1 at [^;]*", "", d()) if callable(d) else type(self.outside).__name__
+        if self.outside_fit is None:
+            return "nothing (no WLF fit of the table)"
+        return f"the WLF fit of the table ({self.outside_fit.wlf.describe()}, rms {self.outside_fit.rms:.2g} decades)"
+
+    def _zero(self) -> float:
+        """The temperature where the table is 0: a node, or the crossing of the interpolant."""
+        y = self.log10_aT_nodes
+        zero = np.flatnonzero(y == 0.0)
+        if zero.size:
+            return float(self.T_C[zero[0]])
+        cross = np.flatnonzero(np.sign(y[:-1]) != np.sign(y[1:]))
+        if cross.size == 0:
+            raise InputError(f"{self.source}: the shift factors are never 1 (log10 aT never 0) in the table; give "
+                             "T_ref= (the reference temperature of the table)")
+        i = int(cross[0])
+        from scipy.optimize import brentq
+        return float(brentq(lambda t: float(self._pchip(t)), self.T_C[i], self.T_C[i + 1], xtol=1e-12))
+
+    def with_T_ref(self, T_ref: float) -> "TabulatedShift":
+        """The same law with :math:`a_T(T_{ref}) = 1` at another temperature."""
+        return TabulatedShift(self.T_C, self.log10_aT_nodes, T_ref=float(T_ref), outside=self.outside,
+                              source=self.source)
+
+    def describe(self) -> str:
+        """One line: the table and its continuation."""
+        lo, hi = self.T_range
+        return (f"tabulated a_T ({self.T_C.size} temperatures, {lo:g} to {hi:g} C, a_T = 1 at {self.T_ref:.4g} C); "
+                f"outside: {self._outside_text()}")
+
+    def __repr__(self) -> str:
+        return f"TabulatedShift({self.describe()})"
+
+
+def _rebuild_tabulated(T, y, T_ref, outside, source):
+    return TabulatedShift(T, y, T_ref=T_ref, outside=outside, source=source)
+
+
+def _wlf_fit_of_table(T, y, source) -> WLFFit | None:
+    """The WLF fit of a table (None when it has too few points or no WLF law fits)."""
+    if T.size < 3:
+        return None
+    i0 = T.size // 2
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            fit = fit_wlf(T, y - y[i0], float(T[i0]))
+    except InputError:
+        return None
+    return fit
+
+
+@dataclass(frozen=True)
+class SingleTemperature:
+    """The 'law' of a master curve known at one temperature only: :math:`a_T = 1` there, undefined elsewhere.
+
+    ``log10_aT(T)`` is 0 at ``T_ref`` (within ``tol`` K) and raises :class:`InputError` at any other
+    temperature, so that a material without a shift law is never used at a temperature it does not describe.
+    """
+
+    T_ref: float
+    tol: float = 1e-6
+    source: str = ""
+
+    kind = "single temperature"
+
+    def log10_aT(self, T):
+        """0 at ``T_ref``; :class:`InputError` elsewhere."""
+        T = np.asarray(T, dtype=float)
+        if not np.all(np.isfinite(T)) or np.any(np.abs(T - self.T_ref) > self.tol):
+            bad = T[~(np.abs(T - self.T_ref) <= self.tol)].ravel()
+            raise InputError(f"{self.source or 'master curve'}: known at T_ref = {self.T_ref:g} C only (no shift "
+                             f"law given), asked at T = {bad[0]:g} C; give wlf= or shift= (e.g. "
+                             "materials.read_shift_factors(...)) to use it at other temperatures")
+        out = np.zeros(T.shape)
+        return out if out.ndim else 0.0
+
+    def with_T_ref(self, T_ref: float) -> "SingleTemperature":
+        if abs(float(T_ref) - self.T_ref) > self.tol:
+            raise InputError(f"T_ref: a master curve known at {self.T_ref:g} C only cannot be referred to {T_ref} C")
+        return self
+
+    def describe(self) -> str:
+        return f"single temperature: usable at T = {self.T_ref:g} C only (no shift law)"
+
+
+#: The shift-law classes of this package (any object with ``log10_aT`` and ``T_ref`` works too).
+SHIFT_LAW_TYPES = (WLF, Arrhenius, TemperatureShift, TabulatedShift, SingleTemperature)
+
+
+def as_shift_law(law, *, name: str = "shift"):
+    """A shift-law object from a law, a WLF mapping ``{C1, C2, T_ref_C}``, a WLF+Arrhenius mapping
+    ``{C1, C2, T_ref_C, E_a, T_g}`` or an Arrhenius mapping ``{E_a, T_ref_C}``.
+
+    Raises
+    ------
+    InputError
+        Naming the argument and what was expected.
+    """
+    if isinstance(law, SHIFT_LAW_TYPES):
+        return law
+    if isinstance(law, Mapping):
+        keys = set(law)
+        if {"C1", "C2"} <= keys and {"E_a", "T_g"} <= keys:
+            return WLFArrhenius.from_mapping(law)
+        if {"C1", "C2"} <= keys:
+            return WLF.from_mapping(law)
+        if "E_a" in keys:
+            return Arrhenius.from_mapping(law)
+        raise InputError(f"{name}: a mapping needs C1, C2, T_ref_C (WLF), plus E_a, T_g (WLF+Arrhenius), or "
+                         f"E_a, T_ref_C (Arrhenius); got keys {sorted(keys)}")
+    if callable(getattr(law, "log10_aT", None)) and hasattr(law, "T_ref"):
+        return law
+    raise InputError(f"{name}: expected a shift law (materials.WLF, Arrhenius, WLFArrhenius, TabulatedShift) or a "
+                     f"mapping of its constants, got {law!r}")
+
+
+# ==================================================================================================== reader
+
+_LOG10_NAMES = ("log10at", "logat", "lgat", "log10(at)", "log(at)", "loga", "log10a", "logshift", "log10shift",
+                "logshiftfactor", "log10shiftfactor")
+_LN_NAMES = ("lnat", "ln(at)", "lna")
+_LINEAR_NAMES = ("at", "shiftfactor")
+
+
+def read_shift_factors(path, *, columns=None, units=None, T_ref: float | None = None, outside=None,
+                       encoding: str | None = None) -> TabulatedShift:
+    r"""Read a table of shift factors (temperature and :math:`a_T` or :math:`\log_{10} a_T`) as a shift law.
+
+    The file is a delimited table (comma, tab, semicolon or white space), with or without a names row and a
+    units row; pyvisco's ``*__shift_factors.csv`` (``T, log_aT`` then ``C, -``) is read as is.
+
+    * The temperature column is named ``T``, ``T_C``, ``T_K``, ``Temp`` or ``Temperature`` (unit from the units
+      row, the name or ``units={'T': 'K'}``; deg C by default).
+    * The shift column is :math:`\log_{10} a_T` when named ``log_aT``, ``log10_aT``, ``logaT``...,
+      :math:`\ln a_T` when named ``ln_aT``, and :math:`a_T` when named ``aT`` or ``a_T``.
+    * A header-less two-column table is read as (T in deg C, shift) with the shift's kind recognised from the
+      values: any value <= 0 means :math:`\log_{10} a_T` (:math:`a_T` is positive); values spanning more than
+      four decades with a 1 among them mean :math:`a_T`; anything else is ambiguous and refused (name the
+      columns).
+
+    Parameters
+    ----------
+    path : str or Path
+    columns : sequence or mapping, optional
+        Names of the file's columns in order, e.g. ``("T_C", "log10_aT")``, ``("T_K", "aT")``,
+        ``("T_C", "ln_aT")``; or a mapping ``{"T": <column name or index>, "log10_aT": <...>}``.
+    units : mapping, optional
+        ``{"T": "C" or "K"}``.
+    T_ref : float, optional
+        Reference temperature (deg C) of the returned law; default the temperature where the table is 0.
+    outside : shift law, optional
+        Continuation outside the table (default: the WLF fit of the table).
+    encoding : str, optional
+
+    Returns
+    -------
+    TabulatedShift
+
+    Raises
+    ------
+    InputError
+        Missing or ambiguous columns, non-positive :math:`a_T`, repeated temperatures, temperatures below
+        absolute zero or looking like kelvin, unknown units (naming the file, line and column).
+    """
+    from ._tables import _role_of, read_table
+    from .units import check_temperatures, normalise_units, to_celsius, unit_factor
+
+    table = read_table(path, encoding=encoding)
+    units = normalise_units(units)
+    jT, T_unit_name, kind, jS, from_option = _shift_columns(table, columns, _role_of)
+    where_T = f"{table.path}, column {table.label(jT)}"
+    if "T" in units:
+        T_unit, trusted = units["T"], True
+    elif from_option and T_unit_name is not None:
+        T_unit, trusted = T_unit_name, True
+    elif table.units[jT] is not None:
+        T_unit, trusted = table.units[jT], False
+    else:
+        T_unit, trusted = (T_unit_name or "C"), False
+    T = to_celsius(table.data[:, jT], unit_factor("T", T_unit, where=where_T))
+    raw = table.data[:, jS]
+    where_S = f"{table.path}, column {table.label(jS)}"
+    for name, v, where in (("temperature", T, where_T), ("shift factor", raw, where_S)):
+        bad = ~np.isfinite(v)
+        if bad.any():
+            i = int(np.flatnonzero(bad)[0])
+            raise InputError(f"{where}, line {int(table.lines[i])}: expected a {name}, got an empty or NaN cell")
+    check_temperatures(T, where=where_T, lines=table.lines, trusted=trusted)
+    if kind is None:
+        kind = _kind_from_values(raw, where_S)
+    if kind == "aT":
+        if np.any(raw <= 0):
+            i = int(np.flatnonzero(raw <= 0)[0])
+            raise InputError(f"{where_S}, line {int(table.lines[i])}: a_T must be > 0, got {raw[i]:g} (a log10 a_T "
+                             "column? name it log10_aT)")
+        y = np.log10(raw)
+    elif kind == "ln_aT":
+        y = raw / math.log(10.0)
+    else:
+        y = raw
+    if np.unique(T).size != T.size:
+        vals, counts = np.unique(T, return_counts=True)
+        i = int(np.flatnonzero(T == vals[counts > 1][0])[1])
+        raise InputError(f"{where_T}, line {int(table.lines[i])}: temperature {T[i]:g} C appears twice")
+    order = np.argsort(T)
+    rises = np.flatnonzero(np.diff(y[order]) > 0.05)
+    if rises.size:
+        pairs = ", ".join(f"{T[order][i]:g}->{T[order][i + 1]:g} C" for i in rises[:4])
+        warnings.warn(f"{table.path}: log10 a_T increases with temperature between {pairs} (a_T normally "
+                      "decreases as the temperature rises); check the table", stacklevel=2)
+    return TabulatedShift(T, y, T_ref=T_ref, outside=outside, source=str(table.path))
+
+
+def _shift_columns(table, columns, role_of):
+    """(T column, T unit from its name, shift kind or None, shift column, named by the user)."""
+    def kind_of(name):
+        n = name.strip().lower().replace(" ", "").replace("_", "").replace("-", "")
+        if n in _LOG10_NAMES:
+            return "log10_aT"
+        if n in _LN_NAMES:
+            return "ln_aT"
+        if n in _LINEAR_NAMES:
+            return "aT"
+        return None
+
+    if columns is not None:
+        if isinstance(columns, Mapping):
+            jT = jS = None
+            T_unit = kind = None
+            for key, ref in columns.items():
+                role, unit = role_of(str(key))
+                j = _index(table, ref)
+                if role == "T":
+                    jT, T_unit = j, unit
+                elif kind_of(str(key)):
+                    jS, kind = j, kind_of(str(key))
+                else:
+                    raise InputError(f"columns: unknown key {key!r} (expected T, T_C or T_K and log10_aT, aT or "
+                                     "ln_aT)")
+            if jT is None or jS is None:
+                raise InputError("columns: give both the temperature and the shift column, e.g. "
+                                 "{'T_C': 'Temp', 'log10_aT': 'shift'}")
+            return jT, T_unit, kind, jS, True
+        names = list(columns)
+        if len(names) > table.n_columns:
+            raise InputError(f"columns: {len(names)} names for a table of {table.n_columns} columns")
+        jT = jS = None
+        T_unit = kind = None
+        for j, name in enumerate(names):
+            if name is None or str(name).strip() in ("", "-"):
+                continue
+            role, unit = role_of(str(name))
+            if role == "T":
+                jT, T_unit = j, unit
+            elif kind_of(str(name)):
+                jS, kind = j, kind_of(str(name))
+            else:
+                raise InputError(f"columns[{j}]: unknown column name {name!r} (expected T_C or T_K, and log10_aT, "
+                                 "aT or ln_aT)")
+        if jT is None or jS is None:
+            raise InputError("columns: name the temperature and the shift column, e.g. ('T_C', 'log10_aT')")
+        return jT, T_unit, kind, jS, True
+    if table.names is not None:
+        jT = T_unit = None
+        for j, name in enumerate(table.names):
+            role, unit = role_of(name)
+            if role == "T":
+                jT, T_unit = j, unit
+                break
+        shift_cols = [(j, kind_of(n)) for j, n in enumerate(table.names) if j != jT and kind_of(n)]
+        if jT is not None and shift_cols:
+            return jT, T_unit, shift_cols[0][1], shift_cols[0][0], False
+        if table.n_columns == 2:
+            jT = 0 if jT is None else jT
+            return jT, T_unit, None, 1 - jT, False
+        raise InputError(f"{table.path}: expected a temperature column (T, T_C) and a shift column (log10_aT, aT); "
+                         f"found {', '.join(table.names)}; name them with columns=('T_C', 'log10_aT')")
+    if table.n_columns != 2:
+        raise InputError(f"{table.path}: a header-less shift-factor table must have two columns (T, shift), found "
+                         f"{table.n_columns}; name them with columns=[...]")
+    return 0, None, None, 1, False
+
+
+def _index(table, ref) -> int:
+    from ._tables import _column_index
+    return _column_index(table, ref)
+
+
+def _kind_from_values(v, where) -> str:
+    if np.any(v <= 0):
+        return "log10_aT"
+    span = float(np.log10(v.max() / v.min()))
+    if np.any(v == 1.0) and span > 4:
+        return "aT"
+    raise InputError(f"{where}: cannot tell whether the column holds a_T or log10 a_T (all values positive, "
+                     f"{v.min():g} to {v.max():g}); name the columns, e.g. columns=('T_C', 'log10_aT') or "
+                     "columns=('T_C', 'aT')")

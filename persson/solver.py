@@ -1,0 +1,560 @@
+r"""The numerical core behind :meth:`persson.Model.friction`: grids, tables and the kernel calls.
+
+:func:`solve` turns (surface, material, conditions) into G(q), P(q), d mu/d ln q, the cumulative hysteresis
+friction, the temperature at each scale and a quadrature-error estimate per speed. The method
+(:mod:`persson._kernels`): angular integrals tabulated once per call on the modulus table (exact product
+integration in log frequency), the contact weight S(P) P dG integrated exactly in G, and an embedded coarse-grid
+estimate of the q-quadrature error.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+import weakref
+from dataclasses import dataclass, replace
+
+import numpy as np
+from scipy.special import erfcx
+
+from . import _kernels
+from .effects.base import Conditions
+from .errors import InputError
+from .grid import GridSettings
+from .tabulate import angular_table, relative_shifts, shift_table
+
+__all__ = ["Solved", "Prepared", "solve", "prepare", "run_plain", "run_flash"]
+
+#: Speeds below which a call runs on one thread (thread start-up costs more than it saves). The flash solver
+#: costs milliseconds per speed, so it goes parallel from two speeds.
+_PARALLEL_MIN_SPEEDS = 16
+_PARALLEL_MIN_SPEEDS_FLASH = 2
+#: Most halvings of the first wavevector step towards q0 with the flash temperature (see :func:`_graded_nodes`).
+_MAX_GRADING = 30
+#: Halvings of the first step with a per-scale modulus: the strain at the first node falls by 2^-10 ~ 1e-3.
+_STRAIN_GRADING = 20
+
+
+@dataclass(frozen=True, eq=False)
+class Solved:
+    r"""Solver output per speed (rows) and wavevector node (columns).
+
+    Attributes
+    ----------
+    q : ndarray (n_q,)
+        Wavevector nodes, rad/m.
+    G, P, T_q, dmu, loss : ndarray (n_speed, n_q)
+        Persson's G(q), P(q) = A(q)/A0, the temperature at scale q (deg C), d mu/d ln q and the loss integral
+        int cos(phi) Im E dphi / ((1 - nu^2) sigma0).
+    dG : ndarray (n_speed, n_q)
+        dG/d ln q.
+    ratio : ndarray (n_speed, n_q)
+        R = d mu / (S(P) P dG) = 4 L / A, the smooth factor the contact weight multiplies.
+    mu_cumulative : ndarray (n_speed, n_q)
+        Hysteresis friction carried by the scales q0..q (the last column is ``mu``).
+    mu : ndarray (n_speed,)
+    error_estimate : ndarray (n_speed,)
+        Estimated relative error of ``mu`` from the q quadrature (fine vs coarse grid).
+    excited_layer : ndarray (n_speed,)
+        Friction-weighted mean of 1/q, :math:`\int q^{-1} d\mu / \int d\mu`, m.
+    converged : bool
+    converged_each, iterations, residual : ndarray (n_speed,)
+    """
+
+    q: np.ndarray
+    G: np.ndarray
+    P: np.ndarray
+    T_q: np.ndarray
+    dmu: np.ndarray
+    loss: np.ndarray
+    dG: np.ndarray
+    ratio: np.ndarray
+    mu_cumulative: np.ndarray
+    mu: np.ndarray
+    error_estimate: np.ndarray
+    excited_layer: np.ndarray
+    converged: bool
+    converged_each: np.ndarray
+    iterations: np.ndarray
+    residual: np.ndarray
+    notes: tuple = ()
+
+
+@dataclass(frozen=True, eq=False)
+class Prepared:
+    """Arrays the kernels need for one group of speeds sharing a modulus table."""
+
+    q: np.ndarray
+    x: np.ndarray
+    lq10: np.ndarray
+    C: np.ndarray
+    q4C: np.ndarray
+    quad: tuple
+    coarse: np.ndarray
+    quad_coarse: tuple
+    surface: object
+    v: np.ndarray
+    lv10: np.ndarray
+    T0: np.ndarray
+    pressure: np.ndarray
+    scale: np.ndarray
+    table: object
+    shift: np.ndarray | None
+    vshift: np.ndarray | None
+    shift_table: object | None
+    fq: np.ndarray
+    gq: np.ndarray
+    f_tab: np.ndarray
+    g_tab: np.ndarray
+    law: tuple
+
+    @property
+    def n_speed(self) -> int:
+        return self.v.size
+
+    def nodes(self, idx: np.ndarray) -> "Prepared":
+        """The same problem on the sub-grid of node indices ``idx`` (for the coarse-grid error estimate)."""
+        per_node = self.f_tab.shape[0] == self.q.size
+        x = self.x[idx]
+        coarse = _coarse_indices(idx.size)
+        return replace(self, q=self.q[idx], x=x, lq10=self.lq10[idx], C=self.C[idx], q4C=self.q4C[idx],
+                       quad=quadrature_rule(self.surface, x), coarse=coarse,
+                       quad_coarse=quadrature_rule(self.surface, x[coarse]),
+                       shift=None if self.shift is None else np.ascontiguousarray(self.shift[:, idx]),
+                       vshift=None if self.vshift is None else np.ascontiguousarray(self.vshift[:, idx]),
+                       fq=np.ascontiguousarray(self.fq[:, idx]), gq=np.ascontiguousarray(self.gq[:, idx]),
+                       f_tab=np.ascontiguousarray(self.f_tab[idx]) if per_node else self.f_tab,
+                       g_tab=np.ascontiguousarray(self.g_tab[idx]) if per_node else self.g_tab)
+
+
+def solve(surface, material, cond: Conditions, grid: GridSettings, nu: float, gamma: float, thermal,
+          correction: str | None = None, modulus=None) -> Solved:
+    """Solve every speed of ``cond``, grouped by temperature when the material cannot shift between them.
+
+    Speeds at different temperatures share one modulus table through time-temperature superposition
+    (``material.log10_aT``); a material without it is evaluated at each distinct temperature separately.
+    ``correction`` names an area correction of :mod:`persson.corrections` (None: Persson's erf law);
+    ``modulus`` is an effect whose ``modulus_factors`` give per-scale factors on E' and E'' (strain softening at
+    the local strain of each scale), or None.
+    """
+    shape = cond.speed.shape
+    T = np.broadcast_to(np.asarray(cond.temperature, dtype=float), shape)
+    if np.all(T == T[0]) or hasattr(material, "log10_aT"):
+        return _solve_group(surface, material, cond, grid, nu, gamma, thermal, correction, modulus)
+    p = np.broadcast_to(np.asarray(cond.pressure, dtype=float), shape)
+    p_nom = np.broadcast_to(np.asarray(cond.nominal_pressure, dtype=float), shape)
+    parts = []
+    for t in np.unique(T):
+        idx = np.flatnonzero(T == t)
+        sub = cond.replace(speed=cond.speed[idx], temperature=T[idx], pressure=p[idx], nominal_pressure=p_nom[idx])
+        parts.append((idx, _solve_group(surface, material, sub, grid, nu, gamma, thermal, correction, modulus)))
+    n = T.size
+    first = parts[0][1]
+    merged = {}
+    for name in _PER_SCALE + _PER_SPEED:
+        ref = getattr(first, name)
+        arr = np.empty((n,) + ref.shape[1:], dtype=ref.dtype)
+        for idx, part in parts:
+            arr[idx] = getattr(part, name)
+        merged[name] = arr
+    notes = tuple(dict.fromkeys(n for _, part in parts for n in part.notes))
+    return Solved(q=first.q, converged=bool(merged["converged_each"].all()), notes=notes, **merged)
+
+
+def _solve_group(surface, material, cond, grid, nu, gamma, thermal, correction, modulus) -> Solved:
+    """Solve, then re-solve the speeds whose error estimate exceeds ``grid.tolerance / 3`` on grids refined 2x, 4x, ...
+    (up to ``grid.max_refinement`` halvings of every interval): the grid adapts per speed where the integrand
+    is hard (e.g. a narrow loss peak swept by a steep flash temperature), and the per-scale arrays of a refined
+    speed are its values at the base nodes, which every refined grid contains."""
+    solved = _solve_once(surface, material, cond, grid, nu, gamma, thermal, correction, modulus, 0)
+    for level in range(1, grid.max_refinement + 1):
+        # aim a factor 3 below the tolerance: the estimate is within a factor 3 of the true error
+        bad = np.flatnonzero(solved.error_estimate > grid.tolerance / _SAFETY)
+        if bad.size == 0:
+            break
+        fine = _solve_once(surface, material, _subset(cond, bad), grid, nu, gamma, thermal, correction, modulus,
+                           level, solved.q)
+        solved = _merge(solved, bad, fine, 2**level)
+    return solved
+
+
+def _solve_once(surface, material, cond, grid, nu, gamma, thermal, correction, modulus, refine,
+                q_base=None) -> Solved:
+    prep = prepare(surface, material, cond, grid, nu, gamma=gamma, correction=correction,
+                   flash=thermal is not None, modulus=modulus, refine=refine, nodes=q_base)
+    if thermal is None:
+        return run_plain(prep)
+    return thermal.solve_temperature(prep=prep, conditions=cond, material=material)
+
+
+def _subset(cond: Conditions, idx: np.ndarray) -> Conditions:
+    n = cond.speed.size
+
+    def pick(a):
+        return a if np.ndim(a) == 0 else np.broadcast_to(np.asarray(a, dtype=float), (n,))[idx]
+
+    return cond.replace(speed=cond.speed[idx], temperature=pick(cond.temperature), pressure=pick(cond.pressure),
+                        nominal_pressure=pick(cond.nominal_pressure))
+
+
+def _merge(base: Solved, idx: np.ndarray, fine: Solved, stride: int) -> Solved:
+    """``base`` with the speeds ``idx`` replaced by ``fine`` (solved on a grid ``stride`` times as dense)."""
+    out = {}
+    for name in _PER_SCALE:
+        a = getattr(base, name).copy()
+        a[idx] = getattr(fine, name)[:, ::stride]
+        out[name] = a
+    for name in _PER_SPEED:
+        a = getattr(base, name).copy()
+        a[idx] = getattr(fine, name)
+        out[name] = a
+    notes = tuple(dict.fromkeys(base.notes + fine.notes))
+    return Solved(q=base.q, converged=bool(out["converged_each"].all()), notes=notes, **out)
+
+
+_PER_SCALE = ("G", "P", "T_q", "dmu", "loss", "dG", "ratio", "mu_cumulative")
+_SAFETY = 3.0
+_PER_SPEED = ("mu", "error_estimate", "excited_layer", "converged_each", "iterations", "residual")
+
+
+def prepare(surface, material, cond: Conditions, grid: GridSettings, nu: float, *, gamma: float = 0.5,
+            correction: str | None = None, flash: bool = False, modulus=None, refine: int = 0,
+            nodes=None) -> Prepared:
+    """Nodes, PSD, modulus tables and temperature shifts for the speeds of ``cond``.
+
+    ``refine`` halves every interval that many times (the adaptive refinement of :func:`solve`), of ``nodes``
+    when given (the nodes of a first solve) instead of the grid's.
+    With the flash temperature, nodes graded geometrically towards q0 are added (:func:`_graded_nodes`): there
+    T_q rises like the square root of q - q0 (the heat source is proportional to P, which falls like
+    (q - q0)^(-1/2) where G grows linearly from zero), a non-smooth start that the regular grid would
+    integrate with first-order accuracy only.
+
+    Raises
+    ------
+    InputError
+        Bad q range, a PSD that is not finite and >= 0, a pressure <= 0 after the effects, a bad modulus.
+    """
+    q_lo, q_hi = (float(x) for x in surface.q_range)
+    if not (0 < q_lo < q_hi):
+        raise InputError(f"surface: expected 0 < q0 < q1 after the effects, got ({q_lo:g}, {q_hi:g}) rad/m")
+    q = grid.q_nodes(q_lo, q_hi)
+    v = np.ascontiguousarray(cond.speed, dtype=float)
+    lv10 = np.log10(v)
+    nv = v.size
+    T0 = np.ascontiguousarray(np.broadcast_to(np.asarray(cond.temperature, dtype=float), v.shape))
+    pressure = np.ascontiguousarray(np.broadcast_to(np.asarray(cond.pressure, dtype=float), v.shape))
+    if not np.all(np.isfinite(pressure)) or np.any(pressure <= 0):
+        raise InputError("pressure: the pressure on the asperity contact must stay > 0 Pa after the effects")
+    scale = np.ascontiguousarray(1.0 / ((1.0 - nu * nu) * pressure))
+    # one modulus table at T_table; other temperatures are shifted onto it
+    T_table = float(T0[0]) if np.all(T0 == T0[0]) else float(np.median(T0))
+    s_v, b_v = relative_shifts(material, T0, T_table)
+    if flash:
+        stab = shift_table(material, T_table, float(T0.min()), float(T0.max()) + grid.max_temperature_rise,
+                           grid.temperature_step)
+        s_lo, s_hi = float(stab.shift.min()), float(stab.shift.max())
+    else:
+        s_lo, s_hi = float(s_v.min()), float(s_v.max())
+        stab = None
+    table = angular_table(material, T_table, math.log10(q_lo) + lv10.min() + s_lo,
+                          math.log10(q_hi) + lv10.max() + s_hi, grid.omega_per_decade)
+    if nodes is not None:
+        q = np.asarray(nodes, dtype=float)
+    elif flash:
+        q = _graded_nodes(q, surface, table, lv10 + s_v, b_v, scale)
+    if modulus is not None and nodes is None:
+        # the local strain kappa xi(q) rises like sqrt(q - q0) from q0 (xi^2 is an integral from q0), so the
+        # modulus factors start non-smoothly there: grade the first interval as for the flash temperature
+        x0, h = math.log(q[0]), math.log(q[1] / q[0])
+        q = np.unique(np.concatenate([q, np.exp(x0 + h * 2.0 ** -np.arange(1, _STRAIN_GRADING + 1))]))
+    if refine:
+        # 2^refine - 1 geometric points inside every interval: the nodes above are every 2^refine-th node
+        k = 2**refine
+        x = np.log(q)
+        t = np.arange(k) / k
+        q = np.exp(np.append((x[:-1, None] + np.diff(x)[:, None] * t).ravel(), x[-1]))
+    C = np.asarray(surface.C(q), dtype=float)
+    if C.shape != q.shape or not np.all(np.isfinite(C)) or np.any(C < 0):
+        raise InputError("surface: C(q) must return finite values >= 0 m^4 of the shape of q")
+    x = np.log(q)
+    nq = q.size
+    shifts = None if flash else np.ascontiguousarray(np.repeat(s_v[:, None], nq, axis=1))
+    vshifts = None if flash else np.ascontiguousarray(np.repeat(b_v[:, None], nq, axis=1))
+    fq = gq = np.ones((nv, nq))
+    f_tab = g_tab = np.ones((1, 2))
+    if modulus is not None:
+        slope = np.sqrt(cumulative_moment(surface, q, 3))
+        if flash:
+            T_grid = stab.T_lo + stab.dT * np.arange(stab.shift.size)
+            f_tab, g_tab = _factors(modulus, slope[:, None], T_grid[None, :], (nq, T_grid.size))
+        else:
+            fq, gq = _factors(modulus, slope[None, :], T0[:, None], (nv, nq))
+    coarse = _coarse_indices(nq)
+    return Prepared(q=q, x=x, lq10=np.log10(q), C=C, q4C=q**4 * C, quad=quadrature_rule(surface, x), coarse=coarse,
+                    quad_coarse=quadrature_rule(surface, x[coarse]), surface=surface, v=v, lv10=lv10, T0=T0,
+                    pressure=pressure, scale=scale, table=table, shift=shifts, vshift=vshifts, shift_table=stab,
+                    fq=fq, gq=gq, f_tab=f_tab, g_tab=g_tab, law=contact_law(gamma, correction))
+
+
+def _graded_nodes(q: np.ndarray, surface, table, lw_speed: np.ndarray, ln_b: np.ndarray,
+                  scale: np.ndarray) -> np.ndarray:
+    r"""``q`` plus nodes :math:`q_0 e^{h 2^{-k}}`, k = 1..L, graded towards q0 (h the first step in ln q).
+
+    L is the number of halvings from h down to the scale :math:`1/g_0` where G reaches 1, with
+    :math:`g_0 = dG/d\ln q` at q0 for the stiffest speed (the background temperature): below it G < 1, P = 1 and
+    the temperature rises linearly, which the quadratic rules integrate exactly.
+    """
+    x0, h = math.log(q[0]), math.log(q[1] / q[0])
+    c0 = q[0] ** 4 * float(np.asarray(surface.C(q[0]), dtype=float))
+    g0 = 0.0
+    for lw, lb, sc in zip(lw_speed, ln_b, scale):
+        are, aim, _ = _kernels.angular_at(math.log10(q[0]) + lw, table.lw0, 1.0 / table.dlw, table.ln_are,
+                                          table.ln_aim, table.ln_l)
+        g0 = max(g0, 0.125 * c0 * math.exp(2.0 * lb) * (are + aim) * sc * sc)
+    levels = int(min(_MAX_GRADING, max(0.0, math.ceil(math.log2(max(g0 * h, 1.0))) + 1)))
+    if levels == 0:
+        return q
+    return np.unique(np.concatenate([q, np.exp(x0 + h * 2.0 ** -np.arange(1, levels + 1))]))
+
+
+def run_plain(prep: Prepared) -> Solved:
+    """Hysteresis friction and contact area at the background temperature of each speed."""
+    nv, nq = prep.n_speed, prep.q.size
+    out = _outputs(nv, nq)
+    mu_c = np.empty(nv)
+    kern = _kernels.friction_parallel if nv >= _PARALLEL_MIN_SPEEDS else _kernels.friction_serial
+    t = prep.table
+    kern(prep.q, prep.lq10, prep.lv10, prep.q4C, prep.quad, prep.shift, prep.vshift, prep.fq, prep.gq,
+         t.lw0, 1.0 / t.dlw, t.ln_are, t.ln_aim, t.ln_l, prep.scale, prep.law, prep.coarse, prep.quad_coarse, out["G"], out["P"], out["dmu"], out["cum"], out["dG"], out["ratio"], out["loss"],
+         out["layer"], out["mu"], mu_c)
+    T_q = np.repeat(prep.T0[:, None], nq, axis=1)
+    ok = np.ones(nv, dtype=bool)
+    return _solved(prep, out, T_q, _relative_error(out["mu"], mu_c), ok, np.zeros(nv, dtype=np.int64),
+                   np.zeros(nv))
+
+
+def run_flash(prep: Prepared, *, q_m: float, a_t0: np.ndarray, diffusivity: float,
+              heat_factor: np.ndarray, tol: float, max_iter: int) -> Solved:
+    """The self-consistent flash temperature (:func:`persson._kernels._flash_speed`) for every speed.
+
+    Parameters
+    ----------
+    prep : Prepared
+        From :func:`prepare` with ``flash=True``.
+    q_m : float
+        Wavevector of the macro-asperity contact regions, rad/m (P(q_m) normalises the heat source).
+    a_t0 : ndarray (n_speed,)
+        D t0 per speed, m^2 (t0 the contact time of a macro-asperity contact region).
+    diffusivity : float
+        Thermal diffusivity D, m^2/s.
+    heat_factor : ndarray (n_speed,)
+        sigma0 / (rho c_p) per speed, K.
+    tol : float
+        Convergence tolerance on max |Delta T|, K.
+    max_iter : int
+    """
+    fine = _flash(prep, q_m, a_t0, diffusivity, heat_factor, tol, max_iter)
+    coarse = _flash(prep.nodes(prep.coarse), q_m, a_t0, diffusivity, heat_factor, tol, max_iter)
+    out, T_q, it, res = fine
+    err = _relative_error(out["mu"], coarse[0]["mu"])
+    return _solved(prep, out, T_q, err, res < tol, it, res)
+
+
+def _flash(prep, q_m, a_t0, D, heat_factor, tol, max_iter):
+    nv, nq = prep.n_speed, prep.q.size
+    out = _outputs(nv, nq)
+    T_q = np.empty((nv, nq))
+    it = np.zeros(nv, dtype=np.int64)
+    res = np.zeros(nv)
+    EX = erfcx(2.0 * prep.q[None, :] * np.sqrt(a_t0)[:, None])
+    st = prep.shift_table
+    t = prep.table
+    kern = _kernels.flash_parallel if nv >= _PARALLEL_MIN_SPEEDS_FLASH else _kernels.flash_serial
+    kern(prep.q, prep.x, prep.lq10, prep.lv10, prep.v, prep.q4C, prep.quad, t.lw0, 1.0 / t.dlw,
+         t.ln_are, t.ln_aim, t.ln_l,
+         prep.scale, prep.law, prep.T0, st.T_lo, 1.0 / st.dT, st.shift, st.vshift, prep.f_tab, prep.g_tab,
+         np.ascontiguousarray(EX), *_kernels.heat_kernel_factors(prep.q), np.ascontiguousarray(a_t0, dtype=float),
+         float(D),
+         np.ascontiguousarray(heat_factor, dtype=float), math.log(q_m), float(tol), int(max_iter), out["G"],
+         out["P"], out["dmu"], out["cum"], out["dG"], out["ratio"], out["loss"], T_q, out["layer"], out["mu"], it,
+         res)
+    return out, T_q, it, res
+
+
+def contact_law(gamma: float, correction: str | None = None) -> tuple:
+    """The contact law the kernels take (:func:`persson._kernels.area`): gamma and, for an area correction of
+    :mod:`persson.corrections`, its table of ln P_c on a uniform grid of ln G."""
+    if correction is None or float(gamma) == 1.0:
+        return (float(gamma), np.empty(0), 0.0, 1.0)
+    from .corrections import _table, check_correction
+
+    correction, gamma = check_correction(correction, gamma)
+    tab = _table(correction, gamma)
+    return (float(gamma), np.ascontiguousarray(tab.lnP), float(tab.lnG[0]), float(tab.inv_step))
+
+
+def quadrature_rule(surface, x: np.ndarray, n_gauss: int = 6) -> tuple:
+    """:func:`_quadrature_rule`, memoised per surface object and nodes (a pure function of both: repeated calls
+    on one surface, as in fits and sweeps, skip the PSD quadrature)."""
+    try:
+        per_surface = _RULES.setdefault(surface, {})
+    except TypeError:  # not weak-referenceable: no memo
+        return _quadrature_rule(surface, x, n_gauss)
+    key = (x.tobytes(), n_gauss)
+    rule = per_surface.get(key)
+    if rule is None:
+        if len(per_surface) > 32:
+            per_surface.clear()
+        rule = per_surface[key] = _quadrature_rule(surface, x, n_gauss)
+    return rule
+
+
+#: Quadrature rules by surface (weakly: a rule lives as long as its surface) and nodes.
+_RULES: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
+
+
+def _quadrature_rule(surface, x: np.ndarray, n_gauss: int = 6) -> tuple:
+    r"""The wavevector quadrature on the nodes ``x`` = ln q: (W, stencil, piece_start, Lb, Wp).
+
+    The rough factor :math:`c = q^4 C(q)` of the G integrand is integrated exactly (Gauss-Legendre, ``n_gauss``
+    points, between the PSD's breakpoints: a tabulated PSD is a power law between its rows, a roll-off has a kink)
+    against the Lagrange basis :math:`\ell_m` of the quadratic in ln q through the nodes ``stencil[i] + m``
+    (i, i+1, i+2; i-1, i, i+1 for the last interval):
+
+    * ``W[i, m]`` = :math:`\int_{x_i}^{x_{i+1}} \ell_m c\, dx`, the weights of G (see
+      :func:`persson._kernels.cumulative_weighted`);
+    * the intervals are cut at the PSD's breakpoints into pieces (``piece_start[i]`` .. ``piece_start[i+1]`` - 1 are
+      interval i's); for each piece p and its start, middle and end point k, ``Wp[p, k, m]`` =
+      :math:`\int_{x_i}^{x_k} \ell_m c\, dx` (G there) and ``Lb[p, k, m]`` = :math:`\ell_m(x_k)`, used by
+      :func:`persson._kernels.interval_node_weights`.
+
+    So G is exact for any PSD to the interpolation of the smooth angular factor, and the friction integrand is
+    never interpolated across a kink of the PSD.
+    """
+    n = x.size
+    st = np.where(np.arange(n - 1) + 2 < n, np.arange(n - 1), np.arange(n - 1) - 1).astype(np.int64)
+    br = np.log(psd_breakpoints(surface))
+    br = br[(br > x[0]) & (br < x[-1])]
+    edges = np.unique(np.concatenate([x, br]))
+    edges = edges[np.concatenate([[True], np.diff(edges) > 1e-12 * np.abs(edges[1:]).clip(1.0)])]
+    lo, hi = edges[:-1], edges[1:]
+    mid = 0.5 * (lo + hi)
+    interval = np.clip(np.searchsorted(x, mid) - 1, 0, n - 2)
+    a = st[interval]
+    x0, x1, x2 = x[a], x[a + 1], x[a + 2]
+
+    def basis(pts):  # (..., 3): the quadratic's Lagrange basis of each piece's interval at pts
+        b0 = (pts - x1[..., None]) * (pts - x2[..., None]) / ((x0 - x1) * (x0 - x2))[..., None]
+        b1 = (pts - x0[..., None]) * (pts - x2[..., None]) / ((x1 - x0) * (x1 - x2))[..., None]
+        b2 = (pts - x0[..., None]) * (pts - x1[..., None]) / ((x2 - x0) * (x2 - x1))[..., None]
+        return np.stack([b0, b1, b2], axis=-1)
+
+    g, w = _gauss_legendre(n_gauss)
+    seg = np.stack([np.stack([lo, mid], -1), np.stack([mid, hi], -1)], axis=1)  # (np, 2 halves, [from, to])
+    pts = 0.5 * (seg[..., 0] + seg[..., 1])[..., None] + 0.5 * (seg[..., 1] - seg[..., 0])[..., None] * g
+    wts = 0.5 * (seg[..., 1] - seg[..., 0])[..., None] * w                 # (np, 2, n_gauss)
+    qq = np.exp(pts)
+    c = qq**4 * np.asarray(surface.C(qq.ravel()), dtype=float).reshape(qq.shape)
+    # integral of l_m c over each half piece, (np, 2, 3)
+    half = np.stack([np.sum((wts[:, k, :] * c[:, k, :])[..., None] * basis(pts[:, k, :]), axis=1)
+                     for k in range(2)], axis=1)
+    piece = half.sum(axis=1)                                                # (np, 3)
+    cum = np.cumsum(piece, axis=0) - piece                                  # before each piece, all intervals
+    start = np.searchsorted(interval, np.arange(n))                         # first piece of each interval
+    before = cum - cum[start[interval]]                                     # before each piece, its interval
+    Wp = np.stack([before, before + half[:, 0], before + piece], axis=1)    # (np, 3 points, 3)
+    Lb = basis(np.stack([lo, mid, hi], axis=-1))                            # (np, 3 points, 3)
+    W = np.zeros((n - 1, 3))
+    np.add.at(W, interval, piece)
+    return (np.ascontiguousarray(W), st, np.ascontiguousarray(start, dtype=np.int64), np.ascontiguousarray(Lb),
+            np.ascontiguousarray(Wp))
+
+
+def psd_moment(surface, q: np.ndarray, n: int) -> float:
+    """Spectral moment 2 pi int_{q0}^{q1} q^n C(q) dq over the nodes' range (see :func:`cumulative_moment`)."""
+    return float(cumulative_moment(surface, q, n)[-1])
+
+
+def cumulative_moment(surface, q: np.ndarray, n: int, n_gauss: int = 6) -> np.ndarray:
+    """2 pi int_{q0}^{q_i} q^n C(q) dq at every node (the rms slope squared up to q_i for n = 3), by
+    Gauss-Legendre between the nodes and the PSD's breakpoints (exact to rounding for power-law pieces)."""
+    x = np.log(np.asarray(q, dtype=float))
+    br = np.log(psd_breakpoints(surface))
+    edges = np.unique(np.concatenate([x, br[(br > x[0]) & (br < x[-1])]]))
+    g, w = _gauss_legendre(n_gauss)
+    lo, hi = edges[:-1, None], edges[1:, None]
+    pts = 0.5 * (lo + hi) + 0.5 * (hi - lo) * g
+    qq = np.exp(pts)
+    f = qq ** (n + 1) * np.asarray(surface.C(qq.ravel()), dtype=float).reshape(qq.shape)
+    piece = 2.0 * math.pi * np.sum(0.5 * (hi - lo) * w * f, axis=1)
+    cum = np.concatenate([[0.0], np.cumsum(piece)])
+    return cum[np.searchsorted(edges, x)]
+
+
+def _factors(effect, slope, T, shape):
+    """f, g of ``effect.modulus_factors`` broadcast to ``shape``, checked (finite, > 0)."""
+    out = effect.modulus_factors(slope, T)
+    if out is None:
+        return np.ones(shape), np.ones(shape)
+    f, g = (np.ascontiguousarray(np.broadcast_to(np.asarray(a, dtype=float), shape)) for a in out)
+    if not (np.all(np.isfinite(f)) and np.all(np.isfinite(g)) and np.all(f > 0) and np.all(g > 0)):
+        raise InputError(f"effect {effect.name!r}: modulus_factors must return finite factors > 0")
+    return f, g
+
+
+def psd_breakpoints(surface) -> np.ndarray:
+    """Wavevectors (rad/m) where the PSD or its log-log slope jumps: ``surface.breakpoints()`` when the surface
+    provides it (tabulated PSDs: their rows; a self-affine PSD with a plateau: its roll-off), else none."""
+    f = getattr(surface, "breakpoints", None)
+    if f is None:
+        return np.empty(0)
+    b = np.asarray(f() if callable(f) else f, dtype=float).ravel()
+    return b[np.isfinite(b) & (b > 0)]
+
+
+# ---------------------------------------------------------------------------------------------------------
+def _outputs(nv: int, nq: int) -> dict:
+    return ({k: np.empty((nv, nq)) for k in ("G", "P", "dmu", "cum", "dG", "ratio", "loss")}
+            | {"mu": np.empty(nv), "layer": np.empty(nv)})
+
+
+def _solved(prep, out, T_q, err, ok, it, res) -> Solved:
+    return Solved(q=prep.q, G=out["G"], P=out["P"], T_q=T_q, dmu=out["dmu"], loss=out["loss"], dG=out["dG"],
+                  ratio=out["ratio"], mu_cumulative=out["cum"], mu=out["mu"], error_estimate=err,
+                  excited_layer=np.where(out["mu"] > 0, out["layer"] / np.where(out["mu"] > 0, out["mu"], 1.0),
+                                         1.0 / prep.q[0]),
+                  converged=bool(np.all(ok)), converged_each=np.asarray(ok, dtype=bool), iterations=it,
+                  residual=res)
+
+
+def _relative_error(mu: np.ndarray, mu_coarse: np.ndarray) -> np.ndarray:
+    """|fine - coarse| / sqrt(21) relative to fine.
+
+    For a rule of order p the coarse error is 2^p times the fine one, so fine - coarse = (2^p - 1) x (fine error).
+    The rules are third order where the PSD is smooth and second order across the kinks of a tabulated PSD;
+    dividing by sqrt(21), the geometric mean of 2^3 - 1 and 2^2 - 1, keeps the estimate within a factor 1.6 of
+    the error for either order.
+    """
+    with np.errstate(divide="ignore", invalid="ignore"):
+        e = np.abs(mu - mu_coarse) / _RICHARDSON / np.abs(mu)
+    return np.where(np.abs(mu) > 0, e, 0.0)
+
+
+_RICHARDSON = math.sqrt(21.0)
+
+
+@functools.lru_cache(maxsize=4)
+def _gauss_legendre(n: int) -> tuple[np.ndarray, np.ndarray]:
+    # pure function of n, cached (leggauss costs a millisecond at every call otherwise)
+    g, w = np.polynomial.legendre.leggauss(n)
+    g.setflags(write=False)
+    w.setflags(write=False)
+    return g, w
+
+
+def _coarse_indices(n: int) -> np.ndarray:
+    """Every other node, always with the last one."""
+    idx = np.arange(0, n, 2)
+    if idx[-1] != n - 1:
+        idx = np.append(idx, n - 1)
+    return np.ascontiguousarray(idx, dtype=np.int64)

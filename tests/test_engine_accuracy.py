@@ -1,0 +1,193 @@
+"""Accuracy of the solver at the corners of the operating regime, against an independent adaptive quadrature.
+
+The reference (:mod:`persson.reference`) shares no numerics with the engine: adaptive angular quadratures of the
+material's own E(omega, T) and one adaptive ODE solve in ln q whose step control resolves the boundary layer near
+q0, where G grows by orders of magnitude within a tiny range of q for glassy rubber and P falls from 1 to almost 0.
+The engine's default settings must be within 1e-3 of it everywhere (the worst case over the whole regime is printed
+by ``benchmarks/accuracy.py``), and its built-in error estimate must tell the truth.
+"""
+
+import functools
+import math
+import warnings
+
+import numpy as np
+import pytest
+
+import materials
+import persson
+import surfaces
+from persson.reference import reference_flash_friction, reference_friction
+
+WLF = materials.WLF(8.86, 101.6, 20.0)
+
+
+def glassy():
+    """Glass transition centred at tau = 1e-8 s at 20 C: rubbery 3 MPa, glassy 2 GPa (|E|/sigma0 up to 1e5)."""
+    tau = np.logspace(-14, -2, 25)
+    w = np.exp(-0.5 * ((np.log10(tau) + 8.0) / 2.0) ** 2)
+    return materials.Prony(E_inf=3e6, E_i=(2e9 - 3e6) * w / w.sum(), tau_i=tau, wlf=WLF)
+
+
+def soft():
+    """Soft compound: 0.5 MPa rubbery, 50 MPa glassy, broad transition."""
+    tau = np.logspace(-10, 0, 21)
+    w = np.exp(-0.5 * ((np.log10(tau) + 7.0) / 2.5) ** 2)
+    return materials.Prony(E_inf=0.5e6, E_i=(50e6 - 0.5e6) * w / w.sum(), tau_i=tau, wlf=WLF)
+
+
+def noisy_table():
+    """A PSD table with 20 % scatter (log-normal) that starts abruptly at q0: no roll-off, kinks at every row."""
+    rng = np.random.default_rng(7)
+    q = np.geomspace(2e3, 2e6, 61)
+    return surfaces.PSD(q, 1e-20 * (q / 2e3) ** (-3.6) * np.exp(0.2 * rng.standard_normal(q.size)))
+
+
+ROUGH_ROAD = surfaces.SelfAffine(hurst=0.8, q0=2 * math.pi / 5e-3, q1=1e6, hrms=0.2e-3)
+CORNERS = {
+    # name: (material, surface, speed m/s, temperature C, pressure Pa)
+    "cold fast low pressure (glassy)": (glassy, ROUGH_ROAD, 30.0, -20.0, 0.02e6),
+    "hot slow high pressure (soft)": (soft, surfaces.example_road(), 1e-8, 80.0, 2e6),
+    "very rough sandpaper": (materials.example_tread, surfaces.SelfAffine(hurst=0.6, q0=1e3, q1=1e8, hrms=30e-6),
+                             1.0, 20.0, 0.3e6),
+    "very smooth": (materials.example_tread, surfaces.SelfAffine(hurst=0.9, q0=1e4, q1=1e8, hrms=0.1e-6),
+                    1e-2, 20.0, 0.3e6),
+    "PSD table starting abruptly at q0": (glassy, noisy_table(), 10.0, 0.0, 0.1e6),
+}
+
+
+@functools.lru_cache(maxsize=None)
+def reference(name):
+    make, s, v, T, p = CORNERS[name]
+    return reference_friction(s, make(), v, T, p)
+
+
+def engine(name, **grid):
+    """The engine at a corner; a grid given explicitly is used as it is (no adaptive refinement)."""
+    make, s, v, T, p = CORNERS[name]
+    if grid:
+        grid.setdefault("max_refinement", 0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", persson.errors.AccuracyWarning)
+        warnings.simplefilter("ignore", persson.PhysicsWarning)  # the very rough sandpaper's slope is flagged
+        return persson.Model(s, make(), grid=persson.GridSettings(**grid)).friction(v, temperature=T, pressure=p)
+
+
+@pytest.mark.parametrize("name", list(CORNERS))
+def test_default_settings_are_within_1e3_of_the_independent_quadrature(name):
+    ref = reference(name)
+    r = engine(name)
+    assert r.mu_hysteresis == pytest.approx(ref.mu[0], rel=1e-3)
+    assert r.contact_area == pytest.approx(ref.contact_area[0], rel=1e-3)
+    assert r.excited_layer_thickness == pytest.approx(ref.excited_layer[0], rel=1e-3)
+    # and the result knows it: its own estimate is below the tolerance, so it carries no accuracy note
+    assert r.error_estimate < persson.GridSettings().tolerance
+    assert not any("quadrature error" in n for n in r.notes)
+
+
+@pytest.mark.parametrize("name", list(CORNERS))
+def test_error_estimate_is_within_a_factor_3_of_the_true_error(name):
+    """On grids coarse enough for the error to be measurable (well above the reference's own 1e-8), yet fine enough
+    for the asymptotic rate (the estimate compares the grid with its every other node)."""
+    ref = reference(name).mu[0]
+    for ppd in (16, 24, 32):
+        r = engine(name, q_per_decade=ppd)
+        true = abs(r.mu_hysteresis / ref - 1)
+        if true < 1e-6:  # exact to the reference's accuracy: the estimate must then be small too
+            assert r.error_estimate < 1e-5
+            continue
+        assert true / 3 <= r.error_estimate <= 3 * true, (ppd, true, r.error_estimate)
+
+
+def test_error_falls_at_third_order_in_the_stiff_corner():
+    name = "cold fast low pressure (glassy)"
+    ref = reference(name).mu[0]
+    errs = [abs(engine(name, q_per_decade=ppd).mu_hysteresis / ref - 1) for ppd in (4, 8, 16)]
+    assert errs[0] / errs[1] > 5 and errs[1] / errs[2] > 5, errs
+
+
+def test_old_log_uniform_sampling_would_have_been_ten_times_wrong():
+    """The regime that motivates the method: P(q) falls from 1 to ~0 inside the first q interval.
+
+    G at the first node after q0 is already >> 1, so any rule sampling d mu/d ln q (proportional to P) at the
+    nodes with P(q0) = 1 weights a value that holds only on a sliver of the interval."""
+    name = "cold fast low pressure (glassy)"
+    r = engine(name)
+    assert r.G_q[0, 1] > 1e4
+    h = math.log(r.q[1] / r.q[0])
+    node_rule = 0.5 * h * (r.dmu_dlnq[0, 0] + r.dmu_dlnq[0, 1])  # trapezoid on the first interval alone
+    assert node_rule > 2 * reference(name).mu[0]
+    assert r.mu_hysteresis == pytest.approx(reference(name).mu[0], rel=1e-3)
+
+
+def test_band_of_the_first_decade_matches_the_reference_in_the_stiff_corner():
+    make, s, v, T, p = CORNERS["cold fast low pressure (glassy)"]
+    q0 = s.q_range[0]
+    edges = [q0 * 1.001, q0 * 10.0]
+    ref = reference_friction(s, make(), v, T, p, q_eval=edges)
+    model = persson.Model(s, make(), grid=persson.GridSettings(extra_q=tuple(edges)))
+    r = model.friction(v, temperature=T, pressure=p)
+    band = persson.sweeps.band_contributions(r, [edges])[0, 0]
+    assert band == pytest.approx(ref.mu_at[0, 1] - ref.mu_at[0, 0], rel=1e-3)
+
+
+def test_coarse_grid_warns_and_says_so():
+    name = "cold fast low pressure (glassy)"
+    make, s, v, T, p = CORNERS[name]
+    model = persson.Model(s, make(), grid=persson.GridSettings(q_per_decade=4, tolerance=1e-6, max_refinement=0))
+    with pytest.warns(persson.errors.AccuracyWarning, match="quadrature error"):
+        r = model.friction([1.0, v], temperature=T, pressure=p)
+    assert any("quadrature error" in n and "q_per_decade" in n for n in r.notes)
+    assert np.all(r.error_estimate > 1e-6)
+
+
+def test_per_speed_estimates_are_independent_of_the_other_speeds():
+    """One modulus table serves all speeds of a call: adding speeds must not change a speed's result."""
+    make, s, v, T, p = CORNERS["cold fast low pressure (glassy)"]
+    model = persson.Model(s, make())
+    one = model.friction(1e-8, temperature=T, pressure=p)
+    many = model.friction([1e-8, 1e-4, 1.0, 30.0], temperature=T, pressure=p)
+    assert many.mu_hysteresis[0] == pytest.approx(one.mu_hysteresis, rel=1e-9)
+    assert many.error_estimate[0] == pytest.approx(one.error_estimate, rel=1e-6)
+
+
+@pytest.mark.slow
+def test_flash_temperature_matches_an_independent_fixed_point_iteration():
+    """Glassy-side compound on a rough road at 1 m/s: the flash temperature rises by ~25 K."""
+    s = ROUGH_ROAD
+    m = materials.example_tread()
+    ref = reference_flash_friction(s, m, 1.0, 20.0, 0.3e6, nodes_per_decade=50)
+    r = persson.Model(s, m, effects=[persson.effects.FlashTemperature(tol=1e-7)]).friction(1.0, temperature=20.0,
+                                                                                          pressure=0.3e6)
+    assert r.mu_hysteresis == pytest.approx(ref.mu[0], rel=1e-3)
+    assert r.max_flash_temperature == pytest.approx(np.max(ref.temperature_q) - 20.0, rel=1e-3)
+
+
+def narrow():
+    """A narrow loss peak (one Prony term per decade around tau = 1e-6 s at 20 C, glassy 0.5 GPa)."""
+    tau = np.logspace(-9, -3, 7)
+    w = np.exp(-0.5 * ((np.log10(tau) + 6.0) / 0.8) ** 2)
+    return materials.Prony(E_inf=2e6, E_i=(5e8 - 2e6) * w / w.sum(), tau_i=tau, wlf=WLF)
+
+
+def test_hard_speeds_are_refined_until_the_estimate_meets_the_tolerance():
+    """A narrow loss peak swept by a steep flash temperature needs more nodes than the default grid has: the
+    speed is solved again on refined grids, and its result agrees with a converged one."""
+    s = surfaces.example_road()
+    fx = persson.effects.FlashTemperature(tol=1e-6)
+    kw = dict(temperature=-20.0, pressure=0.02e6)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", persson.PhysicsWarning)  # the example road's rms slope 3.9
+        fixed = persson.Model(s, narrow(), effects=[fx], grid=persson.GridSettings(max_refinement=0))
+        with pytest.warns(persson.AccuracyWarning):
+            coarse = fixed.friction(1.0, **kw)
+        adaptive = persson.Model(s, narrow(), effects=[fx]).friction([1e-3, 1.0], **kw)
+        converged = persson.Model(s, narrow(), effects=[fx], grid=persson.GridSettings(q_per_decade=96)).friction(
+            1.0, **kw)
+    assert coarse.error_estimate > 1e-3
+    assert adaptive.error_estimate[1] < 1e-3 / 3
+    assert abs(adaptive.mu_hysteresis[1] / converged.mu_hysteresis - 1) < 1e-3
+    assert abs(coarse.mu_hysteresis / converged.mu_hysteresis - 1) > 1e-2
+    # the refined speed keeps the base grid for its per-scale arrays: they are its values at those nodes
+    assert adaptive.area_q.shape == (2, adaptive.q.size)
+    assert adaptive.contact_area[1] == adaptive.area_q[1, -1]

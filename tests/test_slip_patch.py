@@ -1,0 +1,380 @@
+"""Specification of the local friction along the contact patch: mu(v_s, p(x), T(x)) (PatchHeating).
+
+Model (persson/effects/patch.py): behind the stick zone the rubber slides with the shear tau = mu(v_s, p, T) p and
+the frictional power tau v_s heats the interface; one-dimensional conduction into the tread (moving through the
+patch at (1 - s) V) and into the counter-surface (moving at V), both entering at T0, with a common interface
+temperature, gives
+
+    T(xi) - T0 = Lambda int_{xi_c}^{xi} mu g / sqrt(xi - xi') dxi',
+    Lambda = eta sigma0 v_s sqrt(l) / (sqrt(pi) (e_r sqrt((1 - s) V) + e_c sqrt(V))),   g = p / sigma0.
+
+Independent references used here:
+* heat_fraction = 0: the brush model with the local friction mu(v_s, p(x)) (brush_mu; quadrature for p(x));
+* uniform pressure and mu = mu0 - b (T - T0): the Abel equation has the closed form
+  mu(xi) = mu0 erfcx(c sqrt(xi - xi_c)), c = Lambda b sqrt(pi) (Laplace transform: Y = c / (s (sqrt(s) + c)));
+* the real engine: a slow Picard iteration written here (whole profile re-evaluated with the engine each pass).
+"""
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+import pytest
+from scipy.integrate import quad
+from scipy.optimize import brentq
+from scipy.special import erfcx
+
+import materials
+import persson
+import surfaces
+import validation
+from persson import slip as ps
+from persson.effects import PatchHeating
+from persson.effects.patch import patch_friction
+from persson.errors import InputError
+
+L, W, K, SIGMA0, T0 = 0.02, 0.01, 3.0e9, 0.3e6, 20.0
+E_R, E_C = 700.0, 1500.0
+
+
+@dataclass
+class ClosedForm:
+    """A friction 'model' given by a formula mu(v, p, T); records every engine call."""
+
+    mu: object
+    calls: list = field(default_factory=list)
+    effect_names: tuple = ()
+    material: object = None
+
+    def friction(self, speed, temperature=20.0, pressure=0.3e6):
+        v, T, p = np.broadcast_arrays(np.asarray(speed, float), np.asarray(temperature, float),
+                                      np.asarray(pressure, float))
+        self.calls.append(v.size)
+
+        class R:
+            pass
+
+        r = R()
+        r.mu = np.asarray(self.mu(v, p, T), dtype=float)
+        return r
+
+
+def lam(s, V, eta=1.0, e_r=E_R, e_c=E_C, sigma0=SIGMA0, length=L):
+    return eta * sigma0 * s * V * math.sqrt(length) / (math.sqrt(math.pi) * (e_r * math.sqrt((1 - s) * V)
+                                                                             + e_c * math.sqrt(V)))
+
+
+def road_model(*effects):
+    return persson.Model(surfaces.example_road(), materials.example_tread(), effects=list(effects))
+
+
+# ------------------------------------------------------------------------------------------------------------
+def test_without_heating_the_local_friction_follows_speed_and_local_pressure():
+    # mu cubic in ln v (the four-point interpolation in speed is exact for it), independent of p and T
+    cubic = ClosedForm(lambda v, p, T: 0.9 + 0.05 * np.log(v) - 0.004 * np.log(v) ** 2 - 0.0003 * np.log(v) ** 3)
+    h = PatchHeating(heat_fraction=0.0, rubber_effusivity=E_R)
+    c = ps.Contact(L, W, K, "parabolic")
+    s = np.concatenate([np.geomspace(0.003, 0.5, 25), [0.7, 1.0]])
+    for V in (0.3, 3.0):
+        sol = patch_friction(cubic, h, c, s, V, T0, SIGMA0)
+        ref, ref_xc = ps.brush_mu(c, s, cubic.mu(s * V, SIGMA0, T0), pressure=SIGMA0)
+        assert np.allclose(sol.mu, ref, rtol=0, atol=1e-12)
+        assert np.allclose(sol.stick_fraction, ref_xc, atol=1e-12)
+        assert np.all(sol.max_rise == 0)
+
+    # mu rising with the local pressure: mu(p) = 0.6 + 0.3 p / sigma0 (evaluated at >= 2 % of sigma0 at the edges)
+    lin = ClosedForm(lambda v, p, T: 0.6 + 0.3 * p / SIGMA0)
+
+    def mu_g(g):
+        return 0.6 + 0.3 * max(g, 0.02)
+
+    def g_of(x):
+        return 6 * x * (1 - x)
+
+    def reference(s):
+        a = K * (s / (1 - s)) * L / SIGMA0
+        margin = lambda x: mu_g(g_of(x)) * g_of(x) - a * x  # noqa: E731
+        xc = brentq(margin, 1e-9, 1.0) if margin(1e-9) > 0 else 0.0
+        slide, _ = quad(lambda x: mu_g(g_of(x)) * g_of(x), xc, 1.0, points=[0.02, 0.98], limit=200)
+        return 0.5 * a * xc**2 + slide
+
+    c = ps.Contact(L, W, K, "parabolic", n_points=801)
+    s = np.array([0.002, 0.01, 0.03, 0.1])
+    sol = patch_friction(lin, h, c, s, 1.0, T0, SIGMA0)
+    assert np.allclose(sol.mu, [reference(x) for x in s], atol=2e-5)
+
+
+@pytest.mark.parametrize("slip, V", [(1.0, 2.0), (0.3, 2.0), (0.05, 0.5)])
+def test_temperature_along_the_patch_matches_the_closed_form_abel_solution(slip, V):
+    mu0, b = 1.2, 0.012  # mu = mu0 - b (T - T0)
+    lin_T = ClosedForm(lambda v, p, T: mu0 - b * (T - T0))
+    h = PatchHeating(counter_effusivity=E_C, heat_fraction=0.9, rubber_effusivity=E_R)
+    Lam = lam(slip, V, eta=0.9)
+    cc = Lam * b * math.sqrt(math.pi)
+    if slip < 1:
+        a = K * slip / (1 - slip) * L / SIGMA0
+        xc = mu0 / a
+        assert xc < 1
+    else:
+        a, xc = math.inf, 0.0
+    slide, _ = quad(lambda t: erfcx(cc * t) * 2 * t, 0.0, math.sqrt(1 - xc), epsabs=1e-13, epsrel=1e-13)
+    exact = (0.5 * a * xc**2 if slip < 1 else 0.0) + mu0 * slide
+    errors = []
+    for n in (101, 201, 401, 801):
+        c = ps.Contact(L, W, K, "uniform", n_points=n)
+        sol = patch_friction(lin_T, h, c, slip, V, T0, SIGMA0, profiles=True)
+        errors.append(abs(sol.mu[0] - exact))
+        # the profile: T0 in the stick zone, then the closed form
+        x = sol.xi
+        T_exact = np.where(x < xc, T0, T0 + mu0 / b * (1 - erfcx(cc * np.sqrt(np.clip(x - xc, 0, None)))))
+        assert np.max(np.abs(sol.temperature[0] - T_exact)) < 0.02 * max(1.0, np.max(T_exact) - T0) / n ** 0.5
+        assert sol.stick_fraction[0] == pytest.approx(xc, abs=1e-12)
+    print(f"\nslip {slip}, V {V}: exact {exact:.6f}, errors by n_points {np.array(errors)}")
+    # measured: errors 8e-5 -> 3.5e-6 (slip 1), 1.4e-5 -> 8e-7 (0.3) from 101 to 801 nodes, i.e. order about 1.5:
+    # the temperature rises like sqrt(x - x_c) behind the stick zone
+    assert errors[-1] < 1e-5
+    assert errors[0] / errors[-1] > 12
+
+
+def test_partition_of_the_heat_between_tread_and_counter_surface():
+    h = PatchHeating(counter_effusivity=E_C, rubber_effusivity=E_R)
+    s, V = np.array([0.1, 0.5, 1.0]), 2.0
+    share = h.rubber_share(s, V, E_R)
+    expect = E_R * np.sqrt((1 - s) * V) / (E_R * np.sqrt((1 - s) * V) + E_C * np.sqrt(V))
+    assert np.allclose(share, expect) and share[-1] == 0.0  # the locked tread takes no net heat
+    assert np.allclose(h.heat_factor(s, V, SIGMA0, L, E_R), [lam(x, V) for x in s])
+    # the tread's effusivity comes from material.thermal unless given
+    tread = materials.example_tread()
+    th = tread.thermal
+    assert PatchHeating().effusivity_of(tread) == pytest.approx(
+        math.sqrt(th.conductivity * th.density * th.specific_heat))
+
+
+def picard_reference(model, s, V, contact, heating, iters=80):
+    """Slow reference: iterate the whole temperature profile, every pass one engine call at all nodes."""
+    xi = contact._xi
+    g = contact._g
+    p = np.maximum(g, 0.02) * SIGMA0
+    vs = s * V
+    e_r = heating.effusivity_of(model.material)
+    Lam = heating.heat_fraction * SIGMA0 * vs * math.sqrt(L) / (
+        math.sqrt(math.pi) * (e_r * math.sqrt((1 - s) * V) + heating.counter_effusivity * math.sqrt(V)))
+    N = xi.size
+
+    def mu_at(T):
+        return np.asarray(model.friction(np.full(N, vs), temperature=T, pressure=p).mu, dtype=float)
+
+    mu0 = mu_at(np.full(N, T0))
+    if s < 1:
+        a = K * s / (1 - s) * L / SIGMA0
+        d = mu0 * g - a * xi
+        i = int(np.argmax(d[1:] <= 0)) + 1
+        t = d[i - 1] / (d[i - 1] - d[i])
+        xc = xi[i - 1] + t * (xi[i] - xi[i - 1])
+        gc = g[i - 1] + t * (g[i] - g[i - 1])
+        mc = mu0[i - 1] + t * (mu0[i] - mu0[i - 1])  # (linear in between: only used at T0)
+        mc = float(model.friction(vs, temperature=T0, pressure=max(gc, 0.02) * SIGMA0).mu)
+        x = np.concatenate([[xc], xi[i:]])
+        gs = np.concatenate([[gc], g[i:]])
+        sel = slice(i, N)
+    else:
+        a, xc, i = math.inf, 0.0, 0
+        x, gs, sel = xi, g, slice(0, N)
+        mc = mu0[0]
+    T = np.full(N, T0)
+    for _ in range(iters):
+        mu = mu_at(T)
+        f = np.concatenate([[mc * gs[0]], (mu * g)[sel]]) if s < 1 else mu * g
+        rise = np.zeros(x.size)
+        for k in range(1, x.size):  # product trapezoid: f linear between points, the kernel exactly
+            A = x[k] - x[:k]
+            B = x[k] - x[1:k + 1]
+            h = x[1:k + 1] - x[:k]
+            I0 = 2 * (np.sqrt(A) - np.sqrt(B))
+            I1 = A * I0 - 2 / 3 * (A**1.5 - B**1.5)
+            rise[k] = np.sum(f[:k] * (I0 - I1 / h) + f[1:k + 1] * I1 / h)
+        T_new = np.full(N, T0)
+        T_new[sel] = T0 + Lam * (rise[1:] if s < 1 else rise)
+        if np.max(np.abs(T_new - T)) < 1e-6:
+            T = T_new
+            break
+        T = T_new
+    mu = mu_at(T)
+    f = np.concatenate([[mc * gs[0]], (mu * g)[sel]]) if s < 1 else mu * g
+    total = (0.5 * a * xc**2 if s < 1 else 0.0) + float(np.sum(0.5 * np.diff(x) * (f[1:] + f[:-1])))
+    return total, T
+
+
+def test_tabulated_engine_friction_agrees_with_a_direct_iteration():
+    model = road_model(PatchHeating())
+    c = ps.Contact(L, W, K, "parabolic", n_points=101)
+    rows = [(0.15, 3.0), (1.0, 1.0)]
+    # the rows sit in a 30 x 2 sweep so that the table interpolates in speed as it does in practice
+    S = np.concatenate([np.geomspace(0.01, 1.0, 30), [r[0] for r in rows]])
+    Vs = np.concatenate([np.where(np.arange(30) % 2, 3.0, 1.0), [r[1] for r in rows]])
+    sol = patch_friction(model, model.effect("patch_heating"), c, S, Vs, T0, SIGMA0, profiles=True)
+    for k, (s, V) in enumerate(rows):
+        ref, T_ref = picard_reference(model.without("patch_heating"), s, V, c, model.effect("patch_heating"))
+        j = 30 + k
+        print(f"\ns = {s}, V = {V}: table {sol.mu[j]:.5f}, direct {ref:.5f}, max rise {np.max(T_ref) - T0:.1f} K")
+        assert sol.mu[j] == pytest.approx(ref, abs=1e-3)
+        assert np.max(np.abs(sol.temperature[j] - T_ref)) < 0.05 * (np.max(T_ref) - T0)
+
+
+def test_patch_heating_makes_a_peak_then_a_fall_to_the_locked_wheel():
+    c = ps.Contact(L, W, K)
+    S = np.concatenate([np.geomspace(0.01, 0.9, 40), [0.95, 1 - 1e-6, 1.0]])
+    V = np.array([1.0, 3.0])
+    cold = ps.mu_slip(road_model(), S[:, None], V[None, :], contact=c)
+    hot = ps.mu_slip(road_model(PatchHeating()), S[:, None], V[None, :], contact=c)
+    peak, at = hot.peak(axis=0)
+    print(f"\npeak {peak} at slip {at}; locked {hot.mu[-1]}; without heating locked {cold.mu[-1]}")
+    # without heating (hysteresis rising with speed on this road) mu(slip) only rises to the locked wheel
+    assert np.all(np.diff(cold.mu, axis=0) > -1e-9)
+    # with it: a peak at 10-30 % slip, then a fall to the locked wheel (DRFT-like)
+    assert np.all((at >= 0.08) & (at <= 0.35))
+    assert np.all(hot.mu[-1] < 0.85 * peak)
+    # the locked wheel is the limit of the curve (approached like sqrt(1 - s): the tread's share of the heat)
+    assert np.allclose(hot.mu[-2], hot.mu[-1], atol=5e-4)
+    # heating only lowers the friction here (mu falls with temperature on this compound), most at the locked wheel
+    assert np.all(hot.mu <= cold.mu + 1e-3)
+    # profiles: T0 in the stick zone, rising behind it (and cooling a little near the trailing edge, where the
+    # parabolic pressure and with it the heat flux vanish); the locked wheel heats more at the higher speed
+    T = hot.patch.temperature
+    j = 20
+    stick = hot.patch.x < hot.stick_length[j, 1] - 1e-12
+    assert np.allclose(T[j, 1][stick], T0)
+    Tl = T[-1, 1]
+    assert np.all(Tl >= T0) and 0.5 < hot.patch.x[np.argmax(Tl)] / L < 1.0
+    assert np.all(np.diff(Tl[: Tl.size // 2]) > 0)
+    assert hot.patch.max_rise[-1, 1] > hot.patch.max_rise[-1, 0] > 5.0
+    assert hot.patch.engine_calls == 2 and hot.friction is None
+    assert np.allclose(hot.as_table()["max_temperature_rise_K"], hot.patch.max_rise.ravel())
+    # mu_local is the engine's friction at (v_s, sigma0, T0)
+    direct = road_model().friction(np.array([S[20] * 3.0, 3.0]), temperature=T0, pressure=SIGMA0).mu
+    assert np.allclose([hot.mu_local[20, 1], hot.mu_local[-1, 1]], direct, rtol=3e-4)
+
+
+def test_one_table_per_call_and_reuse_while_only_the_contact_changes():
+    mu_T = ClosedForm(lambda v, p, T: (0.8 + 0.1 * np.log10(v)) * (1 - 0.004 * (T - T0)) * (1 + 0.05 * p / SIGMA0))
+    h = PatchHeating(rubber_effusivity=E_R)
+    c = ps.Contact(L, W, K)
+    s = np.geomspace(0.01, 1.0, 40)
+    s2, V2 = np.broadcast_arrays(s[:, None], np.array([0.3, 1.0, 3.0])[None, :])
+    sol = patch_friction(mu_T, h, c, s2.ravel(), V2.ravel(), T0, SIGMA0)
+    assert len(mu_T.calls) == sol.engine_calls == 2  # the T0 slice, then the heated temperatures
+    cache = {}
+    named = _Named(mu_T, h)
+    ps.predict_slip(named, s2.ravel(), V2.ravel(), contact=c, cache=cache)
+    n = len(mu_T.calls)
+    ps.predict_slip(named, s2.ravel(), V2.ravel(), contact=c.with_parameters(stiffness=2 * K), cache=cache)
+    assert len(mu_T.calls) == n  # a stiffer tread: the same table
+    # equal persson Models (new objects, same surface, material and effects) share the table too
+    road, tread = surfaces.example_road(), materials.example_tread()
+    m1 = persson.Model(road, tread, effects=[PatchHeating()])
+    m2 = persson.Model(road, tread, effects=[PatchHeating()])
+    cache = {}
+    ps.predict_slip(m1, s2.ravel()[:20], V2.ravel()[:20], contact=c, cache=cache)
+    tab = cache["value"]
+    ps.predict_slip(m2, s2.ravel()[:20], V2.ravel()[:20], contact=c.with_parameters(stiffness=2 * K), cache=cache)
+    assert cache["value"] is tab
+    ps.predict_slip(m2.with_effect(PatchHeating(counter_effusivity=900.0)), s2.ravel()[:20], V2.ravel()[:20],
+                    contact=c, cache=cache)
+    assert cache["value"] is not tab  # other heating: another temperature range
+
+
+@dataclass
+class _Named:
+    """A ClosedForm carrying a PatchHeating effect, as a persson.Model does."""
+
+    base: ClosedForm
+    heating: PatchHeating
+
+    @property
+    def effect_names(self):
+        return ("patch_heating",)
+
+    @property
+    def material(self):
+        return None
+
+    def effect(self, name):
+        return self.heating
+
+    def without(self, name):
+        return self.base
+
+    def friction(self, *a, **k):
+        return self.base.friction(*a, **k)
+
+
+def test_validation_predicts_every_row_through_the_patch():
+    c = ps.Contact(L, W, K)
+    model = road_model(PatchHeating(counter_effusivity=2000.0))
+    slip = np.array([0.05, 0.2, 1.0, 1.0, 0.1])
+    speed = np.array([1.0, 1.0, 1.0, 0.3, 2.0])
+    T = np.array([20.0, 20.0, 20.0, 30.0, 30.0])
+    m = validation.Measurements.from_arrays(slip=slip, speed=speed, temperature=T, pressure=SIGMA0, mu=0.5,
+                                            contact=c)
+    pred = validation.predict(model, m)
+    for i in range(slip.size):
+        one = ps.mu_slip(model, slip[i], speed[i], temperature=T[i], pressure=SIGMA0, contact=c)
+        assert pred.mu[i] == pytest.approx(one.mu, abs=2e-4)  # tables built for other rows interpolate alike
+    # sliding rows: the locked wheel's heated patch, below the engine's friction at T0
+    plain = model.without("patch_heating").friction(speed[2:4], temperature=T[2:4], pressure=SIGMA0).mu
+    assert np.all(pred.mu[2:4] < plain)
+    assert np.allclose(pred.mu_local[2:4], plain, rtol=5e-4)
+    sliding_only = validation.Measurements.from_arrays(slip=1.0, speed=[1.0, 2.0], temperature=20.0,
+                                                       pressure=SIGMA0, mu=0.5)
+    with pytest.raises(validation.errors.InputError, match="contact"):
+        validation.predict(model, sliding_only)
+
+
+def test_the_effect_is_registered_and_leaves_the_engine_alone():
+    assert "patch_heating" in persson.effects.available()
+    h = persson.effects.get("patch_heating", counter_effusivity=2500.0)
+    assert isinstance(h, PatchHeating) and h.counter_effusivity == 2500.0
+    names = {p.name: p for p in PatchHeating.parameters}
+    assert names["counter_effusivity"].log_scale and names["counter_effusivity"].unit.startswith("W")
+    assert names["heat_fraction"].bounds == (0.0, 1.0)
+    v = np.array([0.01, 1.0])
+    a = road_model().friction(v)
+    b = road_model(h).friction(v)
+    assert np.array_equal(a.mu, b.mu)
+    assert any("patch_heating acts on the contact patch" in n for n in b.notes)
+    assert "isbn:9780198533689" in b.citations
+
+
+def test_a_patch_hotter_than_the_table_says_so():
+    c = ps.Contact(L, W, K)
+    r = ps.mu_slip(road_model(PatchHeating(max_rise=3.0)), [0.5, 1.0], 3.0, contact=c)
+    assert any("above the table" in n for n in r.notes)
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    (dict(counter_effusivity=-1.0), "counter_effusivity"), (dict(heat_fraction=1.5), "heat_fraction"),
+    (dict(max_rise=0.0), "max_rise"), (dict(n_pressure=1), "n_pressure"),
+    (dict(points_per_decade=float("nan")), "points_per_decade"), (dict(rubber_effusivity=-5.0), "rubber_effusivity"),
+])
+def test_bad_parameters(kwargs, match):
+    with pytest.raises(InputError, match=match):
+        PatchHeating(**kwargs)
+
+
+def test_bad_input_to_the_patch():
+    c = ps.Contact(L, W, K)
+    cf = ClosedForm(lambda v, p, T: 0.8 + 0 * v)
+    with pytest.raises(InputError, match="rubber_effusivity"):
+        patch_friction(cf, PatchHeating(), c, 0.1, 1.0, T0, SIGMA0)  # no material.thermal
+    h = PatchHeating(rubber_effusivity=E_R)
+    with pytest.raises(InputError, match="slip"):
+        patch_friction(cf, h, c, 0.0, 1.0, T0, SIGMA0)
+    with pytest.raises(InputError, match="speed"):
+        patch_friction(cf, h, c, 0.1, -1.0, T0, SIGMA0)
+    with pytest.raises(InputError, match="contact"):
+        patch_friction(cf, h, "parabolic", 0.1, 1.0, T0, SIGMA0)
+    with pytest.raises(InputError, match="heating"):
+        patch_friction(cf, object(), c, 0.1, 1.0, T0, SIGMA0)
+    bad = ClosedForm(lambda v, p, T: np.where(T > T0 + 1, np.nan, 0.8))
+    with pytest.raises(InputError, match="local sliding friction"):
+        patch_friction(bad, h, c, 1.0, 3.0, T0, SIGMA0)

@@ -1,0 +1,207 @@
+"""validation.noise: the model-free noise estimates, the lack-of-fit tests and the pattern search.
+
+Every number is checked against an independent computation: the textbook formulas written out here with numpy and
+scipy (Gasser-Sroka-Jennen-Steinmetz pseudo-residuals, Satterthwaite's degrees of freedom, the pure-error F test of
+Draper & Smith, the Wald-Wolfowitz runs test), and Monte-Carlo checks of unbiasedness and calibration.
+"""
+
+import math
+
+import numpy as np
+import pytest
+from scipy import stats
+
+import validation
+from validation.noise import (ALPHA, estimate_noise, lack_of_fit, remaining_pattern, series_of)
+
+
+def _one_series(mu, n=None, speeds=None, mu_std=None, T=20.0):
+    speeds = np.geomspace(1e-3, 1.0, len(mu)) if speeds is None else speeds
+    return validation.Measurements.from_arrays(slip=1.0, speed=speeds, temperature=T, pressure=3e5, mu=mu,
+                                               mu_std=mu_std)
+
+
+def _grid(mu_fn, rng, sigma=0.01, temps=(0.0, 20.0, 40.0), n_speed=10):
+    v = np.geomspace(1e-3, 1.0, n_speed)
+    V = np.tile(v, len(temps))
+    T = np.repeat(temps, n_speed)
+    mu = mu_fn(np.log10(V), T) + rng.normal(0, sigma, V.size)
+    return validation.Measurements.from_arrays(slip=1.0, speed=V, temperature=T, pressure=3e5, mu=mu)
+
+
+# ---- local differences -------------------------------------------------------------------------------------------
+def test_local_estimate_equals_the_second_difference_formula_for_equal_spacing():
+    rng = np.random.default_rng(1)
+    y = 0.5 + rng.normal(0, 0.01, 20)
+    m = _one_series(y)
+    ne = estimate_noise(m)
+    assert ne.source == "local differences"
+    # equal spacing in log speed: a = b = 1/2, c^2 = 2/3, so c e = (y[i-1] - 2 y[i] + y[i+1]) / sqrt(6)
+    d2 = (y[:-2] - 2 * y[1:-1] + y[2:]) / math.sqrt(6.0)
+    assert ne.sigma ** 2 == pytest.approx(np.mean(d2 ** 2), rel=1e-10)
+    # Satterthwaite: m^2 / ||B B^T||_F^2 with lag-1 correlation -4/6 and lag-2 correlation 1/6
+    mm = d2.size
+    frob = mm + 2 * (mm - 1) * (4 / 6) ** 2 + 2 * (mm - 2) * (1 / 6) ** 2
+    assert ne.dof == pytest.approx(mm ** 2 / frob, rel=1e-10)
+
+
+def test_local_estimate_removes_a_linear_trend_exactly():
+    y = 0.3 + 0.05 * np.log10(np.geomspace(1e-3, 1.0, 20))
+    rng = np.random.default_rng(2)
+    noise = rng.normal(0, 0.01, y.size)
+    a = estimate_noise(_one_series(y + noise)).sigma
+    b = estimate_noise(_one_series(0.7 + noise)).sigma
+    assert a == pytest.approx(b, rel=1e-9)
+
+
+def test_local_estimate_is_unbiased_and_its_dof_describe_its_scatter():
+    """Monte Carlo over 400 data sets: the mean of sigma^2 is sigma^2, its variance 2 sigma^4 / dof."""
+    rng = np.random.default_rng(3)
+    est = []
+    for _ in range(400):
+        m = _grid(lambda lv, T: 0.5 + 0.1 * lv, rng)
+        ne = estimate_noise(m)
+        est.append(ne.sigma ** 2)
+    est = np.array(est)
+    s2 = 1e-4
+    assert abs(est.mean() - s2) < 3 * est.std() / math.sqrt(est.size)
+    assert est.var() == pytest.approx(2 * s2 ** 2 / ne.dof, rel=0.2)
+
+
+def test_series_are_the_rows_that_differ_in_one_condition():
+    m = validation.Measurements.from_arrays(
+        slip=[1, 1, 1, 1, 0.05, 0.1, 0.2, 1, 1, 1], speed=[0.01, 0.1, 1, 0.5, 1, 1, 1, 0.3, 0.3, 0.3],
+        temperature=[20, 20, 20, 40, 20, 20, 20, 0, 10, 30], pressure=3e5, mu=0.5)
+    series = {axis: sorted(idx.tolist()) for idx, x, axis in series_of(m)}
+    assert series["log10 sliding speed"] == [0, 1, 2]
+    assert series["log10 slip"] == [4, 5, 6]
+    assert series["temperature"] == [7, 8, 9]
+    assert 3 not in np.concatenate([idx for idx, _, _ in series_of(m)])
+
+
+# ---- replicates and mu_std -----------------------------------------------------------------------------------
+def test_replicates_give_the_pure_error_and_the_classical_lack_of_fit_test():
+    rng = np.random.default_rng(4)
+    v = np.repeat(np.geomspace(1e-3, 1.0, 8), 3)
+    x = np.log10(v)
+    y = 0.5 + 0.02 * x ** 2 + rng.normal(0, 0.01, v.size)
+    m = _one_series(y, speeds=v)
+    ne = estimate_noise(m)
+    assert ne.source == "replicates" and ne.n_groups == 8
+    means = np.array([y[i * 3:(i + 1) * 3].mean() for i in range(8)])
+    ss_pe = float(np.sum((y - np.repeat(means, 3)) ** 2))
+    assert ne.pure_error == pytest.approx(ss_pe, rel=1e-12)
+    assert ne.sigma == pytest.approx(math.sqrt(ss_pe / 16), rel=1e-12)
+    # a straight line in log speed misses the curvature: Draper & Smith's F test rejects it
+    A = np.column_stack([np.ones_like(x), x])
+    coef, *_ = np.linalg.lstsq(A, y, rcond=None)
+    r = y - A @ coef
+    lof = lack_of_fit(r, 2, ne)
+    F = ((np.sum(r ** 2) - ss_pe) / (8 - 2)) / (ss_pe / 16)
+    assert lof.test == "F" and lof.dof == (6, 16)
+    assert lof.statistic == pytest.approx(F, rel=1e-10)
+    assert lof.p_value == pytest.approx(stats.f.sf(F, 6, 16), rel=1e-10)
+    assert not lof.consistent
+    # the right model (with the quadratic term) passes
+    A2 = np.column_stack([A, x ** 2])
+    r2 = y - A2 @ np.linalg.lstsq(A2, y, rcond=None)[0]
+    assert lack_of_fit(r2, 3, ne).consistent
+
+
+def test_mu_std_gives_a_chi2_test():
+    rng = np.random.default_rng(5)
+    std = np.linspace(0.005, 0.02, 10)
+    y = 0.5 + rng.normal(0, 1, 10) * std
+    m = _one_series(y, mu_std=std)
+    ne = estimate_noise(m)
+    assert ne.source == "mu_std" and ne.sigma == pytest.approx(np.sqrt(np.mean(std ** 2)))
+    r = y - 0.5
+    lof = lack_of_fit(r, 0, ne)
+    chi2 = float(np.sum((r / std) ** 2))
+    assert lof.statistic == pytest.approx(chi2) and lof.p_value == pytest.approx(stats.chi2.sf(chi2, 10))
+
+
+def test_too_few_rows_give_no_noise_estimate_and_no_test():
+    m = validation.Measurements.from_arrays(slip=1.0, speed=[0.01, 0.1], temperature=[10, 30], pressure=3e5,
+                                            mu=[0.4, 0.5])
+    ne = estimate_noise(m)
+    assert ne.source == "none" and math.isnan(ne.sigma) and not ne.known
+    lof = lack_of_fit(np.array([0.1, -0.1]), 0, ne)
+    assert lof.test == "none" and lof.consistent and math.isnan(lof.p_value)
+
+
+def test_local_lack_of_fit_test_is_calibrated_or_conservative():
+    """Under the model (pure noise residual) the test rejects at most about ALPHA of the time."""
+    rng = np.random.default_rng(6)
+    rejected = 0
+    n = 300
+    for _ in range(n):
+        m = _grid(lambda lv, T: 0.5 + 0.0 * lv, rng)
+        rejected += not lack_of_fit(m.mu - 0.5, 0, estimate_noise(m)).consistent
+    assert rejected / n <= ALPHA + 3 * math.sqrt(ALPHA / n)
+
+
+def test_local_lack_of_fit_test_sees_a_misfit_twice_the_noise():
+    rng = np.random.default_rng(7)
+    m = _grid(lambda lv, T: 0.5 + 0.02 * np.sin(2.5 * lv) + 0.0004 * (T - 20), rng)
+    lof = lack_of_fit(m.mu - 0.5, 0, estimate_noise(m))
+    assert not lof.consistent and lof.ratio > 1.5
+
+
+def test_bad_reference_names_the_argument():
+    m = _one_series(np.full(6, 0.5))
+    with pytest.raises(validation.InputError, match="reference"):
+        estimate_noise(m, reference=np.ones(3))
+
+
+# ---- patterns -------------------------------------------------------------------------------------------------
+def _slip_rows(rng, resid_fn, sigma=0.005):
+    s = np.array([0.005, 0.01, 0.02, 0.04, 0.07, 0.1, 0.15, 0.2, 0.35, 0.6, 0.85])
+    S = np.tile(s, 3)
+    V = np.repeat([0.5, 1.0, 2.0], s.size)
+    r = resid_fn(np.log10(S)) + rng.normal(0, sigma, S.size)
+    m = validation.Measurements.from_arrays(slip=S, speed=V, temperature=20.0, pressure=3e5, mu=0.5 + r)
+    return m, r
+
+
+def test_a_hump_along_the_slip_curves_is_found_and_described():
+    rng = np.random.default_rng(8)
+    m, r = _slip_rows(rng, lambda ls: 0.04 * np.exp(-((ls + 1.0) / 0.35) ** 2))
+    ne = estimate_noise(m)
+    pat = remaining_pattern(r, m, ne)
+    assert pat.found
+    text = "; ".join(pat.findings)
+    assert "rises then falls with slip" in text
+    assert "sign runs" in text
+    assert pat.describe().endswith("more")      # the text names the strongest three
+
+
+def test_pure_noise_shows_no_pattern():
+    rng = np.random.default_rng(9)
+    m, r = _slip_rows(rng, lambda ls: 0.0 * ls)
+    ne = estimate_noise(m)
+    pat = remaining_pattern(r, m, ne)
+    assert not pat.found and pat.describe().startswith("none detected")
+
+
+def test_a_shift_at_one_temperature_is_found_as_a_group():
+    rng = np.random.default_rng(10)
+    m = _grid(lambda lv, T: 0.5 + 0.0 * lv, rng, temps=(0.0, 10.0, 20.0, 30.0, 40.0))
+    r = m.mu - 0.5 + np.where(m.temperature == 40.0, 0.02, 0.0)
+    pat = remaining_pattern(r, m, estimate_noise(m.with_mu(m.mu)))
+    assert pat.found and any("by temperature" in f and "40 C" in f for f in pat.findings)
+
+
+def test_runs_test_matches_wald_wolfowitz():
+    """One series whose residual keeps its sign in long blocks: the pooled z equals the textbook formula."""
+    signs = np.array([1, 1, 1, 1, 1, 1, -1, -1, -1, -1, -1, -1, 1, 1, 1, 1, 1, 1], dtype=float)
+    r = 0.01 * signs
+    m = _one_series(0.5 + r)
+    ne = estimate_noise(_one_series(0.5 + np.random.default_rng(0).normal(0, 0.01, signs.size)))
+    pat = remaining_pattern(r, m, ne)
+    n1, n2 = 12, 6
+    n = n1 + n2
+    E = 1 + 2 * n1 * n2 / n
+    V = 2 * n1 * n2 * (2 * n1 * n2 - n) / (n * n * (n - 1))
+    p = stats.norm.cdf((3 - E) / math.sqrt(V))
+    assert any(f"runs test p = {p:.2g}" in f for f in pat.findings)

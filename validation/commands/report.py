@@ -1,0 +1,62 @@
+"""``persson report CASE -o FILE``: compare, diagnose, improve and write one self-contained HTML report."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from persson.commands._common import (CASE_HELP, add_effects, add_force, add_quiet, effect_scripts, print_notes,
+                                      status_line)
+
+NAME = "report"
+HELP = ("the whole validation loop on a case (compare, diagnose, add the best significant effect until none is "
+        "left) written as one self-contained HTML report")
+
+
+def add_arguments(p):
+    p.add_argument("case", help=CASE_HELP)
+    p.add_argument("-o", "--output", default=None, help="HTML file (default: ./<case name>_report.html)")
+    p.add_argument("--no-improve", action="store_true", help="compare and diagnose only (no improvement loop)")
+    p.add_argument("--max-steps", type=int, default=4, help="largest number of effects added (default 4)")
+    p.add_argument("--json", default=None, metavar="FILE", help="also write the first diagnosis as JSON")
+    add_effects(p)
+    add_force(p)
+    add_quiet(p)
+
+
+def run(args) -> int:
+    from persson.case import parse_case
+    from persson.io import Outputs
+
+    import validation
+
+    scripts = effect_scripts(args)
+    parsed = parse_case(args.case)
+    out = Path(args.output) if args.output else Path(f"{parsed.name}_report.html")
+    status = status_line(args, NAME)
+    with Outputs(f"persson {NAME}", inputs=parsed.inputs + scripts, force=args.force) as outs:
+        html = outs.file(out, "-o")
+        js = outs.file(args.json, "--json") if args.json else None
+        with status.phase(f"reading {parsed.path.name}"):
+            case = validation.load_case(parsed.path, progress=status)
+        print_notes(case.spec.notes)
+        with status.phase(f"predicting {case.measurements.n} measured rows"):
+            cmp = validation.compare(case.model, case.measurements, case.contact, name=case.name)
+        print(cmp.summary())
+        if args.no_improve:
+            with status.phase("diagnosing"):
+                dx = validation.diagnose(case)
+            items = [case, cmp, dx]
+        else:
+            with status.phase("diagnose, add the best significant effect, repeat"):
+                imp = validation.improve(case, max_steps=args.max_steps, progress=status)
+            dx = imp.steps[0].diagnosis
+            items = [case, cmp, dx, imp]
+            print(imp.table_text())
+        print(dx.table_text())
+        with status.phase("writing the report"):
+            validation.write_report(items, html)
+        if js is not None:
+            dx.to_json(js)
+    for path in outs.written:
+        print(f"wrote {path.resolve()}")
+    return 0

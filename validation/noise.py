@@ -1,0 +1,470 @@
+r"""The noise of the measurements, estimated without any model, and the lack-of-fit test of a model against it.
+
+A diagnosis can only say "nothing is missing" or "this effect explains the data" against a noise level that does
+not come from the model being judged (otherwise every model's residual looks like noise). The sources, in order:
+
+1. ``"mu_std"``: the column given with the measurements. Lack of fit:
+   :math:`\chi^2 = \sum_i (r_i/\sigma_i)^2 \sim \chi^2(n - k)` under the model (:math:`k` fitted parameters).
+2. ``"replicates"``: rows repeated at identical conditions (slip, speed, temperature, pressure, wet). The pure-error
+   sum of squares :math:`SS_{pe} = \sum_g \sum_{i \in g} (y_i - \bar y_g)^2` with :math:`n - g` degrees of freedom
+   gives :math:`\hat\sigma^2 = SS_{pe}/(n - g)`; the classical lack-of-fit test is
+   :math:`F = \frac{(RSS - SS_{pe})/(g - k)}{SS_{pe}/(n - g)} \sim F(g - k, n - g)` (Draper & Smith, Applied
+   Regression Analysis, 3rd ed. 1998, Sec. 2.1). Used when it has at least :data:`MIN_DOF` degrees of freedom.
+3. ``"local differences"``: along each series (rows that differ only in sliding speed, or only in slip, ordered
+   along it), the pseudo-residuals of Gasser, Sroka & Jennen-Steinmetz (Biometrika 73, 625 (1986)):
+   :math:`\tilde e_i = a_i y_{i-1} + b_i y_{i+1} - y_i`, :math:`a_i = (x_{i+1}-x_i)/(x_{i+1}-x_{i-1})`,
+   :math:`b_i = 1 - a_i`, scaled by :math:`c_i^2 = 1/(a_i^2 + b_i^2 + 1)`, so that
+   :math:`\hat\sigma^2 = \frac1m \sum c_i^2 \tilde e_i^2` is unbiased for a curve that is locally linear in
+   :math:`x` (log sliding speed, log slip). The estimate is made on the data minus a smooth reference curve (the
+   baseline model's prediction), which removes most of the curvature that would bias it upwards and assumes
+   nothing about the model being right: the noise part of a pseudo-residual is the same whatever smooth curve is
+   subtracted. Being a quadratic form :math:`\hat\sigma^2 = y^T B^T B y / m` its degrees of freedom follow from
+   Satterthwaite (Biometrics Bulletin 2, 110 (1946)): :math:`\nu = m^2 / \lVert B B^T\rVert_F^2` (about
+   :math:`18 m / 35` for equal spacing). Lack of fit: :math:`F = \frac{RSS/(n - k)}{\hat\sigma^2} \sim
+   F(n - k, \nu)`; the two are computed from the same rows, which makes the test conservative (their positive
+   correlation narrows the distribution of F).
+4. ``"none"``: none of the above has :data:`MIN_DOF` degrees of freedom; no lack-of-fit test is possible and the
+   diagnosis says so.
+
+:func:`remaining_pattern` looks for what a lack-of-fit test does not localise: group means (by speed decade,
+temperature, pressure, slip range, wet/dry) beyond their standard error, too few sign runs along the series
+(Wald & Wolfowitz, Ann. Math. Stat. 11, 147 (1940): a hump or a trend gives long runs), and a cubic trend of the
+residual against log sliding speed, log slip, temperature and pressure (an F or chi2 test of the polynomial; its
+shape tells a monotonic trend from a hump or a dip). Each family is tested at :data:`ALPHA` with a Bonferroni
+correction over its members.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy import stats
+
+from .errors import InputError
+from .measurements import Measurements
+
+__all__ = ["NoiseEstimate", "LackOfFit", "Pattern", "estimate_noise", "lack_of_fit", "remaining_pattern",
+           "series_of", "ALPHA", "MIN_DOF", "NOISE_SOURCES"]
+
+#: Significance level of the lack-of-fit test and of each family of pattern tests.
+ALPHA = 0.01
+#: Fewest degrees of freedom a noise source needs to be used.
+MIN_DOF = 8
+#: The noise sources, in order of preference.
+NOISE_SOURCES = ("mu_std", "replicates", "local differences", "none")
+
+
+@dataclass(frozen=True, eq=False)
+class NoiseEstimate:
+    """The noise level of a set of measurements.
+
+    Attributes
+    ----------
+    source : str
+        One of :data:`NOISE_SOURCES`.
+    sigma : float
+        Noise standard deviation in mu (the rms of ``mu_std`` for that source); NaN for ``"none"``.
+    dof : float
+        Degrees of freedom of the estimate (``inf`` for ``mu_std``; Satterthwaite's for local differences).
+    row_sigma : ndarray
+        Noise standard deviation per row (``mu_std``, else ``sigma`` everywhere).
+    pure_error : float
+        Pure-error sum of squares (replicates only, else NaN).
+    n_groups : int
+        Distinct conditions (replicates only, else 0).
+    description : str
+        One sentence: where the number comes from.
+    """
+
+    source: str
+    sigma: float
+    dof: float
+    row_sigma: np.ndarray
+    pure_error: float = math.nan
+    n_groups: int = 0
+    description: str = ""
+
+    @property
+    def known(self) -> bool:
+        """Whether a lack-of-fit test is possible (any source but ``"none"``)."""
+        return self.source != "none"
+
+    def as_dict(self) -> dict:
+        return {"source": self.source, "sigma": self.sigma, "dof": self.dof, "description": self.description}
+
+
+@dataclass(frozen=True)
+class LackOfFit:
+    """A model's residual tested against the noise.
+
+    Attributes
+    ----------
+    test : str
+        ``"chi2"``, ``"F"`` or ``"none"`` (no noise estimate).
+    statistic : float
+    dof : (float, float)
+        Degrees of freedom (the second is ``inf`` for chi2).
+    p_value : float
+        Probability of a misfit at least this large if the model were right (NaN without a test).
+    ratio : float
+        Residual standard deviation of the model, sqrt(RSS / (n - k)) (weighted with mu_std), over the noise.
+    consistent : bool
+        Whether the residual is consistent with the noise (p >= :data:`ALPHA`; True when untestable).
+    """
+
+    test: str
+    statistic: float
+    dof: tuple
+    p_value: float
+    ratio: float
+    consistent: bool
+
+    def describe(self) -> str:
+        if self.test == "none":
+            return "no lack-of-fit test (no independent noise estimate)"
+        stat = (f"chi2 = {self.statistic:.1f} on {self.dof[0]:g} dof" if self.test == "chi2"
+                else f"F = {self.statistic:.2f} on ({self.dof[0]:g}, {self.dof[1]:.0f}) dof")
+        return f"{stat}, p = {self.p_value:.2g}; residual / noise = {self.ratio:.2f}"
+
+    def as_dict(self) -> dict:
+        return {"test": self.test, "statistic": self.statistic, "dof": list(self.dof), "p_value": self.p_value,
+                "ratio": self.ratio, "consistent": self.consistent}
+
+
+@dataclass(frozen=True)
+class Pattern:
+    """Systematic structure left in a residual.
+
+    Attributes
+    ----------
+    found : bool
+    findings : tuple of str
+        One phrase per significant finding (strongest first).
+    p_value : float
+        Smallest Bonferroni-adjusted p-value of the tests (1 when nothing could be tested).
+    checked : str
+        What was tested, for the "none found" sentence.
+    """
+
+    found: bool
+    findings: tuple
+    p_value: float
+    checked: str
+
+    def describe(self, limit: int = 3) -> str:
+        """The strongest ``limit`` findings in words ("none detected (...)" when there are none)."""
+        if self.found:
+            more = len(self.findings) - limit
+            return "; ".join(self.findings[:limit]) + (f"; and {more} more" if more > 0 else "")
+        return f"none detected ({self.checked})"
+
+
+# ==========================================================================================================
+def estimate_noise(measurements: Measurements, reference=None) -> NoiseEstimate:
+    """The noise level of ``measurements`` from the first source that is available (module docstring).
+
+    Parameters
+    ----------
+    measurements : Measurements
+    reference : array_like, optional
+        A smooth curve per row (e.g. the baseline model's prediction) subtracted before the local-difference
+        estimate, to remove most of the data's curvature. Default: none.
+
+    Returns
+    -------
+    NoiseEstimate
+    """
+    m = measurements
+    if not isinstance(m, Measurements):
+        raise InputError(f"measurements: expected validation.Measurements, got {type(m).__name__}")
+    if m.mu_std is not None:
+        s = np.asarray(m.mu_std, dtype=float)
+        return NoiseEstimate(source="mu_std", sigma=float(np.sqrt(np.mean(s * s))), dof=math.inf, row_sigma=s,
+                             description="the mu_std column of the measurements (rms over the rows)")
+    rep = _replicates(m)
+    if rep is not None:
+        return rep
+    y = m.mu if reference is None else m.mu - _row_array(reference, m.n, "reference")
+    local = _local_differences(m, y)
+    if local is not None:
+        return local
+    return NoiseEstimate(source="none", sigma=math.nan, dof=0.0, row_sigma=np.full(m.n, math.nan),
+                         description=f"no mu_std column, fewer than {MIN_DOF} degrees of freedom from replicate "
+                                     "rows and too few rows along series for a local estimate")
+
+
+def lack_of_fit(residual, n_params: int, noise: NoiseEstimate) -> LackOfFit:
+    """Test a model's ``residual`` (measured - predicted, per row) against ``noise`` (module docstring).
+
+    Parameters
+    ----------
+    residual : array_like
+    n_params : int
+        Parameters fitted to these rows (baseline and effect parameters that change the prediction).
+    noise : NoiseEstimate
+    """
+    r = np.asarray(residual, dtype=float)
+    n = r.size
+    k = int(n_params)
+    dof1 = max(n - k, 1)
+    if noise.source == "none":
+        return LackOfFit(test="none", statistic=math.nan, dof=(dof1, math.nan), p_value=math.nan,
+                         ratio=math.nan, consistent=True)
+    if noise.source == "mu_std":
+        chi2 = float(np.sum((r / noise.row_sigma) ** 2))
+        p = float(stats.chi2.sf(chi2, dof1))
+        return LackOfFit(test="chi2", statistic=chi2, dof=(dof1, math.inf), p_value=p,
+                         ratio=math.sqrt(chi2 / dof1), consistent=p >= ALPHA)
+    rss = float(np.sum(r * r))
+    ratio = math.sqrt(rss / dof1) / noise.sigma
+    if noise.source == "replicates":
+        df_pe = n - noise.n_groups
+        df_lof = noise.n_groups - k
+        if df_lof < 1:
+            return LackOfFit(test="none", statistic=math.nan, dof=(df_lof, df_pe), p_value=math.nan, ratio=ratio,
+                             consistent=True)
+        F = (max(rss - noise.pure_error, 0.0) / df_lof) / (noise.pure_error / df_pe)
+        p = float(stats.f.sf(F, df_lof, df_pe))
+        return LackOfFit(test="F", statistic=F, dof=(df_lof, df_pe), p_value=p, ratio=ratio, consistent=p >= ALPHA)
+    F = (rss / dof1) / noise.sigma ** 2
+    p = float(stats.f.sf(F, dof1, noise.dof))
+    return LackOfFit(test="F", statistic=F, dof=(dof1, noise.dof), p_value=p, ratio=ratio, consistent=p >= ALPHA)
+
+
+def remaining_pattern(residual, measurements: Measurements, noise: NoiseEstimate) -> Pattern:
+    """Systematic structure in ``residual`` beyond ``noise``: groups, sign runs, polynomial trends.
+
+    Without a noise estimate the residual's own standard deviation stands in (the tests then only see structure
+    relative to the scatter, and say so).
+    """
+    r = np.asarray(residual, dtype=float)
+    m = measurements
+    sig = noise.row_sigma if noise.known else np.full(m.n, max(float(np.std(r, ddof=1)) if r.size > 1 else 0, 1e-12))
+    dof = noise.dof if noise.known else max(r.size - 1, 1)
+    found: list[tuple[float, str]] = []
+    p_all = []
+    for test in (_group_findings, _runs_finding, _trend_findings):
+        p, phrases = test(r, m, sig, dof)
+        p_all.append(p)
+        found.extend(phrases)
+    found.sort(key=lambda t: t[0])
+    checked = ("group means by speed, temperature, pressure, slip and wet/dry; sign runs along each series; "
+               "cubic trends with log speed, slip, temperature and pressure; each at p < "
+               f"{ALPHA:g} after Bonferroni")
+    if not noise.known:
+        checked += "; relative to the residual's own scatter, as no noise estimate exists"
+    p_min = min(p_all) if p_all else 1.0
+    return Pattern(found=bool(found), findings=tuple(ph for _, ph in found), p_value=float(p_min), checked=checked)
+
+
+def series_of(measurements: Measurements) -> list[tuple[np.ndarray, np.ndarray, str]]:
+    """The series of the rows: ``(row indices, x, axis)``, rows ordered along ``x``.
+
+    A series is a set of at least 3 rows with distinct ``x`` that share every other condition: sliding rows
+    (slip = 1) along log10 sliding speed, slip rows along log10 slip (same rolling speed V), and the rows left
+    over along temperature, then pressure. The ``series`` column, when given, splits them further.
+    """
+    m = measurements
+    used = np.zeros(m.n, dtype=bool)
+    out = []
+    lab = np.asarray(m.series, dtype=object)
+    sliding = m.slip >= 1.0
+    axes = (
+        ("log10 sliding speed", sliding, np.log10(m.sliding_speed),
+         (m.wet, m.temperature, m.pressure)),
+        ("log10 slip", ~sliding, np.log10(np.maximum(m.slip, 1e-12)),
+         (m.wet, m.temperature, m.pressure, m.speed)),
+        ("temperature", np.ones(m.n, dtype=bool), m.temperature,
+         (m.wet, m.slip, m.speed, m.pressure)),
+        ("pressure", np.ones(m.n, dtype=bool), m.pressure / 1e6,
+         (m.wet, m.slip, m.speed, m.temperature)),
+    )
+    for axis, rows, x, keys in axes:
+        groups: dict[tuple, list[int]] = {}
+        for i in np.flatnonzero(rows & ~used):
+            groups.setdefault((lab[i],) + tuple(float(k[i]) for k in keys), []).append(int(i))
+        for idx in groups.values():
+            idx = np.asarray(idx)
+            if np.unique(x[idx]).size < 3:
+                continue
+            order = np.argsort(x[idx], kind="stable")
+            out.append((idx[order], x[idx][order], axis))
+            used[idx] = True
+    return out
+
+
+# ---- noise sources -----------------------------------------------------------------------------------------
+def _replicates(m: Measurements) -> NoiseEstimate | None:
+    keys = np.column_stack([m.slip, m.speed, m.temperature, m.pressure, m.wet.astype(float)])
+    _, inverse, counts = np.unique(keys, axis=0, return_inverse=True, return_counts=True)
+    inverse = np.asarray(inverse).ravel()
+    g = counts.size
+    df_pe = m.n - g
+    if df_pe < MIN_DOF:
+        return None
+    means = np.bincount(inverse, weights=m.mu) / counts
+    ss = float(np.sum((m.mu - means[inverse]) ** 2))
+    sigma = math.sqrt(ss / df_pe)
+    return NoiseEstimate(source="replicates", sigma=sigma, dof=float(df_pe), row_sigma=np.full(m.n, sigma),
+                         pure_error=ss, n_groups=int(g),
+                         description=f"the scatter of replicate rows ({int(np.sum(counts > 1))} conditions measured "
+                                     f"more than once; pure error with {df_pe} degrees of freedom)")
+
+
+def _local_differences(m: Measurements, y: np.ndarray) -> NoiseEstimate | None:
+    rows, coef = [], []
+    n_series = 0
+    for idx, x, _ in series_of(m):
+        n_series += 1
+        for j in range(1, idx.size - 1):
+            span = x[j + 1] - x[j - 1]
+            if span <= 0:
+                continue
+            a = (x[j + 1] - x[j]) / span
+            b = 1.0 - a
+            c = 1.0 / math.sqrt(a * a + b * b + 1.0)
+            rows.append((idx[j - 1], idx[j], idx[j + 1]))
+            coef.append((c * a, -c, c * b))
+    mcount = len(rows)
+    if mcount == 0:
+        return None
+    B = np.zeros((mcount, m.n))
+    for k, (ii, cc) in enumerate(zip(rows, coef)):
+        for i, c in zip(ii, cc):
+            B[k, i] += c
+    e = B @ y
+    var = float(e @ e) / mcount
+    BBt = B @ B.T
+    dof = mcount ** 2 / float(np.sum(BBt * BBt))
+    if dof < MIN_DOF:
+        return None
+    sigma = math.sqrt(var)
+    return NoiseEstimate(source="local differences", sigma=sigma, dof=float(dof), row_sigma=np.full(m.n, sigma),
+                         description=f"differences of neighbouring rows along {n_series} series (Gasser-Sroka-"
+                                     f"Jennen-Steinmetz pseudo-residuals, {mcount} of them, {dof:.0f} effective "
+                                     "degrees of freedom)")
+
+
+def _row_array(x, n: int, name: str) -> np.ndarray:
+    a = np.asarray(x, dtype=float)
+    if a.shape != (n,) or not np.all(np.isfinite(a)):
+        raise InputError(f"{name}: expected {n} finite values, one per row")
+    return a
+
+
+# ---- pattern tests: each returns (Bonferroni-adjusted smallest p, [(p, phrase), ...]) ------------------------
+def _group_findings(r, m, sig, dof):
+    from .compare import group_labels
+
+    w = 1.0 / sig ** 2
+    tests = []
+    for factor, (gid, labels) in group_labels(m).items():
+        if factor == "series" or len(labels) < 2:
+            continue
+        for k, lab in enumerate(labels):
+            sel = gid == k
+            if sel.sum() < 2:
+                continue
+            mean = float(np.sum(w[sel] * r[sel]) / np.sum(w[sel]))
+            z = mean * math.sqrt(float(np.sum(w[sel])))
+            p = float(2 * stats.t.sf(abs(z), dof)) if math.isfinite(dof) else float(2 * stats.norm.sf(abs(z)))
+            tests.append((p, factor, lab, mean, z))
+    if not tests:
+        return 1.0, []
+    G = len(tests)
+    out = []
+    for p, factor, lab, mean, z in sorted(tests):
+        if p * G < ALPHA:
+            out.append((p * G, f"by {factor}, mean residual {mean:+.3f} at {lab} (z = {z:+.1f}, "
+                               f"{'model too low' if mean > 0 else 'model too high'})"))
+    return min(1.0, min(t[0] for t in tests) * G), out[:3]
+
+
+def _runs_finding(r, m, sig, dof):
+    R = E = V = 0.0
+    worst = None
+    for idx, x, axis in series_of(m):
+        s = np.sign(r[idx])
+        s = s[s != 0]
+        n1, n2 = int(np.sum(s > 0)), int(np.sum(s < 0))
+        n = n1 + n2
+        if n1 == 0 or n2 == 0 or n < 3:
+            if n >= 5:  # one sign all along: the most extreme run count
+                e = 1.0
+                R += 1.0
+                E += e
+            continue
+        runs = 1 + int(np.sum(s[1:] != s[:-1]))
+        e = 1.0 + 2.0 * n1 * n2 / n
+        v = 2.0 * n1 * n2 * (2.0 * n1 * n2 - n) / (n * n * (n - 1.0))
+        R += runs
+        E += e
+        V += v
+        if worst is None or runs - e < worst[0]:
+            worst = (runs - e, axis, x, idx)
+    if V <= 0:
+        return 1.0, []
+    z = (R - E) / math.sqrt(V)
+    p = float(stats.norm.cdf(z))
+    if p >= ALPHA:
+        return p, []
+    return p, [(p, f"the residual keeps its sign along the series ({R:.0f} sign runs where {E:.0f} are expected "
+                   f"by chance; runs test p = {p:.2g})")]
+
+
+def _trend_findings(r, m, sig, dof):
+    covs = [("log sliding speed", np.log10(m.sliding_speed), np.ones(m.n, dtype=bool), lambda v: f"{10 ** v:.3g} m/s"),
+            ("slip", np.log10(np.maximum(m.slip, 1e-12)), m.slip < 1.0, lambda v: f"{10 ** v:.3g}"),
+            ("temperature", m.temperature, np.ones(m.n, dtype=bool), lambda v: f"{v:.3g} C"),
+            ("pressure", m.pressure / 1e6, np.ones(m.n, dtype=bool), lambda v: f"{v:.3g} MPa")]
+    tests = []
+    for label, x, rows, fmt in covs:
+        xs = x[rows]
+        nd = np.unique(xs).size
+        if nd < 3 or rows.sum() < 5:
+            continue
+        deg = min(3, nd - 1)
+        lo, hi = float(xs.min()), float(xs.max())
+        t = (xs - 0.5 * (lo + hi)) / max(0.5 * (hi - lo), 1e-300)
+        A = np.vander(t, deg + 1) / sig[rows][:, None]
+        b = r[rows] / sig[rows]
+        coef, *_ = np.linalg.lstsq(A, b, rcond=None)
+        ss = float(np.sum((A @ coef) ** 2))     # explained, in noise units
+        k = deg + 1
+        if math.isfinite(dof):
+            p = float(stats.f.sf(ss / k, k, dof))
+        else:
+            p = float(stats.chi2.sf(ss, k))
+        tt = np.linspace(-1, 1, 201)
+        curve = np.vander(tt, deg + 1) @ coef
+        xx = 0.5 * (lo + hi) + tt * 0.5 * (hi - lo)
+        tests.append((p, label, _shape(label, xx, curve, fmt)))
+    if not tests:
+        return 1.0, []
+    G = len(tests)
+    out = [(p * G, f"{shape} (cubic trend p = {min(1.0, p * G):.2g})") for p, label, shape in sorted(tests)
+           if p * G < ALPHA]
+    return min(1.0, min(t[0] for t in tests) * G), out
+
+
+def _shape(label, x, y, fmt) -> str:
+    """Describe a smooth curve: monotonic rise / fall, or a hump / dip with its extremum."""
+    i_max, i_min = int(np.argmax(y)), int(np.argmin(y))
+    n = y.size
+    span = float(y.max() - y.min())
+    ends = (y[0], y[-1])
+    interior_max = 0 < i_max < n - 1 and y[i_max] - max(ends) > 0.25 * span
+    interior_min = 0 < i_min < n - 1 and min(ends) - y[i_min] > 0.25 * span
+    if interior_max and not interior_min:
+        return (f"the residual rises then falls with {label}, peaking at {y[i_max]:+.3f} near {fmt(x[i_max])} "
+                f"({y[0]:+.3f} at {fmt(x[0])}, {y[-1]:+.3f} at {fmt(x[-1])})")
+    if interior_min and not interior_max:
+        return (f"the residual falls then rises with {label}, lowest {y[i_min]:+.3f} near {fmt(x[i_min])} "
+                f"({y[0]:+.3f} at {fmt(x[0])}, {y[-1]:+.3f} at {fmt(x[-1])})")
+    if interior_min and interior_max:
+        return (f"the residual oscillates with {label} (peak {y[i_max]:+.3f} near {fmt(x[i_max])}, trough "
+                f"{y[i_min]:+.3f} near {fmt(x[i_min])})")
+    word = "rises" if y[-1] > y[0] else "falls"
+    return f"the residual {word} with {label}, from {y[0]:+.3f} at {fmt(x[0])} to {y[-1]:+.3f} at {fmt(x[-1])}"

@@ -1,0 +1,443 @@
+r"""Global, joint refits from several starts, and the uncertainty and plausibility of every fitted parameter.
+
+1. **Starts.** The given values and a scrambled Halton design (seeded, so a case always gives the same result)
+   over the whole bounded box in ``u`` (log10 where the parameter declares ``log_scale``). Every start is
+   evaluated; bounded least squares (:meth:`validation.fitting.Fitter.local`) runs from the given values and from
+   the best distinct design points. The best local optimum is the fit; the other optima within
+   :math:`\Delta\chi^2 \le 1` (noise units) are "good" and their spread widens the intervals below.
+2. **Standard errors.** Gauss-Newton covariance of the parameters at the optimum,
+   :math:`C = s^2 (J^T W^2 J)^{-1}` with :math:`J` the central-difference Jacobian of the prediction and
+   :math:`W = \mathrm{diag}(1/\sigma_i)` from ``mu_std`` (:math:`s^2 = 1`) or :math:`W = I` with
+   :math:`s^2 = \hat\sigma^2` the independent noise variance (:mod:`validation.noise`). When the model fails
+   its lack-of-fit test, :math:`s^2` is multiplied by the Birge ratio :math:`\max(1, \chi^2_\nu)` so that the errors
+   include the misfit (Bates & Watts, Nonlinear Regression Analysis and Its Applications (1988), Sec. 2.3;
+   Birge, Phys. Rev. 40, 207 (1932)). Errors in ``u`` are carried to the parameter by the delta method.
+3. **Profile likelihood.** Where the optimum sits on a bound, the standard error is undefined, or the
+   :math:`\chi^2` step one standard error away along the parameter differs from the quadratic prediction by more
+   than a factor 2, the 68 % interval is the profile-likelihood one,
+   :math:`\{x : \min_{\text{others}} \chi^2(x) - \chi^2_{min} \le s^2\}` (Venzon & Moolgavkar, Appl. Stat. 37,
+   87 (1988); Raue et al., Bioinformatics 25, 1923 (2009)), found by stepping out from the optimum with the other
+   parameters refitted; an end that reaches a bound is reported open there.
+4. **Plausibility.** A parameter that ends on a search bound (a bound that is not one of its declared
+   ``physical_limits``) or outside its declared plausible range makes the fit implausible; a physical limit
+   (q_m = q0, a factor of 1, zero) is a legitimate optimum and says so.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .fitting import BudgetExhausted, Fitter, halton
+
+__all__ = ["Estimate", "GlobalFit", "global_fit", "with_uncertainty", "issues_at", "DataRange", "data_range"]
+
+#: Distance in u below which a fitted parameter is "on its bound".
+BOUND_TOL = 2e-3
+
+
+@dataclass(frozen=True)
+class DataRange:
+    """Measured ranges of a data set, handed to callable plausible ranges (see :class:`persson.effects.Parameter`).
+
+    Attributes
+    ----------
+    speed, shifted_speed, temperature, pressure : (float, float)
+        Sliding speed (m/s), sliding speed times a_T(T) (m/s at the material's reference temperature),
+        temperature (C), pressure (Pa).
+    """
+
+    speed: tuple
+    shifted_speed: tuple
+    temperature: tuple
+    pressure: tuple
+
+
+def data_range(measurements, material) -> DataRange:
+    """The :class:`DataRange` of ``measurements``, shifted with ``material.log10_aT`` when it has one."""
+    m = measurements
+    vs = m.sliding_speed
+    if hasattr(material, "log10_aT"):
+        shifted = vs * 10.0 ** np.asarray(material.log10_aT(m.temperature), dtype=float)
+    else:
+        shifted = vs
+    return DataRange(speed=(float(vs.min()), float(vs.max())),
+                     shifted_speed=(float(shifted.min()), float(shifted.max())),
+                     temperature=(float(m.temperature.min()), float(m.temperature.max())),
+                     pressure=(float(m.pressure.min()), float(m.pressure.max())))
+
+
+@dataclass(frozen=True)
+class Estimate:
+    """A fitted parameter with its uncertainty.
+
+    Attributes
+    ----------
+    key : str
+        ``"effect.parameter"``, ``"gamma"`` or ``"contact.<name>"``.
+    value : float
+    std : float
+        Standard error (inf when the data do not determine it).
+    interval : (float, float)
+        68 % interval.
+    method : str
+        ``"quadratic"`` (value +- std, or its log-scale equivalent) or ``"profile"`` (profile likelihood);
+        ``" + starts"`` when the spread of equally good optima widened it.
+    unit : str
+    bound : str
+        ``""``, ``"physical limit"`` or ``"search bound"``: where the value sits.
+    plausible : (float, float)
+        The declared plausible range (evaluated on the data's ranges).
+    issue : str
+        Why the value is not credible (on a search bound, outside the plausible range), else ``""``.
+    """
+
+    key: str
+    value: float
+    std: float
+    interval: tuple
+    method: str
+    unit: str = ""
+    bound: str = ""
+    plausible: tuple = (-math.inf, math.inf)
+    issue: str = ""
+
+    @property
+    def name(self) -> str:
+        return self.key.rpartition(".")[2]
+
+    def describe(self) -> str:
+        """``"tau_f0 = 1.52e+06 +- 4.1e+04 Pa"`` or ``"v_ref = 3e-04 m/s (68 % 1.1e-04 - 8e-04, profile)"``."""
+        u = f" {self.unit}" if self.unit and self.unit != "1" else ""
+        if self.method == "quadratic" and math.isfinite(self.std):
+            txt = f"{self.name} = {self.value:.4g} +- {self.std:.2g}{u}"
+        else:
+            lo, hi = self.interval
+            txt = f"{self.name} = {self.value:.4g}{u} (68 % interval {lo:.3g} - {hi:.3g}, {self.method})"
+        if self.bound == "physical limit":
+            txt += " [at its physical limit]"
+        if self.issue:
+            txt += f" [{self.issue}]"
+        return txt
+
+    def as_dict(self) -> dict:
+        return {"value": self.value, "std": self.std, "interval": list(self.interval), "method": self.method,
+                "unit": self.unit, "bound": self.bound, "plausible": list(self.plausible), "issue": self.issue}
+
+
+@dataclass(frozen=True, eq=False)
+class GlobalFit:
+    """The outcome of :func:`global_fit`.
+
+    Attributes
+    ----------
+    u : ndarray
+        Best point in the unit box.
+    chi2 : float
+        Weighted residual sum of squares there.
+    mu : ndarray
+        Prediction there.
+    model : persson.Model
+    contact : persson.slip.Contact or None
+    estimates : tuple of Estimate
+        In the order of the fitter's parameter space.
+    jacobian : ndarray
+        d mu / d u at the optimum (unweighted), shape (n, k).
+    n_starts, n_good : int
+        Local fits run, and optima as good as the best (within one noise unit of chi2) among them.
+    n_evals : int
+    notes : tuple of str
+    optima : tuple of (float, ndarray)
+        chi2 and u of every local fit.
+    """
+
+    u: np.ndarray
+    chi2: float
+    mu: np.ndarray
+    model: object
+    contact: object
+    estimates: tuple
+    jacobian: np.ndarray
+    n_starts: int
+    n_good: int
+    n_evals: int
+    notes: tuple = ()
+    optima: tuple = ()
+
+    @property
+    def values(self) -> dict:
+        return {e.key: e.value for e in self.estimates}
+
+    @property
+    def issues(self) -> tuple:
+        """Why the fit is not credible (one phrase per implausible parameter); empty when it is."""
+        return tuple(f"{e.key} = {e.value:.3g}{(' ' + e.unit) if e.unit and e.unit != '1' else ''}: {e.issue}"
+                     for e in self.estimates if e.issue)
+
+    @property
+    def n_effective(self) -> int:
+        """Parameters that change the prediction (non-zero Jacobian column)."""
+        if self.jacobian.shape[1] == 0:
+            return 0
+        norms = np.linalg.norm(self.jacobian, axis=0)
+        return int(np.sum(norms > 1e-8 * max(float(norms.max()), 1e-300)))
+
+
+# ==========================================================================================================
+def global_fit(fitter: Fitter, u_given, *, seed: int = 0, n_screen: int | None = None, n_local: int = 3,
+               extra_starts=()) -> GlobalFit:
+    """Multi-start bounded least squares over ``fitter``'s whole box (module docstring, item 1).
+
+    The result has no estimates yet: :func:`with_uncertainty` adds them once the noise is known.
+
+    Parameters
+    ----------
+    fitter : Fitter
+    u_given : array_like
+        The given (physically informed) values in u: always a start.
+    seed : int
+        Seed of the Halton design.
+    n_screen : int, optional
+        Design points (default ``3 + 5 k``, at most 24).
+    n_local : int
+        Local fits from the given values and the best distinct design points.
+    extra_starts : sequence of array_like
+        Further starts fitted besides (e.g. a previous fit).
+    """
+    k = len(fitter.space)
+    notes: dict[str, None] = {}
+    u_given = np.clip(np.asarray(u_given, dtype=float), 0.0, 1.0)
+    optima: list[tuple[float, np.ndarray]] = []
+    n_starts = 0
+    try:
+        if k == 0:
+            fitter.mu(np.zeros(0))
+        else:
+            starts = [u_given] + [np.clip(np.asarray(s, dtype=float), 0, 1) for s in extra_starts]
+            fitter.screen(starts)
+            n_scr = n_screen if n_screen is not None else min(3 + 5 * k, 24)
+            screened = fitter.screen(list(halton(k, n_scr, seed=seed)))
+            for c, p in screened:
+                if len(starts) >= n_local + len(extra_starts):
+                    break
+                if math.isfinite(c) and all(np.max(np.abs(p - q)) > 0.1 for q in starts):
+                    starts.append(p)
+            for s in starts:
+                if not math.isfinite(fitter.chi2(s)):
+                    continue
+                u, c = fitter.local(s)
+                n_starts += 1
+                optima.append((c, u))
+    except BudgetExhausted:
+        notes["the fit stopped at its budget of model evaluations (the best point found is used)"] = None
+    c_best, u_best = fitter.best
+    if u_best is None:
+        from .errors import InputError
+
+        raise InputError("the model failed at every parameter value tried: " + "; ".join(list(fitter.errors)[:3]))
+    if fitter.errors:
+        notes["the model failed at some trial parameters (avoided by the fit): "
+              + "; ".join(list(fitter.errors)[:2])] = None
+    notes.update(dict.fromkeys(n for n in fitter.notes))
+    return GlobalFit(u=u_best, chi2=c_best, mu=fitter.mu(u_best), model=fitter.model_at(u_best),
+                     contact=fitter.contact_at(u_best), estimates=(), jacobian=np.zeros((fitter.y.size, 0)),
+                     n_starts=n_starts, n_good=0, n_evals=fitter.n_evals, notes=tuple(notes),
+                     optima=tuple(optima))
+
+
+def with_uncertainty(fitter: Fitter, fit: GlobalFit, *, s2: float, ranges: DataRange | None = None,
+                     profile: bool = True, budget: int | None = None, misfit: bool = False) -> GlobalFit:
+    """``fit`` with an :class:`Estimate` per parameter (module docstring, items 2-4).
+
+    Parameters
+    ----------
+    fitter : Fitter
+        The fitter that made ``fit`` (its cache makes revisited points free).
+    fit : GlobalFit
+    s2 : float
+        Variance unit of chi2: 1 with ``mu_std`` weights, else the noise variance (before the Birge ratio).
+    ranges : DataRange, optional
+        For callable plausible ranges.
+    profile : bool
+        Compute profile-likelihood intervals where the quadratic approximation fails.
+    budget : int, optional
+        Model evaluations allowed beyond those already spent (default ``6 k``, plus ``12 k^2`` with ``profile``).
+    misfit : bool
+        The model fails the lack-of-fit test: scale the errors by the Birge ratio.
+    """
+    k = len(fitter.space)
+    if k == 0:
+        return fit
+    notes = dict.fromkeys(fit.notes)
+    fitter.max_evals = fitter.n_evals + (budget if budget is not None else 6 * k + (12 * k * k if profile else 0))
+    n = fitter.y.size
+    u, c = fit.u, fit.chi2
+    good = [v for cv, v in fit.optima if (cv - c) / s2 <= 1.0 and np.max(np.abs(v - u)) > 0.02]
+    J = np.zeros((n, 0))
+    try:
+        J = fitter.jacobian(u)
+        s2_eff = s2 * max(1.0, c / max(n - k, 1) / s2) if misfit else s2
+        if s2_eff > s2 * (1 + 1e-9):
+            notes[f"standard errors include the misfit (scaled by the Birge ratio {math.sqrt(s2_eff / s2):.2f})"] = None
+        estimates = _estimates(fitter, u, c, J, s2_eff, good, ranges, profile)
+    except BudgetExhausted:
+        notes["the uncertainty stopped at its budget of model evaluations"] = None
+        estimates = _bare_estimates(fitter, u, ranges)
+    return GlobalFit(u=u, chi2=c, mu=fit.mu, model=fit.model, contact=fit.contact, estimates=estimates,
+                     jacobian=J, n_starts=fit.n_starts, n_good=len(good), n_evals=fitter.n_evals,
+                     notes=tuple(notes), optima=fit.optima)
+
+
+# ==========================================================================================================
+def issues_at(fitter: Fitter, u, ranges: DataRange | None = None) -> tuple:
+    """Why the point ``u`` is implausible (search bounds, plausible ranges), before any uncertainty is computed."""
+    return tuple(e.issue for e in _bare_estimates(fitter, np.asarray(u, dtype=float), ranges) if e.issue)
+
+
+def _estimates(fitter, u, chi2, J, s2, good, ranges, profile) -> tuple:
+    w = fitter.w
+    Jw = J * w[:, None]
+    H = Jw.T @ Jw / s2
+    k = u.size
+    cov = _covariance(H)
+    out = []
+    norms = np.linalg.norm(Jw, axis=0)
+    for j, p in enumerate(fitter.space.params):
+        x = p.from_u(u[j])
+        if norms[j] <= 1e-10 * max(float(norms.max()), 1e-300):
+            # the parameter changes no prediction here: neither determined nor judged
+            out.append(Estimate(key=p.key, value=float(x), std=math.inf, interval=(p.lo, p.hi),
+                                method="no effect on these rows", unit=p.unit))
+            continue
+        sd_u = math.sqrt(cov[j, j]) if math.isfinite(cov[j, j]) and cov[j, j] >= 0 else math.inf
+        on_bound = u[j] < BOUND_TOL or u[j] > 1 - BOUND_TOL
+        method = "quadratic"
+        lo_u, hi_u = u[j] - sd_u, u[j] + sd_u
+        try:
+            if profile and (on_bound or not math.isfinite(sd_u) or sd_u > 0.25
+                            or not _quadratic_ok(fitter, u, j, sd_u, H, chi2, s2)):
+                lo_u, hi_u = _profile(fitter, u, j, chi2, s2, sd_u, k)
+                method = "profile"
+        except BudgetExhausted:
+            method = "quadratic (the profile ran out of model evaluations)"
+        lo_u, hi_u = max(lo_u, 0.0), min(hi_u, 1.0)
+        for g in good:
+            lo_u, hi_u = min(lo_u, g[j]), max(hi_u, g[j])
+            if "starts" not in method:
+                method += " + starts"
+        std = abs(p.dx_du(x)) * sd_u if math.isfinite(sd_u) else math.inf
+        out.append(_estimate(p, x, std, (p.from_u(lo_u), p.from_u(hi_u)), method, u[j], ranges))
+    return tuple(out)
+
+
+def _bare_estimates(fitter, u, ranges) -> tuple:
+    return tuple(_estimate(p, p.from_u(u[j]), math.nan, (math.nan, math.nan), "none", u[j], ranges)
+                 for j, p in enumerate(fitter.space.params))
+
+
+def _estimate(p, x, std, interval, method, uj, ranges) -> Estimate:
+    bound = ""
+    issue = ""
+    if uj < BOUND_TOL or uj > 1 - BOUND_TOL:
+        b = p.lo if uj < 0.5 else p.hi
+        if p.is_physical_limit(b):
+            bound = "physical limit"
+        else:
+            bound = "search bound"
+            issue = f"on the {'lower' if uj < 0.5 else 'upper'} search bound {b:g}: the data push it out of the range searched"
+    plo, phi = p.plausible_range(ranges)
+    if not issue and not (plo * (1 - 1e-9) - 1e-300 <= x <= phi * (1 + 1e-9) + 1e-300):
+        issue = f"outside the plausible range {plo:.3g} - {phi:.3g}"
+    return Estimate(key=p.key, value=float(x), std=float(std), interval=tuple(float(v) for v in interval),
+                    method=method, unit=p.unit, bound=bound, plausible=(plo, phi), issue=issue)
+
+
+def _covariance(H: np.ndarray) -> np.ndarray:
+    """Inverse of the Gauss-Newton Hessian; directions it does not determine get infinite variance."""
+    k = H.shape[0]
+    if k == 0:
+        return H
+    vals, vecs = np.linalg.eigh(H)
+    top = max(float(vals.max()), 1e-300)
+    ok = vals > 1e-10 * top
+    inv = np.where(ok, 1.0 / np.where(ok, vals, 1.0), 0.0)
+    cov = (vecs * inv) @ vecs.T
+    if not np.all(ok):
+        # a parameter with weight in an undetermined direction is itself undetermined
+        bad = np.any(np.abs(vecs[:, ~ok]) > 1e-3, axis=1)
+        cov[bad, :] = np.inf
+        cov[:, bad] = np.inf
+    return cov
+
+
+def _quadratic_ok(fitter, u, j, sd_u, H, chi2, s2) -> bool:
+    """The chi2 step one standard error away along parameter j (others fixed) against the quadratic one."""
+    expected = sd_u * sd_u * H[j, j]
+    for sign in (-1.0, 1.0):
+        v = u.copy()
+        v[j] = u[j] + sign * sd_u
+        if v[j] < 0 or v[j] > 1:
+            return False
+        d = (fitter.chi2(v) - chi2) / s2
+        if not (0.5 * expected <= d <= 2.0 * expected):
+            return False
+    return True
+
+
+def _profile(fitter, u, j, chi2, s2, sd_u, k, max_steps: int = 4, refine: int = 5) -> tuple[float, float]:
+    """Ends of the profile-likelihood interval of parameter j in u (a bound when the profile stays below 1).
+
+    Steps out from the optimum (the others refitted at each step) until the profile exceeds 1, then refines the
+    crossing by regula falsi in sqrt(delta chi2) (exact for a parabola, and converging for the linear rise of a
+    profile at a bound).
+    """
+    ends = []
+    for sign in (-1.0, 1.0):
+        edge = 0.0 if sign < 0 else 1.0
+        room = abs(edge - u[j])
+        if room < BOUND_TOL:
+            ends.append(edge)
+            continue
+
+        def delta(t, start):
+            v = start.copy()
+            v[j] = u[j] + sign * t
+            if k > 1:
+                v, c = fitter.local(v, fixed=(j,), max_nfev=6 * k)
+            else:
+                c = fitter.chi2(v)
+            return (c - chi2) / s2, v
+
+        t = min(sd_u if math.isfinite(sd_u) and sd_u > 1e-4 else 0.05, room)
+        lo, hi = (0.0, 0.0), None
+        start = u.copy()
+        for _ in range(max_steps):
+            d, v = delta(t, start)
+            if d >= 1.0:
+                hi = (t, d)
+                break
+            lo, start = (t, d), v
+            if t >= room - 1e-12:
+                break
+            t = min(t * min(max(math.sqrt(1.5 / max(d, 1e-3)), 1.5), 4.0), room)
+        if hi is None:
+            ends.append(edge)
+            continue
+        for _ in range(refine):
+            a, b = math.sqrt(max(lo[1], 0.0)), math.sqrt(hi[1])
+            t = lo[0] + (hi[0] - lo[0]) * (1.0 - a) / max(b - a, 1e-12)
+            if hi[0] - lo[0] < 1e-4:
+                break
+            d, v = delta(t, start)
+            if d >= 1.0:
+                hi = (t, d)
+            else:
+                lo, start = (t, d), v
+            if abs(d - 1.0) < 0.02:
+                break
+        a, b = math.sqrt(max(lo[1], 0.0)), math.sqrt(hi[1])
+        ends.append(u[j] + sign * (lo[0] + (hi[0] - lo[0]) * (1.0 - a) / max(b - a, 1e-12)))
+    lo_u, hi_u = sorted(ends)
+    return lo_u, hi_u
