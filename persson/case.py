@@ -36,6 +36,8 @@ __all__ = ["CaseSpec", "CaseFile", "read_case", "parse_case", "resolve_case", "s
 
 #: Entry-point group through which installed packages offer shipped cases (name -> case.toml).
 CASES_GROUP = "persson.cases"
+#: Entry-point group naming a folder of cases inside a package ("package:folder"); read without importing it.
+CASE_FOLDERS_GROUP = "persson.case_folders"
 
 _DEFAULT_SPEEDS = (1e-6, 10.0, 50)
 
@@ -236,10 +238,26 @@ def resolve_case(path) -> Path:
 
 
 def shipped_cases() -> dict[str, Path]:
-    """Cases shipped by installed packages (entry-point group ``persson.cases``): name -> case.toml."""
+    """Cases shipped by installed packages: name -> case.toml.
+
+    Two entry-point groups declare them: ``persson.case_folders`` (``name = "package:folder"``, a folder of case
+    folders inside an installed package, found without importing the package, which keeps CLI start-up fast) and
+    ``persson.cases`` (``name = "module:function"``, a function returning name -> case.toml).
+    """
+    import importlib.util
     from importlib.metadata import entry_points
 
     out: dict[str, Path] = {}
+    for ep in entry_points(group=CASE_FOLDERS_GROUP):
+        try:
+            spec = importlib.util.find_spec(ep.module)
+            roots = list(spec.submodule_search_locations or ()) if spec is not None else []
+        except (ImportError, ValueError):
+            continue
+        for root in roots:
+            folder = Path(root) / (ep.attr or "")
+            if folder.is_dir():
+                out.update({d.name: d / "case.toml" for d in folder.iterdir() if (d / "case.toml").is_file()})
     for ep in entry_points(group=CASES_GROUP):
         try:
             out.update({str(k): Path(v) for k, v in ep.load()().items()})

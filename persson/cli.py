@@ -29,7 +29,10 @@ _HELP_ORDER = ("demo", "friction", "contact", "compare", "diagnose", "report", "
 
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the ``persson`` console script; returns the exit status."""
-    parser = build_parser()
+    argv = sys.argv[1:] if argv is None else list(argv)
+    # only the named command's module is imported (importing them all costs about 1 s at start-up); help and
+    # unknown names get the full parser
+    parser = build_parser(only=argv[0] if argv and not argv[0].startswith("-") else None)
     args = parser.parse_args(argv)
     if not getattr(args, "_run", None):
         parser.print_help()
@@ -47,8 +50,14 @@ def main(argv: list[str] | None = None) -> int:
             return 2
 
 
-def build_parser() -> argparse.ArgumentParser:
-    """The argument parser with one sub-command per available command module."""
+def build_parser(only: str | None = None) -> argparse.ArgumentParser:
+    """The argument parser with one sub-command per available command module.
+
+    Parameters
+    ----------
+    only : str, optional
+        Build the sub-command of this name alone when it exists (faster start-up); otherwise all of them.
+    """
     from . import __version__
 
     parser = argparse.ArgumentParser(
@@ -57,15 +66,22 @@ def build_parser() -> argparse.ArgumentParser:
                     "flash temperature; comparison with measured friction and diagnosis of missing effects.")
     parser.add_argument("--version", action="version", version=f"persson {__version__}")
     sub = parser.add_subparsers(title="commands", metavar="COMMAND")
-    for name, mod in available_commands().items():
+    for name, mod in available_commands(only=only).items():
         p = sub.add_parser(mod.NAME, help=mod.HELP, description=mod.HELP)
         mod.add_arguments(p)
         p.set_defaults(_run=mod.run, _name=mod.NAME)
     return parser
 
 
-def available_commands() -> dict:
-    """Command name -> module: the engine's own, then those of installed packages, in help order."""
+def available_commands(only: str | None = None) -> dict:
+    """Command name -> module: the engine's own, then those of installed packages, in help order.
+
+    With ``only`` naming an available command, that command's module alone is imported and returned.
+    """
+    if only is not None:
+        one = _one_command(only)
+        if one is not None:
+            return {only: one}
     found: dict = {}
     for name in COMMANDS:
         try:
@@ -83,6 +99,19 @@ def available_commands() -> dict:
             print(f"persson: command {ep.name!r} from {ep.value} is unavailable ({exc})", file=sys.stderr)
     order = {n: i for i, n in enumerate(_HELP_ORDER)}
     return dict(sorted(found.items(), key=lambda kv: (order.get(kv[0], len(order)), kv[0])))
+
+
+def _one_command(name: str):
+    """The module of command ``name``, or None when no engine command or entry point has that name."""
+    if name in COMMANDS:
+        return importlib.import_module(f".commands.{name}", __package__)
+    for ep in _entry_points():
+        if ep.name == name:
+            try:
+                return importlib.import_module(ep.value.split(":")[0])
+            except ImportError:
+                return None  # the full listing reports the broken plug-in
+    return None
 
 
 def _entry_points():

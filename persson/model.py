@@ -289,7 +289,7 @@ def _physics_notes(original, surface, solved, mu, effects):
         yield (f"friction coefficient up to {float(np.max(mu)):.3g} (> {_MAX_MU:g}): physically implausible for "
                "rubber; check the surface's q1, the modulus units and the pressure")
     q_hi, q_hi0 = float(surface.q_range[1]), float(original.q_range[1])
-    if q_hi < q_hi0 * (1 - 1e-9):
+    if q_hi < q_hi0 * (1 - 1e-9) and not any(getattr(e, "cuts_psd_on_purpose", False) for e in effects):
         names = [e.name for e in effects if hasattr(e, "q1")] or [e.name for e in effects]
         yield (f"the effects ({', '.join(names)}) cut the PSD at q1 = {q_hi:.4g} rad/m, below the surface's own "
                f"q1 = {q_hi0:.4g} rad/m: the roughness between them is ignored")

@@ -11,7 +11,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import optimize, stats
+from scipy import optimize
 
 from frictioncite import doi
 
@@ -282,6 +282,8 @@ def _linear_loglog_fit(q, C, where: str, full: bool = False):
     C = np.asarray(C, dtype=float)
     if q.size < 3:
         raise InputError(f"{where}: need >= 3 points for a power-law fit, got {q.size}")
+    from scipy import stats  # imported here: scipy.stats costs about 0.5 s at start-up
+
     res = stats.linregress(np.log(q), np.log(C))
     if full:
         r = np.log(C) - (res.intercept + res.slope * np.log(q))

@@ -13,7 +13,7 @@ import warnings
 from dataclasses import dataclass, field, replace
 
 import numpy as np
-from scipy import ndimage, stats
+from scipy import ndimage
 
 from frictioncite import doi
 
@@ -319,6 +319,8 @@ class ProfileSet:
                 z = np.interp(grid, p.x, p.z)
             else:
                 edges = np.concatenate([grid - h / 2, [grid[-1] + h / 2]])
+                from scipy import stats  # lazily: scipy.stats slows every start-up
+
                 z = stats.binned_statistic(p.x, p.z, "mean", bins=edges).statistic
                 empty = np.isnan(z)
                 if empty.any():  # cells without a sample (gaps): interpolate from the neighbours

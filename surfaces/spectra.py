@@ -27,7 +27,7 @@ import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy import interpolate, signal, special
+from scipy import interpolate, special
 
 from frictioncite import doi
 
@@ -379,7 +379,7 @@ def periodogram_1d(z: np.ndarray, dx: float, window=None) -> tuple[np.ndarray, n
     q, C1D : numpy.ndarray
     """
     win = "boxcar" if window in (None, "none", "boxcar") else window
-    f, P = signal.periodogram(z, fs=1.0 / dx, window=win, detrend=False, return_onesided=True, scaling="density",
+    f, P = _signal().periodogram(z, fs=1.0 / dx, window=win, detrend=False, return_onesided=True, scaling="density",
                               axis=-1)
     # one-sided -> two-sided: scipy doubled every ordinate except DC and (even n) Nyquist.
     n_interior = (np.shape(z)[-1] - 1) // 2
@@ -492,3 +492,10 @@ def _inverse_abel(q: np.ndarray, spline, beta_tail: float) -> np.ndarray:
     integral = 0.5 * q ** (-(beta_tail + 1.0)) * special.beta(a, 0.5) * special.betainc(a, 0.5, (q / q_m) ** 2)
     tail = beta_tail * C_m * q_m**beta_tail * integral
     return (body + tail) / math.pi
+
+
+def _signal():
+    """``scipy.signal``, imported on first use (it adds about 0.4 s to every start-up)."""
+    from scipy import signal
+
+    return signal

@@ -59,3 +59,14 @@ def test_ordinary_results_carry_no_warning():
         road = surfaces.example_road().with_cutoff(q1=1e6)  # rms slope 2.5
         r = persson.Model(road, TREAD).friction(np.geomspace(1e-6, 10, 8), pressure=0.3e6)
     assert r.notes == () or all("extrapolated" in n for n in r.notes)
+
+
+def test_a_length_scale_band_cuts_the_psd_without_a_warning():
+    """A band sweep restricts the PSD on purpose: that is its question, not a doubtful result."""
+    from persson import sweeps
+
+    s = surfaces.SelfAffine(hurst=0.8, q0=1e3, q1=1e6, hrms=0.2e-3)
+    with warnings.catch_warnings(record=True) as w:
+        warnings.simplefilter("always")
+        sweeps.bands(persson.Model(s, TREAD), "decades", n=3, speed=[0.01, 1.0])
+    assert not [x for x in w if "cut the PSD" in str(x.message)]

@@ -294,6 +294,8 @@ class _BandRestriction(Effect):
 # Set after the class is created: a ``name`` in the class body would register this internal helper in
 # persson.effects.available(), where diagnosis would offer it as a physical effect.
 _BandRestriction.name = "length_scale_band"
+# the band's cut of the PSD is the point of a band sweep, not a doubtful result: no "PSD cut" PhysicsWarning
+_BandRestriction.cuts_psd_on_purpose = True
 
 
 # ---------------------------------------------------------------------------------------------------------
