@@ -17,7 +17,7 @@ def dma_dir(tmp_path):
     rows = ["T_C,f_Hz,E_storage_Pa,E_loss_Pa"]
     for T in (-20.0, -10.0, 0.0, 10.0, 20.0, 40.0):
         E = tread.E(2 * np.pi * f, T)
-        rows += [f"{T},{ff!r},{e.real!r},{e.imag!r}" for ff, e in zip(f, E)]
+        rows += [f"{T},{float(ff)!r},{float(e.real)!r},{float(e.imag)!r}" for ff, e in zip(f, E)]
     (tmp_path / "dma.csv").write_text("\n".join(rows) + "\n")
     return tmp_path
 
@@ -42,7 +42,7 @@ def test_profiles_with_options(tmp_path):
     rng = np.random.default_rng(0)
     x = np.arange(8192) * 20e-6
     z = np.cumsum(rng.normal(size=x.size)) * 2e-6
-    (tmp_path / "scan.csv").write_text("x_m,z_m\n" + "\n".join(f"{a!r},{b!r}" for a, b in zip(x, z)))
+    (tmp_path / "scan.csv").write_text("x_m,z_m\n" + "\n".join(f"{float(a)!r},{float(b)!r}" for a, b in zip(x, z)))
     (tmp_path / "case.toml").write_text('[surface]\nprofiles = ["scan.csv"]\nisotropic_options = { q_max = 3e4 }\n'
                                         '[material]\nexample = "tread"\n')
     s = read_case(tmp_path / "case.toml").model.surface
@@ -207,9 +207,9 @@ def test_shift_factor_table_beside_a_master_curve(tmp_path):
     f = np.geomspace(1e-3, 1e8, 120)
     E = tread.E(2 * np.pi * f, 20.0)
     (tmp_path / "mc.csv").write_text("f_Hz,E_storage_Pa,E_loss_Pa\n"
-                                     + "\n".join(f"{a!r},{e.real!r},{e.imag!r}" for a, e in zip(f, E)) + "\n")
+                                     + "\n".join(f"{float(a)!r},{float(e.real)!r},{float(e.imag)!r}" for a, e in zip(f, E)) + "\n")
     Ts = np.arange(-10.0, 61.0, 5.0)
-    (tmp_path / "aT.csv").write_text("T_C,log10_aT\n" + "\n".join(f"{T!r},{float(tread.log10_aT(T))!r}" for T in Ts))
+    (tmp_path / "aT.csv").write_text("T_C,log10_aT\n" + "\n".join(f"{float(T)!r},{float(tread.log10_aT(T))!r}" for T in Ts))
     (tmp_path / "case.toml").write_text('[surface]\nexample = "road"\n[material]\nmaster_curve = "mc.csv"\n'
                                         'shift_factors = "aT.csv"\n')
     m = read_case(tmp_path / "case.toml").model.material

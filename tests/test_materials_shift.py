@@ -165,20 +165,20 @@ def test_read_shift_factors_kinds_and_units(tmp_path):
     T = np.arange(-20.0, 61.0, 10.0)
     la = wlf().log10_aT(T)
     # header-less, log10 a_T (values of both signs)
-    p = _write(tmp_path / "a.csv", "".join(f"{t!r},{v!r}\n" for t, v in zip(T, la)))
+    p = _write(tmp_path / "a.csv", "".join(f"{float(t)!r},{float(v)!r}\n" for t, v in zip(T, la)))
     np.testing.assert_allclose(materials.read_shift_factors(p).log10_aT(T), la, atol=1e-13)
     # header-less a_T spanning many decades, with the 1 at T_ref: recognised as a_T
-    p = _write(tmp_path / "b.txt", "".join(f"{t:g} {10 ** v!r}\n" for t, v in zip(T, la)))
+    p = _write(tmp_path / "b.txt", "".join(f"{t:g} {float(10 ** v)!r}\n" for t, v in zip(T, la)))
     np.testing.assert_allclose(materials.read_shift_factors(p).log10_aT(T), la, atol=1e-12)
     # named columns in kelvin, natural log, tab-separated with a units row and a Latin-1 degree sign
     p = _write(tmp_path / "c.tsv", "Temp\tln_aT\n[K]\t[-]\n"
-               + "".join(f"{t + 273.15!r}\t{v * math.log(10)!r}\n" for t, v in zip(T, la)), "latin-1")
+               + "".join(f"{float(t + 273.15)!r}\t{float(v * math.log(10))!r}\n" for t, v in zip(T, la)), "latin-1")
     np.testing.assert_allclose(materials.read_shift_factors(p).log10_aT(T), la, atol=1e-12)
-    p = _write(tmp_path / "d.csv", "T [\xb0C],a_T\n" + "".join(f"{t:g},{10 ** v!r}\n" for t, v in zip(T, la)),
+    p = _write(tmp_path / "d.csv", "T [\xb0C],a_T\n" + "".join(f"{t:g},{float(10 ** v)!r}\n" for t, v in zip(T, la)),
                "latin-1")
     np.testing.assert_allclose(materials.read_shift_factors(p).log10_aT(T), la, atol=1e-12)
     # the user names the columns of an ambiguous header-less table
-    p = _write(tmp_path / "e.csv", "".join(f"{t:g},{20.0 - i!r}\n" for i, t in enumerate(T)))
+    p = _write(tmp_path / "e.csv", "".join(f"{t:g},{float(20.0 - i)!r}\n" for i, t in enumerate(T)))
     with pytest.raises(InputError, match="cannot tell whether.*columns=\\('T_C', 'log10_aT'\\)"):
         materials.read_shift_factors(p)
     got = materials.read_shift_factors(p, columns=("T_C", "aT"), T_ref=-20.0)

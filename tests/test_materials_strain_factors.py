@@ -157,7 +157,7 @@ def test_read_strain_sweeps_from_exports(tmp_path):
     rows = ["T_C,f_Hz,E_storage_Pa,E_loss_Pa,strain"]
     for T in TEMPS:
         f, g = kraus(STRAINS, T)
-        rows += [f"{T:g},10,{8e6 * a!r},{2e6 * b!r},{s!r}" for s, a, b in zip(STRAINS, f, g)]
+        rows += [f"{T:g},10,{float(8e6 * a)!r},{float(2e6 * b)!r},{float(s)!r}" for s, a, b in zip(STRAINS, f, g)]
     p = _write(tmp_path / "long.csv", "\n".join(rows) + "\n")
     sf2 = materials.strain_factors(materials.read_strain_sweep(p))
     sf3 = materials.strain_factors(materials.read_dma(p))
@@ -166,7 +166,7 @@ def test_read_strain_sweeps_from_exports(tmp_path):
 
 def test_header_less_sweep_with_declared_columns(tmp_path):
     f, g = kraus(STRAINS, 20.0)
-    p = _write(tmp_path / "s.csv", "".join(f"{s!r},{3e6 * a!r},{1e6 * b!r}\n" for s, a, b in zip(STRAINS, f, g)))
+    p = _write(tmp_path / "s.csv", "".join(f"{float(s)!r},{float(3e6 * a)!r},{float(1e6 * b)!r}\n" for s, a, b in zip(STRAINS, f, g)))
     with pytest.raises(InputError, match="no header row"):
         materials.read_strain_sweep(p, T=20.0)
     sw = materials.read_strain_sweep(p, columns=["strain", "E_storage_Pa", "E_loss_Pa"], T=20.0)
@@ -178,13 +178,13 @@ def test_header_less_sweep_with_declared_columns(tmp_path):
 def test_strain_sweep_unit_slips_are_refused(tmp_path):
     f, g = kraus(STRAINS, 20.0)
     p = _write(tmp_path / "pct.csv", "T_C,strain,E_storage_Pa,E_loss_Pa\n"
-               + "".join(f"20,{100 * s!r},{3e6 * a!r},{1e6 * b!r}\n" for s, a, b in zip(STRAINS, f, g)))
+               + "".join(f"20,{float(100 * s)!r},{float(3e6 * a)!r},{float(1e6 * b)!r}\n" for s, a, b in zip(STRAINS, f, g)))
     with pytest.raises(InputError, match=r"pct.csv, column 'strain'.*look like percent"):
         materials.read_strain_sweep(p)
     sw = materials.read_strain_sweep(p, units={"strain": "%"})
     assert sw.strain.max() == pytest.approx(0.5)
     p = _write(tmp_path / "mpa.csv", "T_C,strain,E_storage_Pa,E_loss_Pa\n"
-               + "".join(f"20,{s!r},{3 * a!r},{1 * b!r}\n" for s, a, b in zip(STRAINS, f, g)))
+               + "".join(f"20,{float(s)!r},{float(3 * a)!r},{float(1 * b)!r}\n" for s, a, b in zip(STRAINS, f, g)))
     with pytest.raises(InputError, match=r"mpa.csv, column 'E_storage_Pa'.*MPa"):
         materials.read_strain_sweep(p)
     with pytest.raises(InputError, match="line 2, column 'strain'"):

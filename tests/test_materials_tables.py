@@ -36,7 +36,7 @@ def _write(path, text, encoding="utf-8"):
 def test_nodes_are_reproduced_exactly(tmp_path):
     f, E1, E2 = _tread_table()
     p = _write(tmp_path / "mc.csv", "f_Hz,E_storage_Pa,E_loss_Pa\n"
-               + "".join(f"{a!r},{b!r},{c!r}\n" for a, b, c in zip(f, E1, E2)))
+               + "".join(f"{float(a)!r},{float(b)!r},{float(c)!r}\n" for a, b, c in zip(f, E1, E2)))
     m = materials.read_master_curve(p, wlf=WLF)
     assert m.representation == "table" and m.prony is None
     E = m.E(2 * np.pi * f, 20.0)
@@ -195,7 +195,7 @@ def test_reading_a_non_causal_table_warns(tmp_path):
     f, E1, E2 = _tread_table()
     E2 = np.where((f > 1e2) & (f < 1e3), 10 * E2, E2)
     p = _write(tmp_path / "mc.csv", "f_Hz,E_storage_Pa,E_loss_Pa\n"
-               + "".join(f"{a!r},{b!r},{c!r}\n" for a, b, c in zip(f, E1, E2)))
+               + "".join(f"{float(a)!r},{float(b)!r},{float(c)!r}\n" for a, b, c in zip(f, E1, E2)))
     with pytest.warns(UserWarning, match="non-causal"):
         m = materials.read_master_curve(p, wlf=WLF)
     assert not m.causality.ok and any("non-causal" in n for n in m.notes)
@@ -214,7 +214,7 @@ def test_whitespace_export_with_units_row(tmp_path):
 
 def test_header_less_tab_table_needs_declared_units(tmp_path):
     f, E1, E2 = _tread_table(per_decade=2)
-    body = "".join(f"{2 * np.pi * a!r}\t{b / 1e6!r}\t{c / 1e6!r}\n" for a, b, c in zip(f, E1, E2))
+    body = "".join(f"{float(2 * np.pi * a)!r}\t{float(b / 1e6)!r}\t{float(c / 1e6)!r}\n" for a, b, c in zip(f, E1, E2))
     p = _write(tmp_path / "mc.tsv", body)
     # read with the default units (Hz, Pa), the moduli are those of no polymer: MPa is named as the likely unit
     with pytest.raises(InputError, match=r"mc.tsv.*below any polymer's range.*MPa"):
@@ -291,7 +291,7 @@ def test_single_temperature_table(tmp_path):
 def test_prony_only_when_asked_with_its_misfit(tmp_path):
     f, E1, E2 = _tread_table(per_decade=4)
     p = _write(tmp_path / "mc.csv", "f_Hz,E_storage_Pa,E_loss_Pa\n"
-               + "".join(f"{a!r},{b!r},{c!r}\n" for a, b, c in zip(f, E1, E2)))
+               + "".join(f"{float(a)!r},{float(b)!r},{float(c)!r}\n" for a, b, c in zip(f, E1, E2)))
     m = materials.read_master_curve(p, wlf=WLF, fit="prony")
     assert m.representation == "prony" and m.curve is None
     # the reported misfit is the RMS relative residual on the table, recomputed here

@@ -17,7 +17,7 @@ def test_design_md_pipeline(tmp_path):
     rng = np.random.default_rng(1)
     x = np.arange(4096) * 10e-6
     z = np.cumsum(rng.normal(size=x.size)) * 1e-6
-    (tmp_path / "scan.csv").write_text("x_m,z_m\n" + "\n".join(f"{a!r},{b!r}" for a, b in zip(x, z)))
+    (tmp_path / "scan.csv").write_text("x_m,z_m\n" + "\n".join(f"{float(a)!r},{float(b)!r}" for a, b in zip(x, z)))
     iso = surfaces.read_profiles(tmp_path / "scan.csv").psd().to_isotropic()
     assert isinstance(iso, surfaces.PSD) and iso.hrms() > 0
 
@@ -28,7 +28,7 @@ def test_design_md_pipeline(tmp_path):
     rows = ["T_C,f_Hz,E_storage_Pa,E_loss_Pa"]
     for T in (-20.0, 0.0, 20.0, 40.0):
         E = tread.E(2 * np.pi * f, T)
-        rows += [f"{T},{ff!r},{e.real!r},{e.imag!r}" for ff, e in zip(f, E)]
+        rows += [f"{T},{float(ff)!r},{float(e.real)!r},{float(e.imag)!r}" for ff, e in zip(f, E)]
     (tmp_path / "dma.csv").write_text("\n".join(rows) + "\n")
     mc = materials.master_curve(materials.read_dma(tmp_path / "dma.csv"), T_ref=20.0)
     assert np.iscomplexobj(mc.E(np.array([1.0, 10.0]), 30.0))

@@ -181,7 +181,7 @@ def _toml_value(v) -> str:
     if isinstance(v, (list, tuple)):
         return "[" + ", ".join(_toml_value(x) for x in v) + "]"
     if isinstance(v, float):
-        return repr(v)
+        return repr(float(v))  # np.float64 is a float; its numpy-2 repr is not TOML
     return str(v)
 
 

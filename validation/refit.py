@@ -285,6 +285,16 @@ def with_uncertainty(fitter: Fitter, fit: GlobalFit, *, s2: float, ranges: DataR
     except BudgetExhausted:
         notes["the uncertainty stopped at its budget of model evaluations"] = None
         estimates = _bare_estimates(fitter, u, ranges)
+    # a distinct optimum just outside the 68 % range (1 < delta chi2 <= 4) is inside the 95 % one: the local
+    # standard errors above do not see it, so say where the best such one is
+    near = sorted(((cv - c) / s2, i) for i, (cv, v) in enumerate(fit.optima)
+                  if 1.0 < (cv - c) / s2 <= 4.0 and np.max(np.abs(v - u)) > 0.02)
+    if near:
+        d, i = near[0]
+        v = fit.optima[i][1]
+        where = ", ".join(f"{p.key} = {p.from_u(float(v[j])):.4g}" for j, p in enumerate(fitter.space.params))
+        notes[f"another local optimum fits almost as well ({where}; delta chi2 = {d:.2f}, inside the 95 % "
+              "range): the standard errors describe the best optimum only"] = None
     return GlobalFit(u=u, chi2=c, mu=fit.mu, model=fit.model, contact=fit.contact, estimates=estimates,
                      jacobian=J, n_starts=fit.n_starts, n_good=len(good), n_evals=fitter.n_evals,
                      notes=tuple(notes), optima=fit.optima)

@@ -1,0 +1,59 @@
+"""A fit with two nearly equal optima says so: local standard errors describe the best optimum only.
+
+The toy problem has a closed form: mu_i(u) = a (u - 0.2)(u - 0.8) x_i fitted to y_i = 0, so
+chi2(u) = a^2 (u - 0.2)^2 (u - 0.8)^2 sum x_i^2 + offset; the offsets of two local optima are set by hand.
+"""
+
+import numpy as np
+
+from validation.fitting import FreeParameter, ParameterSpace
+from validation.refit import GlobalFit, with_uncertainty
+
+
+class _Toy:
+    """The attributes of validation.fitting.Fitter that with_uncertainty uses, for a linear-in-x model."""
+
+    def __init__(self):
+        self.space = ParameterSpace([FreeParameter("toy", "k", 0.0, 1.0, log=False)])
+        self.x = np.linspace(1.0, 2.0, 20)
+        self.y = np.zeros_like(self.x)
+        self.w = np.ones_like(self.x)
+        self.n_evals = 0
+        self.max_evals = 10**6
+
+    def mu(self, u):
+        self.n_evals += 1
+        u = float(np.atleast_1d(u)[0])
+        return 5.0 * (u - 0.2) * (u - 0.8) * self.x
+
+    def chi2(self, u):
+        return float(np.sum((self.mu(u) - self.y) ** 2))
+
+    def jacobian(self, u):
+        u = float(np.atleast_1d(u)[0])
+        return (5.0 * (2 * u - 1.0) * self.x)[:, None]
+
+
+def _fit(toy, d_other):
+    u = np.array([0.2])
+    return GlobalFit(u=u, chi2=10.0, mu=toy.mu(u), model=None, contact=None, estimates=(),
+                     jacobian=np.zeros((toy.y.size, 0)), n_starts=2, n_good=0, n_evals=0,
+                     optima=((10.0, u), (10.0 + d_other, np.array([0.8]))))
+
+
+def test_a_second_optimum_inside_the_95_percent_range_is_named():
+    toy = _Toy()
+    out = with_uncertainty(toy, _fit(toy, 2.5), s2=1.0, profile=False)
+    notes = [n for n in out.notes if "another local optimum" in n]
+    assert len(notes) == 1 and "toy.k = 0.8" in notes[0] and "delta chi2 = 2.50" in notes[0]
+
+
+def test_a_far_worse_or_an_equal_optimum_is_not_called_almost_as_good():
+    toy = _Toy()
+    far = with_uncertainty(toy, _fit(toy, 9.0), s2=1.0, profile=False)
+    assert not any("another local optimum" in n for n in far.notes)
+    # within one chi2 unit the second optimum widens the interval instead (method "+ starts")
+    equal = with_uncertainty(toy, _fit(toy, 0.5), s2=1.0, profile=False)
+    assert not any("another local optimum" in n for n in equal.notes)
+    est = equal.estimates[0]
+    assert est.interval[0] <= 0.2 and est.interval[1] >= 0.8 and "starts" in est.method
