@@ -69,7 +69,7 @@ from frictioncite import citations_of, doi
 
 from ._checks import finite_array, number, positive
 from .errors import InputError
-from .tire import FitResult
+from .tire import FitResult, NamedParameters
 
 __all__ = [
     "Contact", "SlipResult", "mu_slip", "brush_mu", "BrushCurve", "two_coefficient_mu", "BrushMap",
@@ -1134,7 +1134,7 @@ def predict_slip(model, slip, speed, *, temperature=20.0, pressure=0.3e6, contac
 
 
 @dataclass(frozen=True, eq=False)
-class SlipFit:
+class SlipFit(NamedParameters):
     r"""Contact and effect parameters of a friction model fitted to measured mu(slip, V) (:func:`fit_slip`).
 
     Attributes
@@ -1177,21 +1177,6 @@ class SlipFit:
     lack_of_fit_p: float | None
     n_evaluations: int
     notes: tuple = ()
-
-    def __getitem__(self, name: str) -> float:
-        return float(self.values[self._index(name)])
-
-    def std(self, name: str) -> float:
-        """Standard uncertainty of ``name``."""
-        return float(self.stderr[self._index(name)])
-
-    @property
-    def params(self) -> dict[str, float]:
-        return {n: float(v) for n, v in zip(self.names, self.values)}
-
-    @property
-    def uncertainties(self) -> dict[str, float]:
-        return {n: float(v) for n, v in zip(self.names, self.stderr)}
 
     @property
     def reduced_chi2(self) -> float:

@@ -431,8 +431,29 @@ def _fit_with_peak(x, y, sig, peak, fixed, p0):
 # =========================================================================================================
 # Fit results
 # =========================================================================================================
+class NamedParameters:
+    """Access by name to the ``names``, ``values`` and ``stderr`` of a fit result (its ``_index`` names the error)."""
+
+    def __getitem__(self, name: str) -> float:
+        return float(self.values[self._index(name)])
+
+    def std(self, name: str) -> float:
+        """Standard uncertainty of the parameter ``name``."""
+        return float(self.stderr[self._index(name)])
+
+    @property
+    def params(self) -> dict[str, float]:
+        """Parameter values by name."""
+        return {n: float(v) for n, v in zip(self.names, self.values)}
+
+    @property
+    def uncertainties(self) -> dict[str, float]:
+        """Standard uncertainties by name."""
+        return {n: float(v) for n, v in zip(self.names, self.stderr)}
+
+
 @dataclass(frozen=True, eq=False)
-class FitResult:
+class FitResult(NamedParameters):
     """A fitted curve law: parameters, standard uncertainties, covariance.
 
     Attributes
@@ -478,23 +499,6 @@ class FitResult:
     def __call__(self, x):
         """The fitted law at ``x``."""
         return self.func(np.asarray(x, dtype=float), *self.values)
-
-    def __getitem__(self, name: str) -> float:
-        return float(self.values[self._index(name)])
-
-    def std(self, name: str) -> float:
-        """Standard uncertainty of the parameter ``name``."""
-        return float(self.stderr[self._index(name)])
-
-    @property
-    def params(self) -> dict[str, float]:
-        """Parameter values by name."""
-        return {n: float(v) for n, v in zip(self.names, self.values)}
-
-    @property
-    def uncertainties(self) -> dict[str, float]:
-        """Standard uncertainties by name."""
-        return {n: float(v) for n, v in zip(self.names, self.stderr)}
 
     def propagate(self, quantity) -> tuple[float, float]:
         """Value and standard uncertainty of ``quantity(values)`` (a scalar function of the parameter vector),
