@@ -278,9 +278,19 @@ def test_one_table_per_call_and_reuse_while_only_the_contact_changes():
     tab = cache["value"]
     ps.predict_slip(m2, s2.ravel()[:20], V2.ravel()[:20], contact=c.with_parameters(stiffness=2 * K), cache=cache)
     assert cache["value"] is tab
-    ps.predict_slip(m2.with_effect(PatchHeating(counter_effusivity=900.0)), s2.ravel()[:20], V2.ravel()[:20],
-                    contact=c, cache=cache)
-    assert cache["value"] is not tab  # other heating: another temperature range
+    # other heating parameters: the same table (its temperature nodes do not depend on them); a hotter patch
+    # adds the nodes above the range it had, a cooler one none; the answers are those of a fresh table
+    cache = {}
+    ps.predict_slip(m2, s2.ravel(), V2.ravel(), contact=c, cache=cache)
+    tab = cache["value"]
+    calls = tab.calls
+    for e_c, more in ((300.0, True), (3000.0, False)):
+        other = m2.with_effect(PatchHeating(counter_effusivity=e_c))
+        mu = ps.predict_slip(other, s2.ravel(), V2.ravel(), contact=c, cache=cache)
+        assert cache["value"] is tab and (tab.calls > calls) == more
+        calls = tab.calls
+        fresh = ps.predict_slip(other, s2.ravel(), V2.ravel(), contact=c, cache={})
+        assert np.allclose(mu, fresh, atol=1e-3)
 
 
 @dataclass

@@ -56,7 +56,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from numba import njit
+from numba import njit, prange
 
 from frictioncite import doi
 
@@ -78,6 +78,7 @@ BLOK_1937 = "blok:imeche-lubrication-1937"
 #: temperature.
 PERSSON_TREAD_2026 = "arxiv:2602.22078"
 
+_PARALLEL_MIN_ROWS = 4
 _P_FLOOR = 0.02  # pressures below 2 % of sigma0 (the patch edges) are evaluated at 2 % of sigma0
 
 
@@ -123,9 +124,11 @@ class PatchHeating(Effect):
 
     Notes
     -----
-    The friction is tabulated once per evaluation over (sliding speed, pressure, temperature) with one engine call
-    at T0 and one over the heated temperatures (per-speed temperature and pressure arrays) and interpolated
-    with four-point Lagrange polynomials in each variable.
+    The friction is tabulated over (sliding speed, pressure, temperature) with one engine call at T0 and one
+    over the heated temperatures (per-speed temperature and pressure arrays) and interpolated with four-point
+    Lagrange polynomials in each variable. The temperature nodes lie on a lattice in :math:`\log_{10}a_T` that
+    does not depend on this effect's parameters: a fit of them reuses the table (see
+    :func:`patch_friction`).
     """
 
     name = "patch_heating"
@@ -261,9 +264,10 @@ def patch_friction(model, heating: PatchHeating, contact, slip, speed, temperatu
         Also return T(x), the shear and mu(x) on the patch nodes.
     tables : dict, optional
         A cache (a dict the caller keeps) of friction tables: reused when the engine (:func:`engine_key`), the
-        heating parameters, the contact length and pressure shape and the rows' (T0, sigma0, v_s) are the same
-        (e.g. while only the stiffness is varied in a fit). It holds references to the model it was built with,
-        so identities stay valid while it lives.
+        table settings (``max_rise``, ``n_pressure``, ``temperature_points_per_decade``), the contact's pressure
+        shape and the rows' (T0, sigma0, v_s) are the same, whatever the heating strength, contact length or
+        stiffness (e.g. in a fit of the counter-surface effusivity or the stiffness). It holds references to the
+        model it was built with, so identities stay valid while it lives.
 
     Returns
     -------
@@ -273,12 +277,14 @@ def patch_friction(model, heating: PatchHeating, contact, slip, speed, temperatu
     -----
     Numerics. For each (T0, sigma0) of the rows the friction is tabulated over the sliding speeds (their distinct
     values, or ``points_per_decade`` log-spaced nodes when those are fewer), the local pressure
-    (``n_pressure`` nodes over the range of p(x), floored at 2 % of sigma0) and the background temperature from
-    T0 to :math:`T_0 + \Delta T_{max}(v)` (:math:`\Delta T_{max}` 1.15 times the rise the patch would reach with
-    the friction held at its T0 value, raised and re-tabulated if the patch gets hotter), uniform in
-    :math:`y = \log_{10}a_T(T_0) - \log_{10}a_T(T)` with ``temperature_points_per_decade`` nodes per decade
-    (at least 4 nodes where the range exceeds half a node spacing); values in between by tensor-product
-    four-point Lagrange interpolation. Along the patch (the contact's nodes), the stick zone ends at the first
+    (``n_pressure`` nodes over the range of p(x), floored at 2 % of sigma0) and the background temperature on
+    the lattice :math:`y_k = k/n_y`, :math:`y = \log_{10}a_T(T_0) - \log_{10}a_T(T)`,
+    :math:`n_y` = ``temperature_points_per_decade``, from T0 up to :math:`T_0 + \Delta T_{max}(v)`
+    (:math:`\Delta T_{max}` 1.15 times the rise the patch would reach with the friction held at its T0 value;
+    more nodes are added if the patch gets hotter; at least 4 nodes per speed); values in between by
+    tensor-product four-point Lagrange interpolation. The lattice does not depend on the heating parameters, so
+    a table kept in ``tables`` serves any counter-surface effusivity or heat fraction and only grows (one engine
+    call for the missing nodes) when a hotter patch needs a higher temperature range. Along the patch (the contact's nodes), the stick zone ends at the first
     sign change of :math:`\mu(v_s, p, T_0)p - k\theta x` (as in :func:`persson.slip.mu_slip`); behind it the
     Abel integral is evaluated by product integration (the shear piecewise linear between nodes, the kernel
     integrated exactly), implicitly at the new node (secant iteration, bisection as fallback). The stick part is
@@ -329,30 +335,36 @@ def patch_friction(model, heating: PatchHeating, contact, slip, speed, temperatu
     vnodes = np.concatenate(vnode_list)
     V_lo = np.array([float(np.min(V[sweep == c])) for c in range(keys.shape[0])])
 
-    cache_key = (heating.counter_effusivity, heating.heat_fraction, heating.max_rise, e_r, n_g,
-                 heating.temperature_points_per_decade,
-                 contact.length, contact._g.tobytes(), keys.tobytes(), vnodes.tobytes(), voff.tobytes(),
-                 vs.tobytes(), V_lo.tobytes())
+    # The table does not depend on how strongly the patch is heated (counter_effusivity, heat_fraction, e_r):
+    # its temperature nodes lie on a lattice fixed by T0 and the material, so a fit of those parameters only adds
+    # the nodes a hotter patch needs.
+    cache_key = (heating.max_rise, n_g, heating.temperature_points_per_decade,
+                 contact._g.tobytes(), keys.tobytes(), vnodes.tobytes(), voff.tobytes(), V_lo.tobytes())
     ekey = engine_key(model)
     if tables is not None and tables.get("engine") == ekey and tables.get("key") == cache_key:
         tab = tables["value"]
+        calls0, points0 = tab.calls, tab.points
     else:
+        calls0, points0 = 0, 0
         engine = model.without("patch_heating") if "patch_heating" in getattr(model, "effect_names", ()) else model
-        tab = _Tables(engine, keys, vnodes, voff, gnodes, heated, V_lo, heating, contact.length)
-    calls0, points0 = (tab.calls, tab.points) if tables is not None and tables.get("value") is tab else (0, 0)
+        tab = _Tables(engine, keys, vnodes, voff, gnodes, V_lo, heating)
+        if tables is not None:
+            tables.clear()
+            tables.update(engine=ekey, key=cache_key, value=tab, model=model)
     xi = np.ascontiguousarray(contact._xi)
     gg = np.ascontiguousarray(contact._g)
     W = _unit_weights(xi.size)
     rows = sweep.astype(np.int64)
     lvs = np.log(vs)
-    if tables is None or tables.get("value") is not tab:
-        # the heating with the friction held at T0 bounds the temperature range of the table
-        pre = _march_all(rows, lvs, a, lam, xi, gg, W, *tab.args(), *tab.targs(), False)
+    # each row costs about N^2 operations (the Abel sums): threads pay off from a few rows on
+    march = _march_parallel if n >= _PARALLEL_MIN_ROWS else _march_serial
+    if heated and not tab.has_heated():
+        # the heating with the friction held at T0 bounds the temperature range the rows need (a kept table
+        # with heated nodes goes straight to the march below, which grows it if the patch is hotter)
+        pre = march(rows, lvs, a, lam, xi, gg, W, *tab.args(), *tab.targs(), False)
         tab.fill(pre[2], vs, sweep)
-        if tables is not None:
-            tables.update(engine=ekey, key=cache_key, value=tab, model=model)
-    for _ in range(4):
-        out = _march_all(rows, lvs, a, lam, xi, gg, W, *tab.args(), *tab.targs(), bool(profiles))
+    for _ in range(6):
+        out = march(rows, lvs, a, lam, xi, gg, W, *tab.args(), *tab.targs(), bool(profiles))
         mu, xc, rise, umax, Tprof, shear, muprof = out
         over = np.zeros(keys.shape[0], dtype=bool)
         for c in range(keys.shape[0]):
@@ -361,7 +373,12 @@ def patch_friction(model, heating: PatchHeating, contact, slip, speed, temperatu
             break
         tab.extend(over, np.array([float(np.max(umax[sweep == c])) for c in range(keys.shape[0])]))
     notes = list(tab.notes)
-    hot = [c for c in range(keys.shape[0]) if float(np.max(umax[sweep == c])) > 1.0 + 1e-9]
+    converged = tab.converged
+    if over.any():
+        converged = False
+        notes.append(f"patch_heating: the friction table did not reach the patch temperature at {int(over.sum())} "
+                     f"condition(s); evaluated at the table's top")
+    hot = [c for c in range(keys.shape[0]) if float(np.max(rise[sweep == c])) > heating.max_rise * (1 + 1e-9)]
     if hot:
         notes.append(f"patch_heating: background temperature rise above the table ({heating.max_rise:g} K cap) at "
                      f"{len(hot)} condition(s); evaluated at the cap")
@@ -370,7 +387,7 @@ def patch_friction(model, heating: PatchHeating, contact, slip, speed, temperatu
                          temperature=Tprof if profiles else None, shear=shear if profiles else None,
                          mu_profile=muprof if profiles else None, table_points=tab.points - points0,
                          engine_calls=tab.calls - calls0,
-                         converged=tab.converged, notes=tuple(dict.fromkeys(notes)))
+                         converged=converged, notes=tuple(dict.fromkeys(notes)))
 
 
 def engine_key(model):
@@ -394,29 +411,31 @@ def _speed_nodes(v: np.ndarray, per_decade: float) -> np.ndarray:
 
 
 def _temperature_counts(ymax: np.ndarray, per_decade: float) -> np.ndarray:
-    """Temperature nodes of each speed node from its range ``ymax`` in decades of a_T: spacing at most
-    1/``per_decade``; at least 4 nodes (cubic) when the range exceeds half a spacing, 3 (quadratic) above a tenth
-    of a spacing, else 2 (linear: the friction changes by less than about 1e-4 over such a range)."""
+    """Temperature nodes of each speed node that reach ``ymax`` (decades of a_T) on the lattice of spacing
+    1/``per_decade``: at least 4 (cubic interpolation) when ``ymax`` > 0, else 1 (the T0 slice alone)."""
     x = np.asarray(ymax, dtype=float) * per_decade
-    n = np.ceil(x - 1e-9).astype(np.int64) + 1
-    n = np.where(x >= 0.5, np.maximum(n, 4), np.where(x >= 0.1, 3, 2))
-    return np.clip(n, 2, 256).astype(np.int64)
+    n = np.ceil(np.maximum(x, 0.0) - 1e-9).astype(np.int64) + 1
+    n = np.where(x > 0.0, np.maximum(n, 4), 1)
+    return np.clip(n, 1, _MAX_NU).astype(np.int64)
 
 
-_NY = 1025  # nodes of the fine y(T) table per sweep
+_NY = 1025  # nodes of the fine y(T) table per sweep from T0 to T0 + max_rise (and as many again above)
+_MAX_NU = 512  # most temperature nodes of one speed node
 
 
 class _Tables:
-    r"""Friction tables of every (T0, sigma0) sweep over (v, g = p/sigma0, u).
+    r"""Friction tables of every (T0, sigma0) sweep over (v, g = p/sigma0, y).
 
     The temperature coordinate is :math:`y(T) = \log_{10}a_T(T_0) - \log_{10}a_T(T)` (decades of the shift factor;
     :math:`(T - T_0)/10` K for a material without ``log10_aT``), tabulated finely (``_NY`` nodes from T0 to
-    T0 + max_rise) and interpolated linearly; u = y(T)/y(T0 + dT_max(v)) in [0, 1].
-    Layout: for the global v node i (``voff`` delimits the sweeps), a block of shape (n_g, nu[i]) at ``vtoff[i]``
-    in ``values``, with nu[i] uniform u nodes on [0, 1] (:func:`_temperature_counts`).
+    T0 + max_rise, continued as far again so that the lattice node above the cap has its temperature) and
+    interpolated linearly. The temperature nodes lie on the lattice :math:`y_k = k h`, :math:`h` = 1 /
+    ``temperature_points_per_decade``, the same for every heating strength: a table grows (more nodes per speed) as
+    the patch gets hotter and is never refilled. Layout: for the global v node i (``voff`` delimits the sweeps), a
+    block of shape (n_g, nu[i]) at ``vtoff[i]`` in ``values``, holding the nodes k = 0 .. nu[i] - 1.
     """
 
-    def __init__(self, model, keys, vnodes, voff, gnodes, heated, V_lo, heating, length):
+    def __init__(self, model, keys, vnodes, voff, gnodes, V_lo, heating):
         import warnings
 
         self.model = model
@@ -426,12 +445,9 @@ class _Tables:
         self.lv = np.ascontiguousarray(np.log(vnodes))
         self.voff = voff
         self.gnodes = gnodes
-        self.heated = bool(heated)
-        self.per_decade = float(heating.temperature_points_per_decade)
+        self.hy = 1.0 / float(heating.temperature_points_per_decade)
         self.V_lo = np.ascontiguousarray(V_lo)
         self.cap = float(heating.max_rise)
-        self.heating = heating
-        self.length = float(length)
         self.points = 0
         self.calls = 0
         self.converged = True
@@ -440,24 +456,15 @@ class _Tables:
         nc = keys.shape[0]
         ng = gnodes.size
         self._capped = np.zeros(nc, dtype=bool)
-        self.B = np.zeros(nc)  # temperature range: dT_max(v) = min(B v / sqrt(v + V_lo), cap), set by fill()
-        # the y(T) coordinate of every sweep
+        self.B = np.zeros(nc)  # temperature range of this call: dT_max(v) = min(B v / sqrt(v + V_lo), cap)
         self.dTf = self.cap / (_NY - 1)
-        self.yT = np.empty((nc, _NY))
+        self.yT = np.empty((nc, 2 * _NY - 1))
         la = getattr(model, "material", None)
         la = getattr(la, "log10_aT", None)
         for c in range(nc):
-            Tf = self.T0[c] + self.dTf * np.arange(_NY)
-            y = None
-            if la is not None:
-                try:
-                    y = float(np.asarray(la(self.T0[c]), dtype=float)) - np.asarray(la(Tf), dtype=float)
-                except Exception:  # noqa: BLE001  (an unusual material: fall back to kelvin)
-                    y = None
-                if y is not None and not (np.all(np.isfinite(y)) and np.all(np.diff(y) > 0)):
-                    y = None
-            self.yT[c] = y if y is not None else (Tf - self.T0[c]) / 10.0
-        # pass 1: the T0 slice (u = 0) of every sweep, one engine call
+            self.yT[c] = _shift_coordinate(la, self.T0[c], self.T0[c] + self.dTf * np.arange(2 * _NY - 1))
+        self.ycap = np.ascontiguousarray(self.yT[:, _NY - 1])
+        # the T0 slice (k = 0) of every sweep, one engine call
         V_, G_ = [], []
         for c in range(nc):
             a, b = np.meshgrid(vnodes[voff[c]:voff[c + 1]], gnodes, indexing="ij")
@@ -465,7 +472,7 @@ class _Tables:
             G_.append(b.ravel() * self.sig0[c])
         T_ = [np.full(int(voff[c + 1] - voff[c]) * ng, self.T0[c]) for c in range(nc)]
         mu = self._call(np.concatenate(V_), np.concatenate(T_), np.concatenate(G_))
-        # blocks[c]: (n_v of sweep c, n_g, n_u) friction values; nus[c]: n_u of each speed node
+        # blocks[c]: (n_v of sweep c, n_g, capacity) friction values; nus[c]: nodes filled at each speed node
         self.blocks = [mu.reshape(-1, ng)[voff[c]:voff[c + 1], :, None].copy() for c in range(nc)]
         self.nus = [np.ones(voff[c + 1] - voff[c], dtype=np.int64) for c in range(nc)]
         self.mu_max = np.array([float(np.max(b)) for b in self.blocks])
@@ -487,17 +494,16 @@ class _Tables:
         return np.minimum(self.B[c] * v / np.sqrt(v + self.V_lo[c]), self.cap)
 
     def y_of(self, c, T):
-        return np.interp(T, self.T0[c] + self.dTf * np.arange(_NY), self.yT[c])
+        return np.interp(T, self.T0[c] + self.dTf * np.arange(self.yT.shape[1]), self.yT[c])
 
     def T_of(self, c, y):
-        return np.interp(y, self.yT[c], self.T0[c] + self.dTf * np.arange(_NY))
+        return np.interp(y, self.yT[c], self.T0[c] + self.dTf * np.arange(self.yT.shape[1]))
 
     def fill(self, rise0, vs, sweep):
-        """Tabulate the heated temperatures. ``rise0``: the rise of every row with the friction held at its T0
-        value (an upper bound when the friction falls with temperature); the range covers 1.15 times it."""
+        """Make the table reach the temperatures of this call. ``rise0``: the rise of every row with the friction
+        held at its T0 value (an upper bound when the friction falls with temperature); the range covers 1.15
+        times it."""
         nc = self.B.size
-        if not self.heated:
-            return
         for c in range(nc):
             sel = sweep == c
             v = vs[sel]
@@ -505,33 +511,47 @@ class _Tables:
             self.B[c] = 1.15 * float(np.max(need)) if need.size else 0.0
             if not self.B[c] > 0:
                 self.B[c] = 1e-6 * self.cap  # nothing slides: a tiny range keeps the table regular
-        self._fill(np.ones(nc, dtype=bool))
+        self._grow(np.ones(nc, dtype=bool))
 
-    def _fill(self, which):
+    def _grow(self, which):
+        """Add the lattice nodes that the sweeps ``which`` need for their current range and are missing."""
         ng = self.gnodes.size
         V_, T_, P_, where = [], [], [], []
         for c in np.flatnonzero(which):
             vv = self.vnodes[self.voff[c]:self.voff[c + 1]]
-            dT = self.dT_max(c, vv)
-            self._capped[c] = bool(np.any(dT >= self.cap))
-            ymax = self.y_of(c, self.T0[c] + dT)
-            n_u = _temperature_counts(ymax, self.per_decade)
-            self.nus[c] = n_u
-            blk = np.zeros((vv.size, ng, int(n_u.max())))
-            blk[:, :, 0] = self.blocks[c][:, :, 0]
-            self.blocks[c] = blk
-            for i in range(vv.size):
-                T = self.T_of(c, np.linspace(0.0, ymax[i], int(n_u[i]))[1:])
+            ymax = np.minimum(self.y_of(c, self.T0[c] + self.dT_max(c, vv)), self.ycap[c])
+            self._capped[c] = self._capped[c] or bool(np.any(ymax >= self.ycap[c] * (1 - 1e-12)))
+            # a row between speed nodes interpolates over the four around it: each node covers the range of the
+            # two above it as well, and the last four that of the last
+            reach = ymax.copy()
+            for d in (1, 2):
+                reach[:-d] = np.maximum(reach[:-d], ymax[d:])
+            reach[-4:] = np.maximum(reach[-4:], ymax[-1])
+            n_new = np.maximum(_temperature_counts(reach, 1.0 / self.hy), self.nus[c])
+            grow = np.flatnonzero(n_new > self.nus[c])
+            if grow.size == 0:
+                continue
+            blk = self.blocks[c]
+            if int(n_new.max()) > blk.shape[2]:
+                bigger = np.zeros((blk.shape[0], ng, max(int(n_new.max()), 2 * blk.shape[2])))
+                bigger[:, :, :blk.shape[2]] = blk
+                self.blocks[c] = bigger
+            for i in grow:
+                k = np.arange(self.nus[c][i], n_new[i])
+                T = self.T_of(c, k * self.hy)
                 G, TT = np.meshgrid(self.gnodes, T, indexing="ij")
                 V_.append(np.full(G.size, vv[i]))
                 P_.append(G.ravel() * self.sig0[c])
                 T_.append(TT.ravel())
-                where.append((c, i, int(n_u[i])))
+                where.append((c, i, int(self.nus[c][i]), int(n_new[i])))
+            self.nus[c] = n_new
+        if not where:
+            return
         mu = self._call(np.concatenate(V_), np.concatenate(T_), np.concatenate(P_))
         k = 0
-        for c, i, n in where:
-            m = ng * (n - 1)
-            self.blocks[c][i, :, 1:n] = mu[k:k + m].reshape(ng, n - 1)
+        for c, i, n0, n1 in where:
+            m = ng * (n1 - n0)
+            self.blocks[c][i, :, n0:n1] = mu[k:k + m].reshape(ng, n1 - n0)
             k += m
         for c in np.flatnonzero(which):
             self.mu_max[c] = max(self.mu_max[c], float(np.max(self.blocks[c])))
@@ -539,16 +559,20 @@ class _Tables:
 
     def targs(self):
         """The temperature arguments of the march kernel."""
-        return (self.T0, self.B, self.V_lo, self.cap, self.mu_max, self.yT, self.dTf)
+        return (self.T0, self.hy, self.cap, self.mu_max, self.yT, self.dTf)
+
+    def has_heated(self) -> bool:
+        """Whether every sweep has temperature nodes above T0."""
+        return all(int(n.min()) > 1 for n in self.nus)
 
     def capped(self, c) -> bool:
         return bool(self._capped[c])
 
     def extend(self, over, umax):
-        """Raise the temperature range of the sweeps ``over`` (the patch got hotter than the bound) and refill."""
+        """Raise the temperature range of the sweeps ``over`` (the patch got hotter than the bound) and grow."""
         for c in np.flatnonzero(over):
             self.B[c] *= 1.25 * float(umax[c])
-        self._fill(over)
+        self._grow(over)
 
     def _call(self, v, T, p):
         from .._checks import UnitWarning
@@ -581,6 +605,32 @@ class _Tables:
     def mu_at_sigma0(self, vs, sweep):
         """mu(v_s, sigma0, T0) of every row, interpolated in the T0 slice of the table."""
         return _interp_rows(sweep.astype(np.int64), np.log(vs), *self.args())
+
+
+def _shift_coordinate(log10_aT, T0: float, T: np.ndarray) -> np.ndarray:
+    """y(T) = log10 a_T(T0) - log10 a_T(T) on the increasing temperatures ``T`` (from T0), or (T - T0)/10 when the
+    material has no usable shift factor (none, or not finite and increasing in y over the table's first half).
+    Beyond the first half (above the cap) a y that stops increasing is continued linearly."""
+    import warnings
+
+    half = (T.size + 1) // 2
+    y = None
+    if log10_aT is not None:
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")  # extrapolated shift factors: the engine's own calls report them
+                y = float(np.asarray(log10_aT(T0), dtype=float)) - np.asarray(log10_aT(T), dtype=float)
+        except Exception:  # noqa: BLE001  (an unusual material: fall back to kelvin)
+            y = None
+    if y is None or y.shape != T.shape or not (np.all(np.isfinite(y[:half])) and np.all(np.diff(y[:half]) > 0)):
+        return (T - T0) / 10.0
+    ok = np.isfinite(y) & np.concatenate([[True], np.diff(y) > 0])
+    bad = np.flatnonzero(~ok)
+    if bad.size:
+        j = int(bad[0])  # >= half
+        slope = (y[j - 1] - y[half - 2]) / (T[j - 1] - T[half - 2])
+        y[j:] = y[j - 1] + slope * (T[j:] - T[j - 1])
+    return y
 
 
 # =========================================================================================================
@@ -655,17 +705,17 @@ def _lagrange(nodes, start, n, x, w):
 
 
 @njit(cache=True)
-def _lagrange_uniform(n, u, w):
-    """Lagrange weights at u on the n uniform nodes k/(n-1) of [0, 1] (four nearest; n when n < 4); returns k0."""
+def _lagrange_uniform(n, x, w):
+    """Lagrange weights at x on the n uniform nodes 0, 1, .., n - 1 (four nearest; n when n < 4; x clamped into
+    [0, n - 1]); returns k0."""
     if n == 1:
         w[0] = 1.0
         return 0
-    if u < 0.0:
-        u = 0.0
-    elif u > 1.0:
-        u = 1.0
+    if x < 0.0:
+        x = 0.0
+    elif x > n - 1.0:
+        x = n - 1.0
     m = 4 if n >= 4 else n
-    x = u * (n - 1)
     j = int(x)
     if j > n - 2:
         j = n - 2
@@ -684,15 +734,15 @@ def _lagrange_uniform(n, u, w):
 
 
 @njit(cache=True)
-def _interp(c, lv, gq, u, lvn, voff, gnodes, values, vtoff, nu, wv, wg, wu):
-    """mu of sweep c at (ln v, g, u) by tensor-product Lagrange interpolation (clamped at 0)."""
+def _interp(c, lv, gq, x, lvn, voff, gnodes, values, vtoff, nu, wv, wg, wu):
+    """mu of sweep c at (ln v, g, x = y/h) by tensor-product Lagrange interpolation (clamped at 0)."""
     nv = voff[c + 1] - voff[c]
     ng = gnodes.size
     iv = _lagrange(lvn, voff[c], nv, lv, wv)
     ig = _lagrange(gnodes, 0, ng, gq, wg)
     mv = 4 if nv >= 4 else nv
     mg = 4 if ng >= 4 else ng
-    return _mu_at(iv, wv, mv, ig, wg, mg, u, values, vtoff, nu, wu)
+    return _mu_at(iv, wv, mv, ig, wg, mg, x, values, vtoff, nu, wu)
 
 
 @njit(cache=True)
@@ -722,13 +772,20 @@ def _y_at(yT, c, dT, dTf):
 
 
 @njit(cache=True)
-def _mu_at(iv, wv, mv, ig, wg, mg, u, values, vtoff, nu, wu):
-    """Interpolated mu with the speed weights (iv, wv) and pressure weights (ig, wg) already known."""
+def _x_at(yT, c, dT, cap, dTf, hy):
+    """Lattice coordinate y(T0 + dT)/h of sweep c, the rise taken at the cap above it."""
+    return _y_at(yT, c, dT if dT < cap else cap, dTf) / hy
+
+
+@njit(cache=True)
+def _mu_at(iv, wv, mv, ig, wg, mg, x, values, vtoff, nu, wu):
+    """Interpolated mu at the temperature lattice coordinate x = y/h, with the speed weights (iv, wv) and the
+    pressure weights (ig, wg) already known."""
     out = 0.0
     for a in range(mv):
         node = iv + a
         n_u = nu[node]
-        ku = _lagrange_uniform(n_u, u, wu)
+        ku = _lagrange_uniform(n_u, x, wu)
         m_u = 4 if n_u >= 4 else n_u
         base = vtoff[node]
         acc_g = 0.0
@@ -742,14 +799,13 @@ def _mu_at(iv, wv, mv, ig, wg, mg, u, values, vtoff, nu, wu):
     return out if out > 0.0 else 0.0
 
 
-@njit(cache=True)
-def _march_all(sweep, lvs, a_all, lam_all, xi, g, W, lvn, voff, gnodes, values, vtoff, nu, T0s, B, V_lo, cap, mu_max,
+def _march_all(sweep, lvs, a_all, lam_all, xi, g, W, lvn, voff, gnodes, values, vtoff, nu, T0s, hy, cap, mu_max,
                yT, dTf, profiles):
-    """March along the patch for every row (see :func:`patch_friction`)."""
+    """March along the patch for every row (see :func:`patch_friction`), in parallel over the rows. ``umax`` of a
+    row: its highest y over the top of the table at its speed (> 1: the table must grow; temperatures above
+    T0 + cap are taken at the cap)."""
     n = sweep.size
     N = xi.size
-    h = xi[1] - xi[0]
-    sh = np.sqrt(h)
     mu_out = np.empty(n)
     xc_out = np.empty(n)
     rise = np.zeros(n)
@@ -757,8 +813,35 @@ def _march_all(sweep, lvs, a_all, lam_all, xi, g, W, lvn, voff, gnodes, values, 
     Tprof = np.zeros((n if profiles else 1, N))
     shear = np.zeros((n if profiles else 1, N))
     muprof = np.zeros((n if profiles else 1, N))
+    glo = gnodes[0]
+    ng = gnodes.size
+    # pressure weights of every patch node (those of the stick/slide boundary are computed per row)
+    IG = np.empty(N, dtype=np.int64)
+    WG = np.empty((N + 1, 4))
+    for j in range(N):
+        gj = g[j] if g[j] > glo else glo
+        IG[j] = _lagrange(gnodes, 0, ng, gj, WG[j])
+    for r in prange(n):
+        _march_row(r, sweep, lvs, a_all, lam_all, xi, g, W, lvn, voff, gnodes, values, vtoff, nu, T0s, hy, cap,
+                   mu_max, yT, dTf, profiles, IG, WG, mu_out, xc_out, rise, umax, Tprof, shear, muprof)
+    return mu_out, xc_out, rise, umax, Tprof, shear, muprof
+
+
+#: The march on every row in parallel (prange over the rows), and on one thread for few rows.
+_march_parallel = njit(cache=True, parallel=True)(_march_all)
+_march_serial = njit(cache=True)(_march_all)
+
+
+@njit(cache=True)
+def _march_row(r, sweep, lvs, a_all, lam_all, xi, g, W, lvn, voff, gnodes, values, vtoff, nu, T0s, hy, cap, mu_max,
+               yT, dTf, profiles, IG, WG, mu_out, xc_out, rise, umax, Tprof, shear, muprof):
+    """March along the patch for row r (see :func:`patch_friction`); writes the row's outputs."""
+    N = xi.size
+    h = xi[1] - xi[0]
+    sh = np.sqrt(h)
     wv = np.empty(4)
     wu = np.empty(4)
+    wgc = np.empty(4)
     y = np.empty(N + 1)
     gy = np.empty(N + 1)
     f = np.empty(N + 1)
@@ -768,172 +851,167 @@ def _march_all(sweep, lvs, a_all, lam_all, xi, g, W, lvn, voff, gnodes, values, 
     glo = gnodes[0]
     ng = gnodes.size
     mg = 4 if ng >= 4 else ng
-    # pressure weights of every patch node (and of the stick/slide boundary, computed when needed)
-    IG = np.empty(N, dtype=np.int64)
-    WG = np.empty((N + 1, 4))
+    c = sweep[r]
+    lv = lvs[r]
+    a = a_all[r]
+    lam = lam_all[r]
+    T0 = T0s[c]
+    v = np.exp(lv)
+    nv = voff[c + 1] - voff[c]
+    iv = _lagrange(lvn, voff[c], nv, lv, wv)
+    mv = 4 if nv >= 4 else nv
+    ytop = (nu[iv] - 1) * hy  # the table's top at this speed: the lowest over the four speed nodes
+    for k in range(1, mv):
+        yk = (nu[iv + k] - 1) * hy
+        if yk < ytop:
+            ytop = yk
+    # stick limit at T0 (u = 0)
     for j in range(N):
-        gj = g[j] if g[j] > glo else glo
-        IG[j] = _lagrange(gnodes, 0, ng, gj, WG[j])
-    wgc = np.empty(4)
-    for r in range(n):
-        c = sweep[r]
-        lv = lvs[r]
-        a = a_all[r]
-        lam = lam_all[r]
-        T0 = T0s[c]
-        v = np.exp(lv)
-        nv = voff[c + 1] - voff[c]
-        iv = _lagrange(lvn, voff[c], nv, lv, wv)
-        mv = 4 if nv >= 4 else nv
-        dTm = B[c] * v / np.sqrt(v + V_lo[c])
-        if dTm > cap:
-            dTm = cap
-        ym = _y_at(yT, c, dTm, dTf)  # y at the top of the table for this speed
-        # stick limit at T0 (u = 0)
+        mu0[j] = _mu_at(iv, wv, mv, IG[j], WG[j], mg, 0.0, values, vtoff, nu, wu)
+    pure = not np.isfinite(a)
+    i = -1
+    xc = 0.0
+    if pure:
+        i = 0
+    else:
         for j in range(N):
-            mu0[j] = _mu_at(iv, wv, mv, IG[j], WG[j], mg, 0.0, values, vtoff, nu, wu)
-        pure = not np.isfinite(a)
-        i = -1
-        xc = 0.0
-        if pure:
-            i = 0
-        else:
-            for j in range(N):
-                d[j] = mu0[j] * g[j] - a * xi[j]
-            for j in range(1, N):
-                if d[j] <= 0.0:
-                    i = j
-                    break
-        if i < 0:  # the whole patch sticks
-            mu_out[r] = 0.5 * a
-            xc_out[r] = 1.0
-            if profiles:
-                for j in range(N):
-                    Tprof[r, j] = T0
-                    shear[r, j] = a * xi[j]
-                    muprof[r, j] = mu0[j]
-            continue
-        # slide points: y[0] = x_c (when between nodes), then the nodes behind it; node of slide point k: jk
-        first_special = False
-        if pure:
-            j0 = 0
-        else:
-            t = 0.0
-            den = d[i - 1] - d[i]
-            if den > 0.0:
-                t = d[i - 1] / den
-            t = min(max(t, 0.0), 1.0)
-            xc = xi[i - 1] + t * h
-            j0 = i
-            if xi[i] - xc > 1e-12:
-                first_special = True
-        M = 0
-        if first_special:
-            gc = g[i - 1] + t * (g[i] - g[i - 1])
-            y[0] = xc
-            gy[0] = gc
-            M = 1
-            igc = _lagrange(gnodes, 0, ng, gc if gc > glo else glo, wgc)
-            f[0] = _mu_at(iv, wv, mv, igc, wgc, mg, 0.0, values, vtoff, nu, wu) * gc
-        off = M - j0  # slide index of node j is j + off
-        for j in range(j0, N):
-            y[M] = xi[j]
-            gy[M] = g[j]
-            M += 1
-        if not first_special:
-            f[0] = mu0[j0] * gy[0]
-        Ty[0] = T0
-        hs = y[1] - y[0] if M > 1 else h
-        ru = 0.0
-        for k in range(1, M):
-            # known part of the Abel integral at y[k]; ck multiplies the unknown f[k]
-            S = 0.0
-            ck = 0.0
-            jstart = 0
-            if first_special:
-                wl, wr = _segment_weights(y[k] - y[0], y[k] - y[1], hs)
-                if k == 1:
-                    S += wl * f[0]
-                    ck = wr
-                else:
-                    S += wl * f[0] + wr * f[1]
-                jstart = 1
-            for jj in range(jstart, k):
-                dd = k - jj
-                if jj + 1 == k:
-                    S += sh * W[0, dd] * f[jj]
-                    ck = sh * W[1, dd]
-                else:
-                    S += sh * (W[0, dd] * f[jj] + W[1, dd] * f[jj + 1])
-            # solve F(T) = T - T0 - lam (S + ck g mu(T)) = 0 (secant from the previous node, bisection fallback)
-            jn = k - off
-            ig = IG[jn]
-            base = T0 + lam * S
-            coef = lam * ck * gy[k]
-            Ta = Ty[k - 1] if Ty[k - 1] > base else base
-            ua = _y_at(yT, c, Ta - T0, dTf) / ym if ym > 0.0 else 0.0
-            ma = _mu_at(iv, wv, mv, ig, WG[jn], mg, ua if ua < 1.0 else 1.0, values, vtoff, nu, wu)
-            Fa = Ta - base - coef * ma
-            Tb = base + coef * ma
-            ok = abs(Fa) <= 1e-10 * (1.0 + abs(Ta))
-            T = Ta
-            if not ok:
-                for it in range(40):
-                    ub = _y_at(yT, c, Tb - T0, dTf) / ym if ym > 0.0 else 0.0
-                    mb = _mu_at(iv, wv, mv, ig, WG[jn], mg, ub if ub < 1.0 else 1.0, values, vtoff, nu, wu)
-                    Fb = Tb - base - coef * mb
-                    if abs(Fb) <= 1e-10 * (1.0 + abs(Tb)):
-                        T = Tb
-                        ok = True
-                        break
-                    if Fb == Fa:
-                        break
-                    Tn = Tb - Fb * (Tb - Ta) / (Fb - Fa)
-                    Ta, Fa = Tb, Fb
-                    Tb = Tn
-            if not ok:  # bisection on F, F(base) <= 0 <= F(base + coef mu_max)
-                lo_ = base
-                hi_ = base + coef * mu_max[c] * 1.5 + 1e-12
-                for it in range(200):
-                    mid = 0.5 * (lo_ + hi_)
-                    um = _y_at(yT, c, mid - T0, dTf) / ym if ym > 0.0 else 0.0
-                    mm = _mu_at(iv, wv, mv, ig, WG[jn], mg, um if um < 1.0 else 1.0, values, vtoff, nu, wu)
-                    if mid - base - coef * mm > 0.0:
-                        hi_ = mid
-                    else:
-                        lo_ = mid
-                    if hi_ - lo_ < 1e-10 * (1.0 + abs(mid)):
-                        break
-                T = 0.5 * (lo_ + hi_)
-            u = _y_at(yT, c, T - T0, dTf) / ym if ym > 0.0 else 0.0
-            m = _mu_at(iv, wv, mv, ig, WG[jn], mg, u if u < 1.0 else 1.0, values, vtoff, nu, wu)
-            if dTm > 0.0 and T - T0 > dTm * (1.0 + 1e-12) and u <= 1.0:
-                u = 1.0 + 1e-6  # beyond the end of the y table: flag it
-            if u > ru:
-                ru = u
-            Ty[k] = T
-            f[k] = m * gy[k]
-        # wheel friction: stick part exactly, slide part by the trapezoid rule
-        tot = 0.0 if pure else 0.5 * a * xc * xc
-        for k in range(1, M):
-            tot += 0.5 * (y[k] - y[k - 1]) * (f[k] + f[k - 1])
-        mu_out[r] = tot
-        xc_out[r] = xc
-        mx = 0.0
-        for k in range(M):
-            if Ty[k] - T0 > mx:
-                mx = Ty[k] - T0
-        rise[r] = mx
-        umax[r] = ru
+            d[j] = mu0[j] * g[j] - a * xi[j]
+        for j in range(1, N):
+            if d[j] <= 0.0:
+                i = j
+                break
+    if i < 0:  # the whole patch sticks
+        mu_out[r] = 0.5 * a
+        xc_out[r] = 1.0
         if profiles:
             for j in range(N):
-                if j < j0:
-                    Tprof[r, j] = T0
-                    shear[r, j] = a * xi[j]
-                    muprof[r, j] = mu0[j]
+                Tprof[r, j] = T0
+                shear[r, j] = a * xi[j]
+                muprof[r, j] = mu0[j]
+        return
+    # slide points: y[0] = x_c (when between nodes), then the nodes behind it; node of slide point k: jk
+    first_special = False
+    if pure:
+        j0 = 0
+    else:
+        t = 0.0
+        den = d[i - 1] - d[i]
+        if den > 0.0:
+            t = d[i - 1] / den
+        t = min(max(t, 0.0), 1.0)
+        xc = xi[i - 1] + t * h
+        j0 = i
+        if xi[i] - xc > 1e-12:
+            first_special = True
+    M = 0
+    if first_special:
+        gc = g[i - 1] + t * (g[i] - g[i - 1])
+        y[0] = xc
+        gy[0] = gc
+        M = 1
+        igc = _lagrange(gnodes, 0, ng, gc if gc > glo else glo, wgc)
+        f[0] = _mu_at(iv, wv, mv, igc, wgc, mg, 0.0, values, vtoff, nu, wu) * gc
+    off = M - j0  # slide index of node j is j + off
+    for j in range(j0, N):
+        y[M] = xi[j]
+        gy[M] = g[j]
+        M += 1
+    if not first_special:
+        f[0] = mu0[j0] * gy[0]
+    Ty[0] = T0
+    hs = y[1] - y[0] if M > 1 else h
+    ru = 0.0
+    for k in range(1, M):
+        # known part of the Abel integral at y[k]; ck multiplies the unknown f[k]
+        S = 0.0
+        ck = 0.0
+        jstart = 0
+        if first_special:
+            wl, wr = _segment_weights(y[k] - y[0], y[k] - y[1], hs)
+            if k == 1:
+                S += wl * f[0]
+                ck = wr
+            else:
+                S += wl * f[0] + wr * f[1]
+            jstart = 1
+        for jj in range(jstart, k):
+            dd = k - jj
+            if jj + 1 == k:
+                S += sh * W[0, dd] * f[jj]
+                ck = sh * W[1, dd]
+            else:
+                S += sh * (W[0, dd] * f[jj] + W[1, dd] * f[jj + 1])
+        # solve F(T) = T - T0 - lam (S + ck g mu(T)) = 0 (secant from the previous node, bisection fallback)
+        jn = k - off
+        ig = IG[jn]
+        base = T0 + lam * S
+        coef = lam * ck * gy[k]
+        Ta = Ty[k - 1] if Ty[k - 1] > base else base
+        ma = _mu_at(iv, wv, mv, ig, WG[jn], mg, _x_at(yT, c, Ta - T0, cap, dTf, hy), values, vtoff, nu, wu)
+        Fa = Ta - base - coef * ma
+        Tb = base + coef * ma
+        ok = abs(Fa) <= 1e-10 * (1.0 + abs(Ta))
+        T = Ta
+        if not ok:
+            for it in range(40):
+                mb = _mu_at(iv, wv, mv, ig, WG[jn], mg, _x_at(yT, c, Tb - T0, cap, dTf, hy), values, vtoff,
+                            nu, wu)
+                Fb = Tb - base - coef * mb
+                if abs(Fb) <= 1e-10 * (1.0 + abs(Tb)):
+                    T = Tb
+                    ok = True
+                    break
+                if Fb == Fa:
+                    break
+                Tn = Tb - Fb * (Tb - Ta) / (Fb - Fa)
+                Ta, Fa = Tb, Fb
+                Tb = Tn
+        if not ok:  # bisection on F, F(base) <= 0 <= F(base + coef mu_max)
+            lo_ = base
+            hi_ = base + coef * mu_max[c] * 1.5 + 1e-12
+            for it in range(200):
+                mid = 0.5 * (lo_ + hi_)
+                mm = _mu_at(iv, wv, mv, ig, WG[jn], mg, _x_at(yT, c, mid - T0, cap, dTf, hy), values, vtoff,
+                            nu, wu)
+                if mid - base - coef * mm > 0.0:
+                    hi_ = mid
                 else:
-                    k = j + off
-                    Tprof[r, j] = Ty[k]
-                    shear[r, j] = f[k]
-                    muprof[r, j] = f[k] / gy[k] if gy[k] > 0.0 else mu0[j]
-    return mu_out, xc_out, rise, umax, Tprof, shear, muprof
+                    lo_ = mid
+                if hi_ - lo_ < 1e-10 * (1.0 + abs(mid)):
+                    break
+            T = 0.5 * (lo_ + hi_)
+        x = _x_at(yT, c, T - T0, cap, dTf, hy)
+        m = _mu_at(iv, wv, mv, ig, WG[jn], mg, x, values, vtoff, nu, wu)
+        if ytop > 0.0:
+            u = x * hy / ytop
+        elif x > 0.0:
+            u = 2.0  # heated, but the table has only the T0 slice here
+        else:
+            u = 0.0
+        if u > ru:
+            ru = u
+        Ty[k] = T
+        f[k] = m * gy[k]
+    # wheel friction: stick part exactly, slide part by the trapezoid rule
+    tot = 0.0 if pure else 0.5 * a * xc * xc
+    for k in range(1, M):
+        tot += 0.5 * (y[k] - y[k - 1]) * (f[k] + f[k - 1])
+    mu_out[r] = tot
+    xc_out[r] = xc
+    mx = 0.0
+    for k in range(M):
+        if Ty[k] - T0 > mx:
+            mx = Ty[k] - T0
+    rise[r] = mx
+    umax[r] = ru
+    if profiles:
+        for j in range(N):
+            if j < j0:
+                Tprof[r, j] = T0
+                shear[r, j] = a * xi[j]
+                muprof[r, j] = mu0[j]
+            else:
+                k = j + off
+                Tprof[r, j] = Ty[k]
+                shear[r, j] = f[k]
+                muprof[r, j] = f[k] / gy[k] if gy[k] > 0.0 else mu0[j]
