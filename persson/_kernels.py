@@ -23,8 +23,9 @@ Three numerical ideas make the solver accurate from soft to glassy rubber:
    exactly (Gauss-Legendre in :math:`s = \sqrt G` on geometric pieces, where :math:`2 s\, S P` is smooth and
    bounded), :func:`interval_node_weights`.
 
-3. **A built-in error estimate.** Every speed is also integrated on the coarse grid of every other node; the
-   difference estimates the error of the fine result (:func:`persson.solver._relative_error`).
+3. **A built-in error estimate.** Every speed is also integrated on the coarse grid of every other node and on
+   the coarser grid of every fourth; the differences estimate the error of the fine result
+   (:func:`persson.solver._relative_error`). The flash temperature uses the coarse grid alone.
 
 Grids: nodes ``x`` = ln q (any increasing sequence; third-order interval rule for the non-uniform spacing),
 modulus tables uniform in log10 omega (``lw0``, ``inv_dlw``), holding ln A_re, ln A_im, ln L of the table
@@ -174,6 +175,12 @@ def contact_weight(G, law, kind):
     P = area(G, law)
     if kind == 1:
         return P
+    return _weight_of_area(P, law)
+
+
+@njit(cache=True)
+def _weight_of_area(P, law):
+    """S(P) P with S = gamma + (1 - gamma) P^2 (Persson's interpolation of the stress factor, gamma = ``law[0]``)."""
     gamma = law[0]
     return (gamma + (1.0 - gamma) * P * P) * P
 
@@ -187,11 +194,13 @@ def _interval_weights(Ga, Gb, G0, G1, G2, use_quadratic, law, kind):
     pieces [s, 2s] (and one piece [0, 0.05]): :math:`2 s\, w(s^2)` is smooth and bounded (it tends to 2 gamma
     / sqrt(pi) as G grows, since P ~ 1/sqrt(pi G)), so a few pieces cover any rise of G.
     """
-    w0 = 0.0
-    w1 = 0.0
-    w2 = 0.0
+    # moments M_k = int u^k w dG of u = G - G1 (the middle node: well conditioned), then the weights from the
+    # Lagrange basis written in u; one pass with no division per Gauss point
+    m0 = 0.0
+    m1 = 0.0
+    m2 = 0.0
     if not Gb > Ga:
-        return w0, w1, w2
+        return 0.0, 0.0, 0.0
     sa = math.sqrt(max(Ga, 0.0))
     sb = math.sqrt(Gb)
     lo = sa
@@ -210,14 +219,20 @@ def _interval_weights(Ga, Gb, G0, G1, G2, use_quadratic, law, kind):
             s = lo + span * gx[k]
             G = s * s
             wt = gw[k] * span * 2.0 * s * contact_weight(G, law, kind)
-            if use_quadratic:
-                w0 += wt * (G - G1) * (G - G2) / ((G0 - G1) * (G0 - G2))
-                w1 += wt * (G - G0) * (G - G2) / ((G1 - G0) * (G1 - G2))
-                w2 += wt * (G - G0) * (G - G1) / ((G2 - G0) * (G2 - G1))
-            else:
-                w0 += wt * (G - G1) / (G0 - G1)
-                w1 += wt * (G - G0) / (G1 - G0)
+            u = G - G1
+            m0 += wt
+            m1 += wt * u
+            m2 += wt * u * u
         lo = hi
+    d10 = G1 - G0
+    if not use_quadratic:
+        # linear through G0, G1: l0 = -u / d10, l1 = (u + d10) / d10
+        return -m1 / d10, (m1 + d10 * m0) / d10, 0.0
+    d21 = G2 - G1
+    # l0 = u (u - d21) / (d10 (d10 + d21)), l1 = -(u + d10)(u - d21) / (d10 d21), l2 = u (u + d10) / (d21 (d10 + d21))
+    w0 = (m2 - d21 * m1) / (d10 * (d10 + d21))
+    w1 = -(m2 + (d10 - d21) * m1 - d10 * d21 * m0) / (d10 * d21)
+    w2 = (m2 + d10 * m1) / (d21 * (d10 + d21))
     return w0, w1, w2
 
 
@@ -310,9 +325,11 @@ def _scales(iv, lq10, lv10, q4C, shift, vshift, fq, gq, lw0, inv_dlw, ln_are, ln
 
 @njit(cache=True)
 def _solve_speed(iv, q, lq10, lv10, q4C, quad, shift, vshift, fq, gq, lw0, inv_dlw, ln_are, ln_aim, ln_l, scale,
-                 law, coarse, quad_c, G_out, P_out, dmu_out, cum_out, gG_out, R_out, L_out, layer_out):
+                 law, coarse, quad_c, coarser, quad_cc, G_out, P_out, dmu_out, cum_out, gG_out, R_out, L_out,
+                 layer_out):
     """One speed: G(q), P(q), d mu/d ln q and the cumulative hysteresis friction on the nodes; returns
-    (mu, mu on the coarse sub-grid ``coarse`` of node indices, with its quadrature rule ``quad_c``)."""
+    (mu, mu on the coarse sub-grid ``coarse`` of node indices with its quadrature rule ``quad_c``, mu on the
+    coarser sub-grid ``coarser`` with ``quad_cc``)."""
     nq = lq10.shape[0]
     gG = gG_out[iv]
     R = R_out[iv]
@@ -322,15 +339,17 @@ def _solve_speed(iv, q, lq10, lv10, q4C, quad, shift, vshift, fq, gq, lw0, inv_d
     G = G_out[iv]
     cumulative_weighted(K, quad[0], quad[1], G)
     for iq in range(nq):
-        P_out[iv, iq] = area(G[iq], law)
-        dmu_out[iv, iq] = 0.5 * q4C[iq] * contact_weight(G[iq], law, 0) * L_out[iv, iq]
+        P = area(G[iq], law)
+        P_out[iv, iq] = P
+        dmu_out[iv, iq] = 0.5 * q4C[iq] * _weight_of_area(P, law) * L_out[iv, iq]
     layer_out[iv] = friction_cumulative(G, K, R, q, quad, law, cum_out[iv])
-    return cum_out[iv, nq - 1], _coarse_mu(q, K, R, law, coarse, quad_c)
+    return (cum_out[iv, nq - 1], _coarse_mu(q, K, R, law, coarse, quad_c),
+            _coarse_mu(q, K, R, law, coarser, quad_cc))
 
 
 @njit(cache=True)
 def _coarse_mu(q, K, R, law, coarse, quad_c):
-    """The hysteresis friction on the sub-grid ``coarse`` (node indices): same rules, twice the step."""
+    """The hysteresis friction on the sub-grid ``coarse`` (node indices): same rules, a larger step."""
     m = coarse.shape[0]
     qc = np.empty(m)
     Kc = np.empty(m)
@@ -347,14 +366,15 @@ def _coarse_mu(q, K, R, law, coarse, quad_c):
 
 
 def _friction_all(q, lq10, lv10, q4C, quad, shift, vshift, fq, gq, lw0, inv_dlw, ln_are, ln_aim, ln_l, scale,
-                  law, coarse, quad_c, G_out, P_out, dmu_out, cum_out, gG_out, R_out, L_out, layer_out, mu_out,
-                  mu_coarse):
+                  law, coarse, quad_c, coarser, quad_cc, G_out, P_out, dmu_out, cum_out, gG_out, R_out, L_out,
+                  layer_out, mu_out, mu_coarse, mu_coarser):
     for iv in prange(lv10.shape[0]):
-        mu, mc = _solve_speed(iv, q, lq10, lv10, q4C, quad, shift[iv], vshift[iv], fq[iv], gq[iv], lw0, inv_dlw,
-                              ln_are, ln_aim, ln_l, scale[iv], law, coarse, quad_c, G_out, P_out, dmu_out,
-                              cum_out, gG_out, R_out, L_out, layer_out)
+        mu, mc, mcc = _solve_speed(iv, q, lq10, lv10, q4C, quad, shift[iv], vshift[iv], fq[iv], gq[iv], lw0,
+                                   inv_dlw, ln_are, ln_aim, ln_l, scale[iv], law, coarse, quad_c, coarser, quad_cc,
+                                   G_out, P_out, dmu_out, cum_out, gG_out, R_out, L_out, layer_out)
         mu_out[iv] = mu
         mu_coarse[iv] = mc
+        mu_coarser[iv] = mcc
 
 
 #: Hysteresis friction and contact area for every speed, in parallel over speeds (prange). Arguments: nodes
@@ -362,7 +382,7 @@ def _friction_all(q, lq10, lv10, q4C, quad, shift, vshift, fq, gq, lw0, inv_dlw,
 #: ``quad`` of :func:`persson.solver.quadrature_rule`, ``shift`` and ``vshift`` (n_speed, n_q), strain factors
 #: ``fq``, ``gq`` (n_speed, n_q), the log tables, ``scale`` = 1/((1-nu^2) sigma0) per speed, the contact law
 #: (:func:`area`), the coarse
-#: node indices with their quadrature rule, outputs (n_speed, n_q) and (n_speed,).
+#: and coarser node indices with their quadrature rules, outputs (n_speed, n_q) and (n_speed,).
 friction_parallel = njit(cache=True, parallel=True)(_friction_all)
 #: The same on one thread, for calls with few speeds (no thread start-up).
 friction_serial = njit(cache=True)(_friction_all)
@@ -532,8 +552,9 @@ def _flash_speed(iv, q, x, lq10, lv10, v, q4C, quad, lw0, inv_dlw, ln_are, ln_ai
             gG_out[iv], R, L_out[iv])
     cumulative_weighted(K, quad[0], quad[1], G)
     for iq in range(nq):
-        P_out[iv, iq] = area(G[iq], law)
-        dmu_out[iv, iq] = 0.5 * q4C[iq] * contact_weight(G[iq], law, 0) * L_out[iv, iq]
+        P = area(G[iq], law)
+        P_out[iv, iq] = P
+        dmu_out[iv, iq] = 0.5 * q4C[iq] * _weight_of_area(P, law) * L_out[iv, iq]
     layer_out[iv] = friction_cumulative(G, K, R, q, quad, law, cum_out[iv])
     return cum_out[iv, nq - 1], it, res
 

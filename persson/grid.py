@@ -81,7 +81,8 @@ class GridSettings:
         """Wavevector nodes from ``q_start`` to ``q_end`` (both included), rad/m.
 
         Log-uniform with an odd number of nodes (so that every other node forms the uniform coarse grid of the
-        error estimate), plus ``extra_q`` inside the range.
+        error estimate; every fourth, the coarser grid, keeps the last node and may end with a shorter interval),
+        plus ``extra_q`` inside the range.
         """
         n = max(3, int(math.ceil(self.q_per_decade * math.log10(q_end / q_start))) + 1)
         n += 1 - n % 2

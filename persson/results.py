@@ -55,7 +55,9 @@ class FrictionResult:
     error_estimate : float or ndarray
         Estimated relative error of ``mu_hysteresis`` from the wavevector quadrature: the difference from the
         same rules on every other node, divided by sqrt(21) (the rules are third order for smooth PSDs, second
-        order across the kinks of a tabulated PSD; see ``benchmarks/accuracy.py``). Results whose estimate exceeds
+        order across the kinks of a tabulated PSD), or the same estimate one level up (every fourth node) divided
+        by a further 16 where that is larger, which catches a coarse and a fine result that agree by accident
+        (the first term alone with the flash temperature; see ``benchmarks/accuracy.py``). Results whose estimate exceeds
         ``GridSettings.tolerance`` warn and say so in ``notes``.
     effects : tuple of str
         Names of the effects switched on.
