@@ -92,8 +92,8 @@ class Prepared:
     quad: tuple
     coarse: np.ndarray
     quad_coarse: tuple
-    coarser: np.ndarray
-    quad_coarser: tuple
+    coarser: np.ndarray | None  # None with the flash temperature
+    quad_coarser: tuple | None
     surface: object
     v: np.ndarray
     lv10: np.ndarray
@@ -118,11 +118,10 @@ class Prepared:
         """The same problem on the sub-grid of node indices ``idx`` (for the coarse-grid error estimate)."""
         per_node = self.f_tab.shape[0] == self.q.size
         x = self.x[idx]
-        coarse, coarser = _coarse_indices(idx.size), _coarser_indices(idx.size)
+        coarse = _coarse_indices(idx.size)
         return replace(self, q=self.q[idx], x=x, lq10=self.lq10[idx], C=self.C[idx], q4C=self.q4C[idx],
                        quad=quadrature_rule(self.surface, x), coarse=coarse,
-                       quad_coarse=quadrature_rule(self.surface, x[coarse]), coarser=coarser,
-                       quad_coarser=quadrature_rule(self.surface, x[coarser]),
+                       quad_coarse=quadrature_rule(self.surface, x[coarse]), coarser=None, quad_coarser=None,
                        shift=None if self.shift is None else np.ascontiguousarray(self.shift[:, idx]),
                        vshift=None if self.vshift is None else np.ascontiguousarray(self.vshift[:, idx]),
                        fq=np.ascontiguousarray(self.fq[:, idx]), gq=np.ascontiguousarray(self.gq[:, idx]),
@@ -292,12 +291,14 @@ def prepare(surface, material, cond: Conditions, grid: GridSettings, nu: float, 
             f_tab, g_tab = _factors(modulus, slope[:, None], T_grid[None, :], (nq, T_grid.size))
         else:
             fq, gq = _factors(modulus, slope[None, :], T0[:, None], (nv, nq))
-    coarse, coarser = _coarse_indices(nq), _coarser_indices(nq)
+    coarse = _coarse_indices(nq)
+    # the coarser grid serves the plain path's three-level estimate only (see run_flash)
+    coarser = None if flash else _coarser_indices(nq)
     return Prepared(q=q, x=x, lq10=np.log10(q), C=C, q4C=q**4 * C, quad=quadrature_rule(surface, x), coarse=coarse,
                     quad_coarse=quadrature_rule(surface, x[coarse]), coarser=coarser,
-                    quad_coarser=quadrature_rule(surface, x[coarser]), surface=surface, v=v, lv10=lv10, T0=T0,
-                    pressure=pressure, scale=scale, table=table, shift=shifts, vshift=vshifts, shift_table=stab,
-                    fq=fq, gq=gq, f_tab=f_tab, g_tab=g_tab, law=contact_law(gamma, correction))
+                    quad_coarser=None if flash else quadrature_rule(surface, x[coarser]), surface=surface, v=v,
+                    lv10=lv10, T0=T0, pressure=pressure, scale=scale, table=table, shift=shifts, vshift=vshifts,
+                    shift_table=stab, fq=fq, gq=gq, f_tab=f_tab, g_tab=g_tab, law=contact_law(gamma, correction))
 
 
 def _graded_nodes(q: np.ndarray, surface, table, lw_speed: np.ndarray, ln_b: np.ndarray,
@@ -405,20 +406,24 @@ def contact_law(gamma: float, correction: str | None = None) -> tuple:
 def quadrature_rule(surface, x: np.ndarray, n_gauss: int = 6) -> tuple:
     """:func:`_quadrature_rule`, memoised per surface object and nodes (a pure function of both: repeated calls
     on one surface, as in fits and sweeps, skip the PSD quadrature)."""
+    return _per_surface(surface, ("rule", x.tobytes(), n_gauss), lambda: _quadrature_rule(surface, x, n_gauss))
+
+
+def _per_surface(surface, key, compute):
+    """``compute()``, memoised under ``key`` for ``surface`` (for pure functions of the surface and the key)."""
     try:
-        per_surface = _RULES.setdefault(surface, {})
+        memo = _RULES.setdefault(surface, {})
     except TypeError:  # not weak-referenceable: no memo
-        return _quadrature_rule(surface, x, n_gauss)
-    key = (x.tobytes(), n_gauss)
-    rule = per_surface.get(key)
-    if rule is None:
-        if len(per_surface) > 32:
-            per_surface.clear()
-        rule = per_surface[key] = _quadrature_rule(surface, x, n_gauss)
-    return rule
+        return compute()
+    value = memo.get(key)
+    if value is None:
+        if len(memo) > 32:
+            memo.clear()
+        value = memo[key] = compute()
+    return value
 
 
-#: Quadrature rules by surface (weakly: a rule lives as long as its surface) and nodes.
+#: Quadrature rules and PSD moments by surface (weakly: they live as long as their surface) and nodes.
 _RULES: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
 
 
@@ -483,17 +488,8 @@ def psd_moment(surface, q: np.ndarray, n: int) -> float:
     """Spectral moment 2 pi int_{q0}^{q1} q^n C(q) dq over the nodes' range (see :func:`cumulative_moment`),
     memoised per surface object and nodes like :func:`quadrature_rule`."""
     q = np.asarray(q, dtype=float)
-    try:
-        per_surface = _RULES.setdefault(surface, {})
-    except TypeError:  # not weak-referenceable: no memo
-        return float(cumulative_moment(surface, q, n)[-1])
-    key = ("moment", q.tobytes(), int(n))
-    m = per_surface.get(key)
-    if m is None:
-        if len(per_surface) > 32:
-            per_surface.clear()
-        m = per_surface[key] = float(cumulative_moment(surface, q, n)[-1])
-    return m
+    return _per_surface(surface, ("moment", q.tobytes(), int(n)),
+                        lambda: float(cumulative_moment(surface, q, n)[-1]))
 
 
 def cumulative_moment(surface, q: np.ndarray, n: int, n_gauss: int = 6) -> np.ndarray:

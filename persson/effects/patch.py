@@ -284,8 +284,8 @@ def patch_friction(model, heating: PatchHeating, contact, slip, speed, temperatu
     more nodes are added if the patch gets hotter; at least 4 nodes per speed); values in between by
     tensor-product four-point Lagrange interpolation. The lattice does not depend on the heating parameters, so
     a table kept in ``tables`` serves any counter-surface effusivity or heat fraction and only grows (one engine
-    call for the missing nodes) when a hotter patch needs a higher temperature range. Along the patch (the contact's nodes), the stick zone ends at the first
-    sign change of :math:`\mu(v_s, p, T_0)p - k\theta x` (as in :func:`persson.slip.mu_slip`); behind it the
+    call for the missing nodes) when a hotter patch needs a higher temperature range. Along the patch (the
+    contact's nodes), the stick zone ends at the first sign change of :math:`\mu(v_s, p, T_0)p - k\theta x` (as in :func:`persson.slip.mu_slip`); behind it the
     Abel integral is evaluated by product integration (the shear piecewise linear between nodes, the kernel
     integrated exactly), implicitly at the new node (secant iteration, bisection as fallback). The stick part is
     integrated exactly, the slide part by the trapezoid rule, as in the brush model without heating.
