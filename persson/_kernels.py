@@ -481,8 +481,9 @@ def _flash_speed(iv, q, x, lq10, lv10, v, q4C, quad, lw0, inv_dlw, ln_are, ln_ai
     since :math:`f\,dq' = \frac{v \sigma_0}{\rho c_p}\frac{P}{P(q_m)} L\, q'^4 C\, dq'` and
     :math:`q'^4 C dq' = 8 q' dG / A`. The weight P dG is integrated exactly on each interval
     (:func:`interval_weights`, ``kind`` 1) against the quadratic in G of :math:`g(q, q') 2 q' R`.
-    Fixed-point iteration with adaptive under-relaxation: the factor halves whenever the residual
-    max |T_new - T| grows, and recovers slowly while it falls.
+    Fixed-point iteration from T = T0, converged when max |T_new - T| < ``tol``: under-relaxed by a factor that
+    halves whenever the residual grows; where that fails within ``max_iter`` iterations, again from T0 with
+    Aitken's dynamic relaxation (B. M. Irons and R. C. Tuck, Int. J. Numer. Meth. Eng. 1, 275 (1969)).
     """
     nq = q.shape[0]
     # g(q_i, q_j) 2 q_j for the nodes any interval below q_i can reach (j <= i + 1), from the speed-independent
@@ -505,11 +506,16 @@ def _flash_speed(iv, q, x, lq10, lv10, v, q4C, quad, lw0, inv_dlw, ln_are, ln_ai
     K = np.empty(nq)
     G = G_out[iv]
     R = R_out[iv]
+    r_prev = np.zeros(nq)
     relax = 1.0
     res_prev = 1e300
     res = 0.0
     it = 0
-    for it in range(1, max_iter + 1):
+    for it in range(1, 2 * max_iter + 1):
+        if it == max_iter + 1:  # the residual-growth rule failed: start again with Aitken's relaxation
+            for i in range(nq):
+                T[i] = T0
+            relax = 1.0
         _temperature_factors(T, T_lo, inv_dT, shift_tab, vshift_tab, f_tab, g_tab, shift, vshift, fq, gq)
         _scales(iv, lq10, lv10, q4C, shift, vshift, fq, gq, lw0, inv_dlw, ln_are, ln_aim, ln_l, scale,
                 K, gG_out[iv], R, L_out[iv])
@@ -538,13 +544,16 @@ def _flash_speed(iv, q, x, lq10, lv10, v, q4C, quad, lw0, inv_dlw, ln_are, ln_ai
             for i in range(nq):
                 T[i] = Tn[i]
             break
-        if res > res_prev:
-            relax = max(0.5 * relax, 1.0 / 64.0)
-        else:
-            relax = min(1.0, 1.25 * relax)
-        res_prev = res
-        for i in range(nq):
-            T[i] = T[i] + relax * (Tn[i] - T[i])
+        if it <= max_iter:
+            # under-relaxation halved whenever the residual grows, recovering slowly while it falls
+            if res > res_prev:
+                relax = max(0.5 * relax, 1.0 / 64.0)
+            else:
+                relax = min(1.0, 1.25 * relax)
+            res_prev = res
+        elif it > max_iter + 1:
+            relax = _aitken(Tn, T, r_prev, relax)
+        _relax_step(Tn, T, r_prev, relax)
     _temperature_factors(T, T_lo, inv_dT, shift_tab, vshift_tab, f_tab, g_tab, shift, vshift, fq, gq)
     for i in range(nq):
         T_out[iv, i] = T[i]
@@ -557,6 +566,35 @@ def _flash_speed(iv, q, x, lq10, lv10, v, q4C, quad, lw0, inv_dlw, ln_are, ln_ai
         dmu_out[iv, iq] = 0.5 * q4C[iq] * _weight_of_area(P, law) * L_out[iv, iq]
     layer_out[iv] = friction_cumulative(G, K, R, q, quad, law, cum_out[iv])
     return cum_out[iv, nq - 1], it, res
+
+
+@njit(cache=True)
+def _aitken(Tn, T, r_prev, relax):
+    """Aitken's dynamic relaxation factor (Irons & Tuck 1969): the factor that cancels the dominant mode of the
+    last two residual vectors r = Tn - T (``r_prev`` the previous one), clamped to [_MIN_RELAX, 1]. It rescues a
+    hot contact whose map is strongly non-contractive (a cold profile heats to 10^4 K, a hot one barely heats: a
+    period-2 oscillation whose residual hardly changes, so a residual-growth rule keeps the factor near 1)."""
+    num = 0.0
+    den = 0.0
+    for i in range(T.shape[0]):
+        dr = (Tn[i] - T[i]) - r_prev[i]
+        num += r_prev[i] * dr
+        den += dr * dr
+    if den > 0.0:
+        return min(1.0, max(_MIN_RELAX, -relax * num / den))
+    return relax
+
+
+@njit(cache=True)
+def _relax_step(Tn, T, r_prev, relax):
+    """T += relax (Tn - T), keeping the residual Tn - T in ``r_prev``."""
+    for i in range(T.shape[0]):
+        r_prev[i] = Tn[i] - T[i]
+        T[i] = T[i] + relax * r_prev[i]
+
+
+#: Smallest relaxation factor of the flash iteration (Aitken's factor is clamped to [_MIN_RELAX, 1]).
+_MIN_RELAX = 1e-4
 
 
 @njit(cache=True)
