@@ -44,8 +44,10 @@ class GridSettings:
         grids (``max_refinement``); a result still above the tolerance warns
         (:class:`persson.AccuracyWarning`) and says so in its notes. Default 1e-3.
     max_refinement : int
-        Most times every q interval is halved for the speeds whose estimate exceeds ``tolerance`` (default 3,
-        i.e. up to 8 times the nodes; 0 switches the adaptive refinement off).
+        Most times every q interval is halved for the speeds whose estimate exceeds ``tolerance`` or whose flash
+        temperature did not converge (default 3, i.e. up to 8 times the nodes; 0 switches the adaptive refinement
+        off). Independently of it, a speed whose flash temperature climbs so steeply that the reduced frequency
+        q v a_T(T_q) moves by more than 6 grid steps across an interval gets nodes there.
     extra_q : tuple of float
         Additional wavevector nodes, rad/m (e.g. band edges, so that band contributions are exact sums over
         intervals); nodes outside the surface's q range are ignored.

@@ -386,7 +386,10 @@ def run_flash(prep: Prepared, *, q_m: float, a_t0: np.ndarray, diffusivity: floa
     # three-level term read 100-1000x high on a real road (28 of 30 converged speeds flagged)
     err = _relative_error(out["mu"], _flash(prep.nodes(prep.coarse), *args)[0]["mu"])
     budget = _FRONT_STEP * float(np.max(np.diff(prep.lq10)))
-    for s in np.flatnonzero([_front_nodes(prep, prep.x, T_q[i], budget).size > 0 for i in range(prep.n_speed)]):
+    # one vectorised test for all speeds; only the few with a steep front pay for the per-speed solves
+    jump = np.abs(np.diff(_reduced_frequency(prep, prep.x, T_q), axis=-1))
+    steep = np.any(jump > _FRONT_MARGIN * budget, axis=1)
+    for s in np.flatnonzero(steep):
         _resolve_front(prep, s, args, budget, out, T_q, it, res, err)
     return _solved(prep, out, T_q, err, res < tol, it, res)
 
@@ -394,6 +397,8 @@ def run_flash(prep: Prepared, *, q_m: float, a_t0: np.ndarray, diffusivity: floa
 #: Largest change of the reduced frequency log10(q a_T(T_q)) across one interval, in units of the grid's step in
 #: log10 q, before :func:`run_flash` inserts nodes (:func:`_front_nodes`).
 _FRONT_STEP = 4.0
+#: An interval is cut only where the change exceeds this many budgets (a settled front adds no nodes again).
+_FRONT_MARGIN = 1.5
 #: Most rounds of node insertion per speed (the front moves as it is resolved; it settles in 2-4 rounds).
 _FRONT_ROUNDS = 6
 
@@ -406,17 +411,22 @@ def _front_nodes(prep: Prepared, x: np.ndarray, T: np.ndarray, budget: float) ->
     real road 100-200 K within half a decade of q, with WLF shifts of 0.3 decade per K) this frequency sweeps many
     decades per interval of a grid that is uniform in ln q, and the loss peak falls between the nodes: on such a
     road 24, 48 and 96 nodes per decade gave mu 30-100 %, 17 % and 12 % high, and 192 or more agreed to 1e-5.
-    Intervals whose change exceeds 1.5 ``budget`` (the margin keeps a settled front from adding nodes again)
-    are cut into ceil(change / ``budget``) log-uniform parts; returns the new nodes' ln q.
+    Intervals whose change exceeds ``_FRONT_MARGIN`` x ``budget`` (the margin keeps a settled front from adding
+    nodes again) are cut into ceil(change / ``budget``) log-uniform parts; returns the new nodes' ln q.
     """
-    st = prep.shift_table
-    lw = x / math.log(10.0) + np.interp(T, st.T_lo + st.dT * np.arange(st.shift.size), st.shift)
-    d = np.abs(np.diff(lw))
-    bad = np.flatnonzero(d > 1.5 * budget)
+    d = np.abs(np.diff(_reduced_frequency(prep, x, T)))
+    bad = np.flatnonzero(d > _FRONT_MARGIN * budget)
     if bad.size == 0:
         return np.empty(0)
     parts = np.ceil(d[bad] / budget).astype(np.int64)
     return np.concatenate([x[i] + (x[i + 1] - x[i]) * np.arange(1, k) / k for i, k in zip(bad, parts)])
+
+
+def _reduced_frequency(prep: Prepared, x: np.ndarray, T: np.ndarray) -> np.ndarray:
+    """log10(q a_T(T_q)) relative to the table temperature at ln q = ``x`` (any leading shape of ``T``), by the
+    same shift table the kernel interpolates."""
+    st = prep.shift_table
+    return x / math.log(10.0) + np.interp(T, st.T_lo + st.dT * np.arange(st.shift.size), st.shift)
 
 
 def _resolve_front(prep, s, args, budget, out, T_q, it, res, err):
@@ -425,17 +435,17 @@ def _resolve_front(prep, s, args, budget, out, T_q, it, res, err):
     ``out``, ``T_q``, ``it``, ``res`` and ``err``."""
     q_m, a_t0, D, heat_factor, tol, max_iter = args
     sub_args = (q_m, a_t0[[s]], D, heat_factor[[s]], tol, max_iter)
-    x, T = prep.x, T_q[s]
+    x = prep.x
+    new = _front_nodes(prep, x, T_q[s], budget)  # not empty: the caller found the front steep
     for _ in range(_FRONT_ROUNDS):
-        new = _front_nodes(prep, x, T, budget)
-        if new.size == 0:
-            break
         x = np.union1d(x, new)
         sub = prep.renode(np.array([s]), np.exp(x))
         o, Ts, its, rs = _flash(sub, *sub_args)
-        T = Ts[0]
+        new = _front_nodes(prep, x, Ts[0], budget)
+        if new.size == 0:
+            break
     at = np.searchsorted(x, prep.x)  # the base nodes are kept exactly (ln q values copied, not recomputed)
-    for name in ("G", "P", "dmu", "cum", "dG", "ratio", "loss"):
+    for name in _SCALE_KEYS:
         out[name][s] = o[name][0, at]
     out["mu"][s], out["layer"][s] = o["mu"][0], o["layer"][0]
     T_q[s], it[s], res[s] = Ts[0, at], its[0], rs[0]
@@ -603,8 +613,11 @@ def psd_breakpoints(surface) -> np.ndarray:
 
 # ---------------------------------------------------------------------------------------------------------
 def _outputs(nv: int, nq: int) -> dict:
-    return ({k: np.empty((nv, nq)) for k in ("G", "P", "dmu", "cum", "dG", "ratio", "loss")}
-            | {"mu": np.empty(nv), "layer": np.empty(nv)})
+    return {k: np.empty((nv, nq)) for k in _SCALE_KEYS} | {"mu": np.empty(nv), "layer": np.empty(nv)}
+
+
+#: The kernels' per-scale outputs (see :func:`_outputs`).
+_SCALE_KEYS = ("G", "P", "dmu", "cum", "dG", "ratio", "loss")
 
 
 def _solved(prep, out, T_q, err, ok, it, res) -> Solved:
