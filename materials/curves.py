@@ -27,7 +27,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import interpolate, linalg
 
 from frictioncite import doi
 
@@ -77,6 +76,7 @@ class InterpolatedModulus:
     loss_slopes: tuple[float, float] = (0.0, 0.0)
 
     def __init__(self, omega, E_storage, E_loss, source: str = ""):
+        from scipy import interpolate
         w = np.array(omega, dtype=float).ravel()
         E1 = np.array(E_storage, dtype=float).ravel()
         E2 = np.array(E_loss, dtype=float).ravel()
@@ -385,6 +385,7 @@ def _pspline(x, y, knots_per_decade, robust):
     every penalty weight cost one matrix-vector product: the coefficients are
     :math:`V (I + \lambda S)^{-1} V^T B^TWy` and the effective degrees of freedom :math:`\sum_i 1/(1+\lambda s_i)`.
     """
+    from scipy import interpolate, linalg
     lo, hi = float(x.min()), float(x.max())
     nseg = max(3, int(math.ceil((hi - lo) * knots_per_decade)))
     k = 3

@@ -16,7 +16,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import optimize
 
 from frictioncite import doi
 
@@ -174,6 +173,7 @@ def _design(w, tau):
 
 def _nnls(w, E1, E2, tau):
     """NNLS on relative residuals; columns scaled to unit norm for conditioning (positive scaling keeps signs)."""
+    from scipy import optimize
     R, I = _design(w, tau)
     A = np.vstack([np.column_stack([np.ones_like(w), R]) / E1[:, None],
                    np.column_stack([np.zeros_like(w), I]) / E2[:, None]])

@@ -26,7 +26,6 @@ from dataclasses import dataclass, field
 from typing import Mapping
 
 import numpy as np
-from scipy import interpolate
 
 from frictioncite import doi
 
@@ -88,6 +87,7 @@ class TabulatedShift:
     kind = "tabulated"
 
     def __init__(self, T_C, log10_aT, T_ref: float | None = None, outside=None, source: str = "<table>"):
+        from scipy import interpolate
         T = np.array(T_C, dtype=float).ravel()
         y = np.array(log10_aT, dtype=float).ravel()
         if T.size != y.size or T.size < 2:

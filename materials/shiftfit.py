@@ -28,7 +28,6 @@ import warnings
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import optimize
 
 from frictioncite import doi
 
@@ -210,6 +209,7 @@ def score_shift_laws(kinds, T_iso, log10_aT, T0, misfit_of, *, Tg=None, wlf_rang
     Tg, wlf_range
         As in :func:`fit_shift_law` (``Tg="auto"`` is the same as None).
     """
+    from scipy import optimize
     Tg = None if isinstance(Tg, str) else Tg
     n = T_iso.size
     folds = [k for k in range(n) if T_iso[k] != T0]

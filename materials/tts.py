@@ -27,7 +27,6 @@ import warnings
 from dataclasses import dataclass, replace
 
 import numpy as np
-from scipy import interpolate, linalg, optimize
 
 from frictioncite import doi
 
@@ -549,6 +548,7 @@ def fit_wlf(T_C, log10_aT, T_ref: float, *, T_range: tuple[float, float] | None 
     InputError
         Fewer than two points off T_ref in range, or no WLF law fits (e.g. shifts increasing with T).
     """
+    from scipy import optimize
     T = np.asarray(T_C, dtype=float).ravel()
     y = np.asarray(log10_aT, dtype=float).ravel()
     if T.size != y.size:
@@ -686,6 +686,7 @@ def _pair_shift(xa, Ya, xb, Yb, comps, lo, hi, extend, vertical, warmer, step=0.
     Returns (s, b, how): how is "overlap", "extrapolated" (no overlap of the data windows within the bounds;
     the neighbours' polynomial trends were extended by up to ``extend`` decades) or "none" (placed edge to edge).
     """
+    from scipy import optimize
     m = Ya.shape[1]
     pa = [np.polyfit(xa, Ya[:, j], _poly_deg(xa.size)) for j in range(m)]
     pb = [np.polyfit(xb, Yb[:, j], _poly_deg(xb.size)) for j in range(m)]
@@ -758,6 +759,7 @@ def _global_refine(xs, Ys, comps, log_aT0, log_bT0, ref, vertical, smoothing, kn
     The parameters are the steps between neighbouring isotherms (outwards from the reference), so that the
     physical bound on each step (a_T decreasing with T, up to ``reverse_tol``) is a simple box bound.
     """
+    from scipy import interpolate, linalg, optimize
     n = len(xs)
     free = [k for k in range(n) if k != ref]
     sizes = np.array([x.size for x in xs])

@@ -469,9 +469,9 @@ def heat_kernel_factors(q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 
 @njit(cache=True)
-def _flash_speed(iv, q, x, lq10, lv10, v, q4C, quad, lw0, inv_dlw, ln_are, ln_aim, ln_l, scale, law, T0, T_lo,
-                 inv_dT, shift_tab, vshift_tab, f_tab, g_tab, EX, S1, S2, a_t0, D, heat_factor, x_m, tol, max_iter,
-                 G_out, P_out, dmu_out, cum_out, gG_out, R_out, L_out, T_out, layer_out):
+def _flash_speed(iv, q, x, lq10, lv10, v, q4C, quad, lw0, inv_dlw, ln_are, ln_aim, ln_l, scale, law, T0, T_start,
+                 T_lo, inv_dT, shift_tab, vshift_tab, f_tab, g_tab, EX, S1, S2, a_t0, D, heat_factor, x_m, tol,
+                 max_iter, G_out, P_out, dmu_out, cum_out, gG_out, R_out, L_out, T_out, layer_out):
     r"""Self-consistent flash temperature for one speed on the nodes ``q``; returns (mu, iterations, residual).
 
     .. math::
@@ -481,9 +481,10 @@ def _flash_speed(iv, q, x, lq10, lv10, v, q4C, quad, lw0, inv_dlw, ln_are, ln_ai
     since :math:`f\,dq' = \frac{v \sigma_0}{\rho c_p}\frac{P}{P(q_m)} L\, q'^4 C\, dq'` and
     :math:`q'^4 C dq' = 8 q' dG / A`. The weight P dG is integrated exactly on each interval
     (:func:`interval_weights`, ``kind`` 1) against the quadratic in G of :math:`g(q, q') 2 q' R`.
-    Fixed-point iteration from T = T0, converged when max |T_new - T| < ``tol``: under-relaxed by a factor that
-    halves whenever the residual grows; where that fails within ``max_iter`` iterations, again from T0 with
-    Aitken's dynamic relaxation (B. M. Irons and R. C. Tuck, Int. J. Numer. Meth. Eng. 1, 275 (1969)).
+    Fixed-point iteration from ``T_start`` (T0 at every node, or a solution of the same problem on other nodes),
+    converged when max |T_new - T| < ``tol``: under-relaxed by a factor that halves whenever the residual grows;
+    where that fails within ``max_iter`` iterations, again from T0 with Aitken's dynamic relaxation
+    (B. M. Irons and R. C. Tuck, Int. J. Numer. Meth. Eng. 1, 275 (1969)).
     """
     nq = q.shape[0]
     # g(q_i, q_j) 2 q_j for the nodes any interval below q_i can reach (j <= i + 1), from the speed-independent
@@ -496,7 +497,7 @@ def _flash_speed(iv, q, x, lq10, lv10, v, q4C, quad, lw0, inv_dlw, ln_are, ln_ai
                 H[i, j] = heat_kernel(q[i], q[j], a_t0, D, EX[i], EX[j]) * 2.0 * q[j]
             else:
                 H[i, j] = c0 + ((1.0 - EX[j]) * S1[i, j] + (1.0 - EX[i]) * S2[i, j]) / D
-    T = np.full(nq, T0)
+    T = T_start.copy()
     Tn = np.empty(nq)
     shift = np.empty(nq)
     vshift = np.empty(nq)
@@ -612,15 +613,14 @@ def _temperature_factors(T, T_lo, inv_dT, shift_tab, vshift_tab, f_tab, g_tab, s
         gq[i] = _linear(g_tab[r], xT)
 
 
-def _flash_all(q, x, lq10, lv10, v, q4C, quad, lw0, inv_dlw, ln_are, ln_aim, ln_l, scale, law, T0, T_lo, inv_dT,
-               shift_tab, vshift_tab, f_tab, g_tab, EX, S1, S2, a_t0, D, heat_factor, x_m, tol, max_iter, G_out, P_out,
-               dmu_out, cum_out, gG_out, R_out, L_out, T_out, layer_out, mu_out, it_out, res_out):
+def _flash_all(q, x, lq10, lv10, v, q4C, quad, lw0, inv_dlw, ln_are, ln_aim, ln_l, scale, law, T0, T_start, T_lo,
+               inv_dT, shift_tab, vshift_tab, f_tab, g_tab, EX, S1, S2, a_t0, D, heat_factor, x_m, tol, max_iter,
+               G_out, P_out, dmu_out, cum_out, gG_out, R_out, L_out, T_out, layer_out, mu_out, it_out, res_out):
     for iv in prange(lv10.shape[0]):
         mu, it, res = _flash_speed(iv, q, x, lq10, lv10, v[iv], q4C, quad, lw0, inv_dlw, ln_are, ln_aim, ln_l,
-                                   scale[iv],
-                                   law, T0[iv], T_lo, inv_dT, shift_tab, vshift_tab, f_tab, g_tab, EX[iv], S1, S2,
-                                   a_t0[iv], D, heat_factor[iv], x_m, tol, max_iter, G_out, P_out, dmu_out,
-                                   cum_out, gG_out, R_out, L_out, T_out, layer_out)
+                                   scale[iv], law, T0[iv], T_start[iv], T_lo, inv_dT, shift_tab, vshift_tab, f_tab,
+                                   g_tab, EX[iv], S1, S2, a_t0[iv], D, heat_factor[iv], x_m, tol, max_iter, G_out,
+                                   P_out, dmu_out, cum_out, gG_out, R_out, L_out, T_out, layer_out)
         mu_out[iv] = mu
         it_out[iv] = it
         res_out[iv] = res

@@ -37,7 +37,9 @@ class GridSettings:
         Step, K, of the tabulated temperature shift log10 a_T(T) used when the temperature varies with q
         (flash temperature). Default 0.25 K.
     max_temperature_rise : float
-        Largest flash-temperature rise, K, the shift table covers. Default 400 K.
+        Flash-temperature rise, K, the shift table covers at first. Default 400 K. Speeds whose temperature
+        leaves it are solved again with a table widened up to 8x this (3200 K by default); beyond that the
+        modulus is clamped, with a ``ConvergenceWarning``.
     tolerance : float
         Relative error of mu the solver aims at, judged by the built-in error estimate: speeds whose estimate
         exceeds a third of it (the estimate is within a factor 3 of the true error) are solved again on refined

@@ -11,7 +11,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import optimize
 
 from frictioncite import doi
 
@@ -249,6 +248,7 @@ def broken_power_law_fit(x: np.ndarray, y: np.ndarray, flat: str):
     """Least-squares fit of a line with a flat part: ``y = a - s*max(0, x-b)`` (flat below b) or
     ``y = a + s*min(0, x-b)`` (flat above b). Returns (a, s, b, rms residual); s > 0 means falling above
     the break for ``flat="below"`` and rising below it for ``flat="above"``."""
+    from scipy import optimize
     x = np.asarray(x, dtype=float)
     y = np.asarray(y, dtype=float)
 

@@ -27,7 +27,6 @@ import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy import interpolate, special
 
 from frictioncite import doi
 
@@ -256,6 +255,7 @@ class PSD1D:
             :func:`surfaces.fit_rolloff` when a plateau is seen, and ``extrapolated=False`` (nothing past
             ``q_r`` is returned).
         """
+        from scipy import interpolate
         hi_default = self.q_r if self.q_r is not None else self.q[-1]
         m = band(self.q, q_min, hi_default if q_max is None else q_max, "to_isotropic")
         q, C1 = self.q[m], self.C_values[m]
@@ -317,6 +317,7 @@ class PSD1D:
 @doi(_PERSSON_2005, _JACOBS_2017)
 def gamma_factor(hurst: float) -> float:
     r""":math:`\Gamma(1+H) / (\sqrt{\pi}\,\Gamma(H+1/2))`, the ratio :math:`q\,C(q)/C_{1D}(q)` of a pure power law."""
+    from scipy import special
     H = float(hurst)
     return float(np.exp(special.gammaln(1.0 + H) - special.gammaln(H + 0.5)) / math.sqrt(math.pi))
 
@@ -337,6 +338,7 @@ def abel_forward(psd, q) -> np.ndarray:
     numpy.ndarray
         :math:`C_{1D}(q)` in m^3; zero for q past the support.
     """
+    from scipy import special
     q = np.asarray(q, dtype=float)
     if (q <= 0).any() or not np.isfinite(q).all():
         raise InputError("q: expected finite wavevectors > 0 rad/m")
@@ -469,6 +471,7 @@ def _inverse_abel(q: np.ndarray, spline, beta_tail: float) -> np.ndarray:
     .. math:: C(q) = \frac{1}{\pi}\left[\int_0^{u_m} g(\sqrt{q^2+u^2})\,du + \text{tail}\right],\quad
               g(k) = -\frac{C_{1D}'(k)}{k} = -\frac{C_{1D}(k)}{k^2}\,s'(\ln k)
     """
+    from scipy import special
     q_m = q[-1]
     ds = spline.derivative()
     n_k = max(2, int(math.ceil(_KNOTS_PER_DECADE * math.log10(q_m / q[0]))) + 1)

@@ -263,3 +263,32 @@ def test_flash_iteration_converges_where_a_cold_start_overheats():
     assert hard.mu_hysteresis == pytest.approx(ref.mu_hysteresis, rel=1e-3)
     assert hard.max_flash_temperature == pytest.approx(ref.max_flash_temperature, rel=1e-3)
     assert ref.max_flash_temperature > 100.0
+
+
+def test_a_flash_temperature_beyond_the_shift_table_widens_the_table():
+    """Glassy rubber on the example road at -20 C, 30 m/s and 0.02 MPa heats by ~700 K, beyond the 400 K the
+    temperature-shift table covers at first. Clamping the modulus there would put a kink into the integrands that
+    no q refinement removes and no error estimate sees; instead that speed is solved again with a wider table, and
+    the result is the one a table wide enough from the start gives, with no warning. A table that may not widen far
+    enough (5 K, widened at most 8x) clamps the modulus and says so."""
+    s = surfaces.example_road()
+    fx = persson.effects.FlashTemperature(tol=1e-7)
+    kw = dict(temperature=-20.0, pressure=0.02e6)
+
+    def run(**grid):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", persson.PhysicsWarning)  # the example road's rms slope 3.9
+            return persson.Model(s, glassy(), effects=[fx], grid=persson.GridSettings(**grid)).friction(
+                [1.0, 30.0], **kw)
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", persson.ConvergenceWarning)
+        default = run()
+    wide = run(max_temperature_rise=4000.0)
+    assert default.max_flash_temperature[1] > 600.0 > 400.0 > default.max_flash_temperature[0]
+    assert default.mu_hysteresis == pytest.approx(wide.mu_hysteresis, rel=1e-9)
+    assert default.max_flash_temperature == pytest.approx(wide.max_flash_temperature, rel=1e-9)
+    with pytest.warns(persson.ConvergenceWarning, match="tabulated range at 2 of 2 speeds"):
+        clamped = run(max_temperature_rise=5.0)
+    assert any("clamped" in n for n in clamped.notes)
+    assert np.all(np.abs(clamped.mu_hysteresis / wide.mu_hysteresis - 1) > 1e-2)

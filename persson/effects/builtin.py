@@ -8,14 +8,13 @@ from __future__ import annotations
 
 import dataclasses
 import math
-import warnings
 from dataclasses import dataclass
 
 import numpy as np
 
 from frictioncite import doi
 
-from ..errors import ConvergenceWarning, InputError
+from ..errors import InputError
 from .base import Conditions, Effect, Parameter, SolverState
 
 __all__ = ["FlashTemperature", "Adhesion", "Microtexture", "StrainSoftening", "Wet"]
@@ -103,11 +102,6 @@ class FlashTemperature(Effect):
         solved = solver.run_flash(prep, q_m=q_m, a_t0=D * d / prep.v, diffusivity=D,
                                   heat_factor=prep.pressure / thermal.heat_capacity, tol=self.tol,
                                   max_iter=int(self.max_iter))
-        top = prep.shift_table.T_hi
-        if np.any(solved.T_q > top):
-            warnings.warn(f"flash temperature exceeds the tabulated range (T > {top:g} C); the modulus is "
-                          "clamped there: raise GridSettings.max_temperature_rise", ConvergenceWarning,
-                          stacklevel=4)
         return dataclasses.replace(solved, notes=solved.notes + notes) if notes else solved
 
 
