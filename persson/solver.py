@@ -205,7 +205,8 @@ def _solve_once(surface, material, cond, grid, nu, gamma, thermal, correction, m
     solved = thermal.solve_temperature(prep=prep, conditions=cond, material=material)
     T0, rise = prep.T0, grid.max_temperature_rise
     limit = _RISE_WIDENING * grid.max_temperature_rise
-    top = np.full(T0.size, prep.shift_table.T_hi)  # each speed's table top
+    prep_top = np.full(T0.size, prep.shift_table.T_hi)
+    top = prep_top.copy()  # each speed's table top
     while rise < limit:
         hot = np.flatnonzero(solved.T_q.max(axis=1) > top)
         if hot.size == 0:
@@ -217,6 +218,12 @@ def _solve_once(surface, material, cond, grid, nu, gamma, thermal, correction, m
                        correction=correction, flash=True, modulus=modulus, nodes=solved.q)
         solved = _merge(solved, hot, thermal.solve_temperature(prep=prep, conditions=sub, material=material), 1)
         top[hot] = prep.shift_table.T_hi
+    widened = (top > prep_top) & (solved.T_q.max(axis=1) > prep_top)
+    if np.any(widened):
+        solved = replace(solved, notes=solved.notes + (
+            f"flash temperature up to {float(solved.T_q.max()):.4g} C at {int(widened.sum())} of {widened.size} "
+            f"speeds, above the {grid.max_temperature_rise:g} K rise the shift table covers at first (widened): far "
+            "above any measured isotherm, the modulus there is the shift law's extrapolation",))
     over = solved.T_q.max(axis=1) > top
     if np.any(over):
         msg = (f"flash temperature exceeds the tabulated range at {int(over.sum())} of {over.size} speeds "

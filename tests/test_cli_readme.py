@@ -47,6 +47,15 @@ def test_the_engine_does_not_import_the_validation_package():
     assert out.stdout.strip() == "False"
 
 
+def test_importing_the_packages_leaves_the_slow_scipy_subpackages_unloaded():
+    """Start-up time of every command: scipy.optimize, scipy.interpolate and scipy.stats (0.2-0.4 s to import) are
+    imported by the functions that fit or interpolate, when they run, not by importing the packages."""
+    code = ("import sys, persson, persson.cli, persson.case, materials, surfaces; "
+            "print(sorted(m for m in ('scipy.optimize', 'scipy.interpolate', 'scipy.stats') if m in sys.modules))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "[]"
+
+
 def test_readme_command_table_shows_what_each_command_takes():
     """Every command is in the README table, written with the arguments its parser takes (CASE where it takes one)."""
     from persson.cli import build_parser
