@@ -506,12 +506,14 @@ def _flash_error(prep: Prepared, mu: np.ndarray, T_start: np.ndarray, args: tupl
     rubber, which raises the heating), and on every fourth node that front is often unresolved, so a third level
     read 100-1000x high on a real road (28 of 30 converged speeds flagged). A single coarse grid, on the other
     hand, often agrees with the fine one by accident before the grids reach the asymptotic range (the error
-    changes sign between them): over the regime of ``benchmarks/accuracy.py`` the even nodes alone read more than
-    3x low at 22 of 878 conditions with errors above 1e-6, the two interleaved grids together at 4, and 3 of those
-    did not converge on the default grid and are refined (:func:`_solve_group`). Each coarse solve starts from
-    ``T_start`` at its nodes: the fine solution where it converged, so that the coarse solve converges in a few
-    iterations; T0 where not (a coarse solve started from a fine non-solution stays near it, and the estimate
-    would read small).
+    changes sign between them): over the regime of ``benchmarks/accuracy.py``, without refinement, the even nodes
+    alone read more than 3x low at 22 of 878 conditions with errors above 1e-6, the two interleaved grids together
+    at 4: three speeds whose temperature did not converge (they are refined, :func:`_solve_group`) and one whose
+    modulus was clamped at the top of the shift table (now widened, :func:`_solve_once`).
+
+    Each coarse solve starts from ``T_start`` at its nodes: the fine solution where it converged, so that the
+    coarse solve converges in a few iterations; T0 where not (a coarse solve started from a fine non-solution
+    stays near it, and the estimate would read small).
     """
     tol = args[4]
     err = []
