@@ -185,33 +185,38 @@ def _solve_group(surface, material, cond, grid, nu, gamma, thermal, correction, 
         bad = np.flatnonzero((solved.error_estimate > grid.tolerance / _SAFETY) | ~solved.converged_each)
         if bad.size == 0:
             break
+        # with the shift table the coarser solve needed, so that a hot speed is not solved clamped first again
+        rise = _rise(grid, solved.T_q[bad], np.broadcast_to(np.asarray(cond.temperature, dtype=float),
+                                                              cond.speed.shape)[bad])
         fine = _solve_once(surface, material, _subset(cond, bad), grid, nu, gamma, thermal, correction, modulus,
-                           level, solved.q)
+                           level, solved.q, rise=rise)
         solved = _merge(solved, bad, fine, 2**level)
     return solved
 
 
 def _solve_once(surface, material, cond, grid, nu, gamma, thermal, correction, modulus, refine,
-                q_base=None) -> Solved:
+                q_base=None, rise=None) -> Solved:
     """One solve on the grid's nodes refined ``refine`` times. With the flash temperature, the speeds whose
-    temperature leaves the shift table (which covers ``grid.max_temperature_rise`` above the background) are
-    solved again with a wider table, up to ``_RISE_WIDENING`` times that rise: a table clamped below the
-    solution's temperature would give the modulus a kink there, an error of the model's input that no refinement
-    of q removes and the error estimate cannot see."""
-    prep = prepare(surface, material, cond, grid, nu, gamma=gamma, correction=correction,
+    temperature leaves the shift table (which covers ``rise``, by default ``grid.max_temperature_rise``, above the
+    background) are solved again with a wider table (:func:`_rise`), up to ``_RISE_WIDENING`` times
+    ``grid.max_temperature_rise``: a table clamped below the solution's temperature would give the modulus a kink
+    there, an error of the model's input that no refinement of q removes and the error estimate cannot see."""
+    rise = grid.max_temperature_rise if rise is None else rise
+    table_grid = grid if rise == grid.max_temperature_rise else replace(grid, max_temperature_rise=rise)
+    prep = prepare(surface, material, cond, table_grid, nu, gamma=gamma, correction=correction,
                    flash=thermal is not None, modulus=modulus, refine=refine, nodes=q_base)
     if thermal is None:
         return run_plain(prep)
     solved = thermal.solve_temperature(prep=prep, conditions=cond, material=material)
-    T0, rise = prep.T0, grid.max_temperature_rise
+    T0 = prep.T0
     limit = _RISE_WIDENING * grid.max_temperature_rise
-    prep_top = np.full(T0.size, prep.shift_table.T_hi)
-    top = prep_top.copy()  # each speed's table top
+    prep_top = np.full(T0.size, float(T0.max()) + grid.max_temperature_rise)  # the table of the settings
+    top = np.full(T0.size, prep.shift_table.T_hi)  # each speed's table top
     while rise < limit:
         hot = np.flatnonzero(solved.T_q.max(axis=1) > top)
         if hot.size == 0:
             break
-        rise = min(limit, max(2.0 * rise, 1.25 * float(solved.T_q[hot].max() - T0[hot].min())))
+        rise = min(limit, max(2.0 * rise, _rise(grid, solved.T_q[hot], T0[hot])))
         sub = _subset(cond, hot)
         # on the first solve's nodes, so that the results merge node by node
         prep = prepare(surface, material, sub, replace(grid, max_temperature_rise=rise), nu, gamma=gamma,
@@ -237,6 +242,13 @@ def _solve_once(surface, material, cond, grid, nu, gamma, thermal, correction, m
 #: Most the shift table is widened, as a multiple of ``GridSettings.max_temperature_rise``, where the flash
 #: temperature leaves it (:func:`_solve_once`).
 _RISE_WIDENING = 8.0
+
+
+def _rise(grid: GridSettings, T_q: np.ndarray, T0: np.ndarray) -> float:
+    """The temperature rise, K, a shift table needs for the profiles ``T_q`` (n_speed, n_q) above the background
+    temperatures ``T0``: the setting, or 1.25x the rise reached, at most ``_RISE_WIDENING`` x the setting."""
+    need = 1.25 * float(np.max(T_q) - np.min(T0)) if T_q.size else 0.0
+    return min(_RISE_WIDENING * grid.max_temperature_rise, max(grid.max_temperature_rise, need))
 
 
 def _subset(cond: Conditions, idx: np.ndarray) -> Conditions:
