@@ -8,7 +8,7 @@ and 160 modulus nodes per decade), with and without the flash temperature, and p
 * the worst relative error of the defaults, per compound and surface, and overall;
 * how the built-in ``error_estimate`` compares with the true error (ratio estimate / true where the true error
   exceeds 1e-6);
-* the converged setting against the independent adaptive quadrature of :mod:`persson.reference` at the corners;
+* the converged setting against the independent adaptive quadrature of :mod:`persson.engine.reference` at the corners;
 * the table of the stiff-regime accuracy report (the glassy compound on a road).
 
 Options: ``--quick`` (fewer conditions), ``--no-flash``, ``--no-reference``.
@@ -139,10 +139,10 @@ def stiff_table() -> None:
 
 
 def reference_check(comps, surfs) -> None:
-    """The converged engine against the independent adaptive quadrature (persson.reference) at the corners."""
-    from persson.reference import reference_friction
+    """The converged engine against the independent adaptive quadrature (persson.engine.reference) at the corners."""
+    from persson.engine.reference import reference_friction
 
-    print("\nconverged setting vs independent adaptive quadrature (persson.reference)")
+    print("\nconverged setting vs independent adaptive quadrature (persson.engine.reference)")
     corners = [("glassy", "rough road", 30.0, -20.0, 0.02e6), ("glassy", "sandpaper H0.6", 1.0, 0.0, 0.1e6),
                ("soft", "road", 1e-8, 80.0, 2e6), ("narrow", "table", 1e-2, 20.0, 0.3e6),
                ("tread", "sandpaper H0.9", 1e-4, -20.0, 0.02e6)]

@@ -64,7 +64,7 @@ def main(repeats: int = 5) -> None:
         print(f"{label:<40}{t:>8.3f}{pts:>12d}  {np.round(peak, 3)} / {np.round(at, 3)} / {np.round(locked, 3)}")
 
     # the march alone (the table cached, as in a fit varying only the contact)
-    from persson.effects.patch import patch_friction
+    from persson.slip import patch_friction
 
     model = persson.Model(road, tread, effects=[PatchHeating()])
     s, V = (a.ravel() for a in np.broadcast_arrays(SLIPS[:, None], SPEEDS[None, :]))

@@ -7,12 +7,16 @@ into friction vs slip ratio; :mod:`persson.sweeps` runs band and parameter studi
 contact mechanics alone (area, separation, elastic energy, penetration depth vs pressure).
 """
 
-from . import effects, slip, sweeps, tire
-from .contact import ContactResult, contact
-from .errors import AccuracyWarning, ConvergenceWarning, InputError, PhysicsWarning
-from .grid import GridSettings
-from .model import Model
-from .results import FrictionResult
+from . import _moved
+
+_moved.install()  # old module paths (persson.model, persson.tire, ...) keep importing
+
+from . import effects, slip, sweeps, tire  # noqa: E402
+from .contact.mechanics import ContactResult, contact  # noqa: E402
+from .engine.grid import GridSettings  # noqa: E402
+from .engine.model import Model  # noqa: E402
+from .engine.results import FrictionResult  # noqa: E402
+from .errors import AccuracyWarning, ConvergenceWarning, InputError, PhysicsWarning  # noqa: E402
 
 __version__ = "0.1.0"
 

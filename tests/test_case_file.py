@@ -139,14 +139,14 @@ def test_shipped_case_names_resolve():
 
 def test_docs_list_every_key_as_the_schema_declares_it():
     """docs/conventions.md carries the generated key reference; regenerate it with
-    ``python -m persson.case_schema docs/conventions.md`` after changing the schema."""
+    ``python -m persson.case.schema docs/conventions.md`` after changing the schema."""
     from pathlib import Path
 
-    from persson.case_schema import BEGIN, END, KEYS, markdown
+    from persson.case.schema import BEGIN, END, KEYS, markdown
 
     text = (Path(__file__).resolve().parents[1] / "docs" / "conventions.md").read_text()
     section = BEGIN + text.split(BEGIN, 1)[1].split(END, 1)[0] + END
-    assert section == markdown(), "docs/conventions.md is out of date: python -m persson.case_schema docs/conventions.md"
+    assert section == markdown(), "docs/conventions.md is out of date: python -m persson.case.schema docs/conventions.md"
     for k in KEYS:
         assert f"| `{k.name}` |" in section
 

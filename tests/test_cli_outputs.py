@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import persson
-from persson.cli import main
+from persson.commands.cli import main
 from persson.io import Outputs, check_output, partial_path
 
 CASE = """

@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from persson.cli import main
+from persson.commands.cli import main
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -41,7 +41,7 @@ def test_help_lists_the_commands(capsys):
 
 def test_the_engine_does_not_import_the_validation_package():
     """The validation commands come in through the ``persson.commands`` entry points, not an import."""
-    code = ("import sys, persson, persson.cli, persson.commands.friction, persson.commands.sweep, persson.case; "
+    code = ("import sys, persson, persson.commands.cli, persson.commands.friction, persson.commands.sweep, persson.case; "
             "print('validation' in sys.modules)")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "False"
@@ -50,7 +50,7 @@ def test_the_engine_does_not_import_the_validation_package():
 def test_importing_the_packages_leaves_the_slow_scipy_subpackages_unloaded():
     """Start-up time of every command: scipy.optimize, scipy.interpolate and scipy.stats (0.2-0.4 s to import) are
     imported by the functions that fit or interpolate, when they run, not by importing the packages."""
-    code = ("import sys, persson, persson.cli, persson.case, materials, surfaces; "
+    code = ("import sys, persson, persson.commands.cli, persson.case, materials, surfaces; "
             "print(sorted(m for m in ('scipy.optimize', 'scipy.interpolate', 'scipy.stats') if m in sys.modules))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "[]"
@@ -58,7 +58,7 @@ def test_importing_the_packages_leaves_the_slow_scipy_subpackages_unloaded():
 
 def test_readme_command_table_shows_what_each_command_takes():
     """Every command is in the README table, written with the arguments its parser takes (CASE where it takes one)."""
-    from persson.cli import build_parser
+    from persson.commands.cli import build_parser
 
     rows = dict(re.findall(r"^\| `persson (\w+)([^`]*)` \|", (ROOT / "README.md").read_text(), re.M))
     sub = next(a for a in build_parser()._actions if a.dest == "==SUPPRESS==" or a.__class__.__name__ ==

@@ -16,7 +16,7 @@ from scipy import integrate, special
 import materials
 import persson
 import surfaces
-from persson import separation
+from persson.contact import separation
 from persson.contact import ContactResult, contact
 
 # The surface of the GFMD data of Xu et al. (2024) (public repository xylcsi/PerssonModelFudgeFactor, scripts

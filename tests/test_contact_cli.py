@@ -5,7 +5,7 @@ import pytest
 
 import materials
 import surfaces
-from persson.cli import main
+from persson.commands.cli import main
 from persson.contact import contact
 
 CASE = """

@@ -1,4 +1,4 @@
-"""Specification of the contact-area corrections (``persson.corrections``) against GFMD and their definitions.
+"""Specification of the contact-area corrections (``persson.contact.corrections``) against GFMD and their definitions.
 
 GFMD reference data: Green's function molecular dynamics by Y. Zhou, published with Xu, Zhu, Xiao & Zhou, "A new
 fudge factor for Persson's theory of purely normal elastic rough surface contact", Tribol. Lett. 72 (2024),
@@ -16,7 +16,7 @@ import pytest
 from scipy import integrate, optimize, special
 
 import surfaces
-from persson import corrections
+from persson.contact import corrections
 from persson.contact import contact
 
 SURFACE = surfaces.SelfAffine(hurst=0.8, q0=1e4, q1=1e6, hrms=6e-6)

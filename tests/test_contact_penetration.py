@@ -1,4 +1,4 @@
-"""Specification of the penetration depths (``persson.separation.penetration_depth``) on a Gaussian surface.
+"""Specification of the penetration depths (``persson.contact.separation.penetration_depth``) on a Gaussian surface.
 
 Both definitions take the hard surface's heights as Gaussian (standard deviation h_rms) and the rubber's mean
 surface at u_bar above their mean plane. "persson": the asperity tops at n_sigma h_rms, depth n_sigma h_rms - u.
@@ -16,7 +16,7 @@ from scipy import integrate, stats
 import surfaces
 from persson import InputError
 from persson.contact import contact
-from persson.separation import penetration_depth, separation_decay_length
+from persson.contact.separation import penetration_depth, separation_decay_length
 
 H_RMS = 0.1e-3
 

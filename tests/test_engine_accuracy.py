@@ -1,6 +1,6 @@
 """Accuracy of the solver at the corners of the operating regime, against an independent adaptive quadrature.
 
-The reference (:mod:`persson.reference`) shares no numerics with the engine: adaptive angular quadratures of the
+The reference (:mod:`persson.engine.reference`) shares no numerics with the engine: adaptive angular quadratures of the
 material's own E(omega, T) and one adaptive ODE solve in ln q whose step control resolves the boundary layer near
 q0, where G grows by orders of magnitude within a tiny range of q for glassy rubber and P falls from 1 to almost 0.
 The engine's default settings must be within 1e-3 of it everywhere (the worst case over the whole regime is printed
@@ -17,7 +17,7 @@ import pytest
 import materials
 import persson
 import surfaces
-from persson.reference import reference_flash_friction, reference_friction
+from persson.engine.reference import reference_flash_friction, reference_friction
 
 WLF = materials.WLF(8.86, 101.6, 20.0)
 
@@ -231,7 +231,7 @@ def test_a_steep_temperature_front_gets_nodes_in_reduced_frequency(monkeypatch):
     (0.1-0.2 decade per K there) sweeps the reduced frequency q v a_T(T_q) across many decades per interval of
     the uniform grid. Nodes placed where the reduced frequency moves fast resolve it; a uniform grid of the same
     density is 3x off, and the default agrees with a uniform grid 16x finer whose own convergence is checked."""
-    from persson import solver
+    from persson.engine import solver
 
     s = surfaces.SelfAffine(hurst=0.8, q0=1e3, q1=1e5, hrms=1e-3)
     default = _flash_mu(s, narrow(), persson.GridSettings())
@@ -300,7 +300,7 @@ def test_flash_error_estimate_does_not_read_low_when_one_coarse_grid_agrees_by_a
     friction happens to agree with the fine grid's to 1e-7, although the fine grid is 8e-6 off (the error changes
     sign between the grids). The odd-numbered nodes do not agree by accident, and the estimate from both is within
     a factor 3 of the true error, which grids 10x and 20x finer (agreeing to 1e-7) give."""
-    from persson import solver
+    from persson.engine import solver
 
     def run(**grid):
         fx = persson.effects.FlashTemperature(tol=1e-8)

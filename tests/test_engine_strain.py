@@ -13,7 +13,7 @@ import materials
 import persson
 import surfaces
 from persson.effects import FlashTemperature, StrainSoftening
-from persson.reference import reference_friction
+from persson.engine.reference import reference_friction
 
 ROAD = surfaces.SelfAffine(hurst=0.8, q0=2 * math.pi / 5e-3, q1=1e6, hrms=0.2e-3)
 TREAD = materials.example_tread()

@@ -17,7 +17,7 @@ import materials
 import persson
 import surfaces
 from persson import slip as ps
-from persson import tire
+from persson import slip as tire
 
 SIGMA0 = 0.3e6
 CONTACT = dict(length=0.1, width=0.15, stiffness=9.0e7, pressure_distribution="parabolic")
@@ -73,7 +73,7 @@ def test_plots_and_csv(tmp_path):
     from matplotlib.figure import Figure
 
     from persson.plots import save_figure
-    from persson.slip_plots import plot_mu_slip, plot_mu_speed, plot_two_coefficient_map
+    from persson.slip.plots import plot_mu_slip, plot_mu_speed, plot_two_coefficient_map
 
     r = constant_modulus_family()
     fits = [tire.fit_magic_formula(SLIPS, r.mu[:, j]) for j in range(SPEEDS.size)]

@@ -1,6 +1,6 @@
 """Fits of friction-slip curves: the brush model alone, the Magic Formula with a declared peak, and the contact and
-patch-heating parameters of the Persson model (persson.slip.fit_brush, persson.tire.magic_formula_from_peak,
-persson.tire.fit_magic_formula(peak=...), persson.slip.fit_slip).
+patch-heating parameters of the Persson model (persson.slip.fit_brush, persson.slip.magic_formula_from_peak,
+persson.slip.fit_magic_formula(peak=...), persson.slip.fit_slip).
 
 The seed curve of the issue: peak 1.156 at 11 % slip and 0.679 at 93 % slip (a dry road). Its Magic Formula
 (E = 0) follows by hand from the peak conditions D = 1.156, C arctan(B 0.11) = pi/2 and the point at 93 %:
@@ -19,7 +19,7 @@ import materials
 import persson
 import surfaces
 from persson import slip as ps
-from persson import tire
+from persson import slip as tire
 from persson.effects import FlashTemperature, PatchHeating
 from persson.errors import InputError
 
@@ -258,7 +258,7 @@ def test_synthetic_drft_data_with_patch_heating_recovers_heating_and_stiffness()
 
 def test_slip_comparison_and_patch_plots(tmp_path):
     from persson.plots import save_figure
-    from persson.slip_plots import plot_patch_profile, plot_slip_comparison
+    from persson.slip.plots import plot_patch_profile, plot_slip_comparison
 
     seed = seed_formula()
     rng = np.random.default_rng(4)

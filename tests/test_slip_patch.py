@@ -1,6 +1,6 @@
 """Specification of the local friction along the contact patch: mu(v_s, p(x), T(x)) (PatchHeating).
 
-Model (persson/effects/patch.py): behind the stick zone the rubber slides with the shear tau = mu(v_s, p, T) p and
+Model (persson/slip/heating.py): behind the stick zone the rubber slides with the shear tau = mu(v_s, p, T) p and
 the frictional power tau v_s heats the interface; one-dimensional conduction into the tread (moving through the
 patch at (1 - s) V) and into the counter-surface (moving at V), both entering at T0, with a common interface
 temperature, gives
@@ -30,7 +30,7 @@ import surfaces
 import validation
 from persson import slip as ps
 from persson.effects import PatchHeating
-from persson.effects.patch import patch_friction
+from persson.slip import patch_friction
 from persson.errors import InputError
 
 L, W, K, SIGMA0, T0 = 0.02, 0.01, 3.0e9, 0.3e6, 20.0

@@ -1,4 +1,4 @@
-"""Specification of the tire-level curve laws and fits (persson.tire): Magic Formula, friction-speed laws.
+"""Specification of the tire-level curve laws and fits (persson.slip): Magic Formula, friction-speed laws.
 
 Reference numbers are independent of the fitting code: synthetic curves from known parameters, the Magic
 Formula's peak from its closed form (C arctan(X) = pi/2, i.e. Bs - E(Bs - arctan Bs) = tan(pi/(2C))), and the
@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-from persson import tire
+from persson import slip as tire
 from persson.errors import InputError
 
 

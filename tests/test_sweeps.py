@@ -70,8 +70,8 @@ def test_band_contributions_are_additive_when_a_band_is_split(model):
 
 
 def test_band_contributions_match_an_independent_quadrature(model):
-    """Bands of the full surface against an adaptive ODE quadrature (persson.reference) at the band edges."""
-    from persson.reference import reference_friction
+    """Bands of the full surface against an adaptive ODE quadrature (persson.engine.reference) at the band edges."""
+    from persson.engine.reference import reference_friction
 
     edges = np.geomspace(*model.surface.q_range, 4)
     t = sweeps.bands(model, edges, speed=[1e-3, 1.0], params={"pressure": [0.3e6]})
@@ -319,7 +319,7 @@ def _write_case(tmp_path):
 
 def test_cli_sweep_bands_by_pressure_writes_the_python_table(tmp_path, capsys):
     from persson.case import read_case
-    from persson.cli import main
+    from persson.commands.cli import main
 
     case = _write_case(tmp_path)
     out = tmp_path / "results.csv"
@@ -343,7 +343,7 @@ def test_cli_sweep_bands_by_pressure_writes_the_python_table(tmp_path, capsys):
 
 
 def test_cli_sweep_plain_grid_with_plot(tmp_path, capsys):
-    from persson.cli import main
+    from persson.commands.cli import main
 
     case = _write_case(tmp_path)
     out = tmp_path / "grid.csv"
@@ -365,7 +365,7 @@ def test_cli_sweep_plain_grid_with_plot(tmp_path, capsys):
     (["--bands", "1,1e3"], "outside"),
 ])
 def test_cli_sweep_bad_input_exits_2_naming_the_argument(tmp_path, capsys, argv, match):
-    from persson.cli import main
+    from persson.commands.cli import main
 
     case = _write_case(tmp_path)
     assert main(["sweep", str(case), "-o", str(tmp_path / "x.csv"), *argv]) == 2

@@ -68,7 +68,7 @@ def test_local_processes_give_the_serial_result_exactly(model, serial):
 
 
 def test_cli_sweep_on_a_dask_scheduler_writes_the_serial_csv(tmp_path, cluster, capsys):
-    from persson.cli import main
+    from persson.commands.cli import main
 
     (tmp_path / "case.toml").write_text('name = "dask-cli"\n[surface]\nexample = "road"\n'
                                         '[material]\nexample = "tread"\n[conditions]\nspeeds_m_s = [0.01, 1.0]\n')

@@ -16,7 +16,7 @@ import pytest
 
 import persson
 import validation
-from persson.cli import main
+from persson.commands.cli import main
 from persson.effects import Effect, Parameter
 
 HIDDEN = ("hidden_flash", "hidden_adhesion", "hidden_microtexture", "hidden_strain_softening")

@@ -7,7 +7,7 @@
   ``Wet()`` at its defaults); dry rows use the model without any ``wet`` effect.
 * a model with :class:`persson.effects.PatchHeating`: every row, sliding ones included (``slip = 1``, the locked
   wheel), goes through the contact patch with the local pressure and the background temperature along it
-  (:func:`persson.effects.patch.patch_friction`); this needs the contact.
+  (:func:`persson.slip.patch_friction`); this needs the contact.
 
 All sliding speeds a group needs (V of its sliding rows and s V of its slip rows) go into one
 ``model.friction`` call; the slip rows then reuse those values through the callable form of ``mu_slip``. With
@@ -194,7 +194,7 @@ class Predictor:
     def _patch(self, model, rows, key):
         """Patch-heating predictions of ``rows`` (one table, two engine calls; the table is kept per wet/dry group
         and reused while only the contact changes, e.g. in a fit of the contact stiffness)."""
-        from persson.effects.patch import patch_friction
+        from persson.slip import patch_friction
 
 
         if self.contact is None:
@@ -233,7 +233,7 @@ class Predictor:
         the locked wheel's patch, as on sliding rows)."""
         mg = wet_model(model) if wet else dry_model(model)
         if "patch_heating" in mg.effect_names and self.contact is not None:
-            from persson.effects.patch import patch_friction
+            from persson.slip import patch_friction
 
             v = np.atleast_1d(np.asarray(speeds, dtype=float))
             with warnings.catch_warnings():

@@ -53,7 +53,7 @@ def add_arguments(p):
 
 
 def run(args) -> int:
-    from ..contact import contact
+    from ..contact.mechanics import contact
     from ..errors import InputError
     from ..io import Outputs, write_csv
 
@@ -69,7 +69,7 @@ def run(args) -> int:
             raise InputError("--speed: a PSD table has no material; give --estar for an elastic contact")
         name, inputs = src.stem, (src,)
     else:
-        from ..case import parse_case
+        from ..case.loader import parse_case
 
         if args.estar is not None and args.speed is not None:
             raise InputError("--estar and --speed: give one (--estar: elastic; --speed: the case's material)")
@@ -90,7 +90,7 @@ def run(args) -> int:
             surface = surfaces.read_psd(src)
             material, gamma, nu, T, where = args.estar, 0.5, 0.5, 20.0, f"PSD {src}"
         else:
-            from ..case import read_case
+            from ..case.loader import read_case
 
             with status.phase(f"reading {parsed.path.name}"):
                 spec = read_case(parsed.path, progress=status)

@@ -26,7 +26,7 @@ def add_arguments(p):
 
 
 def run(args) -> int:
-    from ..case import parse_case, read_case
+    from ..case.loader import parse_case, read_case
     from ..errors import InputError
     from ..io import Outputs, write_csv
 

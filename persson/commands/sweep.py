@@ -65,7 +65,7 @@ def add_arguments(p):
 
 def run(args) -> int:
     from .._checks import plausible_pressure, plausible_temperature
-    from ..case import parse_case, read_case
+    from ..case.loader import parse_case, read_case
     from ..errors import InputError
     from ..io import Outputs, check_output
     from .. import sweeps

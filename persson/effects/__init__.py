@@ -6,9 +6,10 @@ Built in: :class:`FlashTemperature` (``flash_temperature``), :class:`Adhesion` (
 See :mod:`persson.effects.base` for how to write one.
 """
 
-from .base import Conditions, Effect, Parameter, SolverState, available, effect_class, get
+from ..engine.conditions import Conditions, SolverState
+from .base import Effect, Parameter, available, effect_class, get
 from .builtin import Adhesion, FlashTemperature, Microtexture, StrainSoftening, Wet
-from .patch import PatchHeating
+from ..slip.heating import PatchHeating
 
 __all__ = [
     "Effect", "Parameter", "Conditions", "SolverState", "available", "effect_class", "get",

@@ -15,7 +15,8 @@ import numpy as np
 from frictioncite import doi
 
 from ..errors import InputError
-from .base import Conditions, Effect, Parameter, SolverState
+from ..engine.conditions import Conditions, SolverState
+from .base import Effect, Parameter
 
 __all__ = ["FlashTemperature", "Adhesion", "Microtexture", "StrainSoftening", "Wet"]
 
@@ -30,7 +31,7 @@ class FlashTemperature(Effect):
         f(q) = \frac{v q^4 C(q)}{\rho c_p}\frac{P(q)}{P(q_m)}\int_0^{2\pi} d\phi\,\cos\phi\,
         \frac{\mathrm{Im}\,E(q v \cos\phi, T_q)}{1 - \nu^2}
 
-    with the heat kernel :math:`g` of :func:`persson._kernels.heat_kernel` (closed form, erfcx) and
+    with the heat kernel :math:`g` of :func:`persson.engine.kernels.heat_kernel` (closed form, erfcx) and
     :math:`D = \lambda/(\rho c_p)` (Persson, J. Phys.: Condens. Matter 18, 7789 (2006), Eqs. 20-27).
     The heat produced at scale q' raises the temperature at the (smaller) scales q >= q'; it is produced in
     the macro-asperity contact regions, of area fraction P(q_m), during the contact time t0 = d / v of a
@@ -79,8 +80,8 @@ class FlashTemperature(Effect):
             raise InputError(f"flash_temperature.max_iter: expected a positive integer, got {self.max_iter!r}")
 
     def solve_temperature(self, *, prep, conditions: Conditions, material):
-        """Run the self-consistent solver (called by the model; see :func:`persson.solver.run_flash`)."""
-        from .. import solver
+        """Run the self-consistent solver (called by the model; see :func:`persson.engine.solver.run_flash`)."""
+        from ..engine import solver
 
         thermal = getattr(material, "thermal", None)
         if thermal is None:

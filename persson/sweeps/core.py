@@ -13,10 +13,10 @@ from pathlib import Path
 
 import numpy as np
 
-from ..effects.base import Conditions
+from ..engine.conditions import Conditions
 from .._checks import number
 from ..errors import InputError
-from ..model import Model
+from ..engine.model import Model
 from .bands import (_BandRestriction, band_contributions, band_edges, check_bands, continuous_cells,
                     interp_ln_q, load_share)
 from .execute import Progress, SweepInterrupted, describe_scheduler, run_tasks

@@ -14,7 +14,7 @@ The truth here is computed
 * with the engine at a far finer, converged resolution (:data:`TRUTH_GRID`: 4x the wavevector nodes, 3x the
   modulus table, a 2.5x finer temperature table; brush model with 1601 nodes), so the data do not
   carry the discretisation of the settings the diagnosis uses;
-* checked, for the hysteresis and contact-area part, against :func:`persson.reference.reference_friction`, an
+* checked, for the hysteresis and contact-area part, against :func:`persson.engine.reference.reference_friction`, an
   adaptive-quadrature implementation of the Persson integrals that shares no numerics with the engine (the
   largest relative difference is written to ``truth.json``);
 * and, for ``blind_outside``, with a compound whose physics is not in the engine's candidate list at all: a
@@ -229,7 +229,7 @@ def _reference_check(model, rows) -> float | None:
     """Largest relative difference between the truth's hysteresis and the independent quadrature (None when the
     case has no sliding row to check)."""
     try:
-        from persson.reference import reference_friction
+        from persson.engine.reference import reference_friction
     except ImportError:
         return None
     base = model.replace(effects=())

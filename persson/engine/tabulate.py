@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .errors import InputError
+from ..errors import InputError
 
 __all__ = ["ModulusTable", "ShiftTable", "AngularTable", "modulus_table", "shift_table", "relative_shifts",
            "angular_table", "convolution_weights"]
@@ -161,7 +161,7 @@ def angular_table(material, T0: float, log10_omega_min: float, log10_omega_max: 
     With :math:`\cos\phi = 10^{-t}` each angular integral is a convolution in log frequency,
     :math:`\int_0^\infty K(t)\, F(\log_{10}\omega - t)\, dt` with
     :math:`K(t) = 4\ln 10\; 10^{-(1+p)t} / \sqrt{1 - 10^{-2t}}` (p = 0 for A, 1 for L), evaluated by
-    :func:`persson._kernels.angular_convolution` with the weights of :func:`convolution_weights` (exact for the
+    :func:`persson.engine.kernels.angular_convolution` with the weights of :func:`convolution_weights` (exact for the
     cubic interpolant of F between the table nodes).
 
     Raises
@@ -169,7 +169,7 @@ def angular_table(material, T0: float, log10_omega_min: float, log10_omega_max: 
     InputError
         If the material returns non-finite values, E' <= 0 or E'' < 0 for omega > 0.
     """
-    from . import _kernels
+    from . import kernels as _kernels
 
     lo = math.floor((log10_omega_min - ANGULAR_PAD_DECADES) * per_decade) / per_decade
     hi = math.ceil(log10_omega_max * per_decade) / per_decade + 3.0 / per_decade

@@ -52,7 +52,7 @@ from scipy import special
 
 from frictioncite import doi
 
-from .errors import InputError
+from ..errors import InputError
 
 __all__ = ["CORRECTIONS", "corrected_area", "weight_antiderivative", "separation_kernel", "separation_kernel_ln",
            "check_correction", "citations"]
@@ -170,7 +170,7 @@ def separation_kernel(G, correction: str | None = None, gamma: float = 0.5) -> n
 
     evaluated here with :math:`W = P_c S(P_c)`. For ``correction=None`` it equals the closed form
     :math:`J(x) = \frac\gamma2 E_1(x^2) + 3(1-\gamma)\int_x^\infty \mathrm{erf}^2(t) e^{-t^2} dt/t`,
-    :math:`x = 1/(2\sqrt G)`, of :mod:`persson.separation`.
+    :math:`x = 1/(2\sqrt G)`, of :mod:`persson.contact.separation`.
 
     Parameters
     ----------

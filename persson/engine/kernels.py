@@ -1,4 +1,4 @@
-r"""numba kernels of the Persson solver. Thin wrappers in :mod:`persson.model` prepare the arrays.
+r"""numba kernels of the Persson solver. Thin wrappers in :mod:`persson.engine.model` prepare the arrays.
 
 Three numerical ideas make the solver accurate from soft to glassy rubber:
 
@@ -18,14 +18,14 @@ Three numerical ideas make the solver accurate from soft to glassy rubber:
    on the PSD), so it is smooth. When :math:`|E|/\sigma_0` is large, G rises by orders of magnitude within the
    first q interval and P falls from 1 to almost 0 inside it: a rule sampling P at log-uniform nodes cannot see
    that boundary layer (errors of 10x were seen). Here each interval is cut at the PSD's breakpoints; on each
-   piece G is known at its ends and middle (the PSD integrated exactly, :func:`persson.solver.quadrature_rule`),
+   piece G is known at its ends and middle (the PSD integrated exactly, :func:`persson.engine.solver.quadrature_rule`),
    R is interpolated by the quadratic in G through those three points, and the weight :math:`S(P)P` is integrated
    exactly (Gauss-Legendre in :math:`s = \sqrt G` on geometric pieces, where :math:`2 s\, S P` is smooth and
    bounded), :func:`interval_node_weights`.
 
 3. **A built-in error estimate.** Every speed is also integrated on the coarse grid of every other node and on
    the coarser grid of every fourth; the differences estimate the error of the fine result
-   (:func:`persson.solver._relative_error`). The flash temperature uses the coarse grid alone.
+   (:func:`persson.engine.solver._relative_error`). The flash temperature uses the coarse grid alone.
 
 Grids: nodes ``x`` = ln q (any increasing sequence; third-order interval rule for the non-uniform spacing),
 modulus tables uniform in log10 omega (``lw0``, ``inv_dlw``), holding ln A_re, ln A_im, ln L of the table
@@ -67,7 +67,7 @@ def angular_convolution(F, c, out):
     r"""out_j = sum_d c_d F_{j-d} with F clamped to F_0 below the table and to F_{n-1} above it.
 
     ``c`` holds the product-integration weights c_d for d = -1 .. len(c)-2 (``c[d + 1]``), see
-    :func:`persson.tabulate.convolution_weights`; weights past the end of ``c`` are zero.
+    :func:`persson.engine.tabulate.convolution_weights`; weights past the end of ``c`` are zero.
     """
     n = F.shape[0]
     m = c.shape[0]
@@ -132,7 +132,7 @@ def cumulative_weighted(K, W, stencil, out):
 
     ``W[i, m]`` = :math:`\int_{x_i}^{x_{i+1}} \ell_m(x) c(x) dx`, with :math:`\ell_m` the Lagrange basis of the
     quadratic through the nodes ``stencil[i] + m`` (m = 0, 1, 2) and c = q^4 C(q) integrated exactly piece by
-    piece between the PSD's own breakpoints (:func:`persson.solver.quadrature_rule`); K (the smooth angular factor)
+    piece between the PSD's own breakpoints (:func:`persson.engine.solver.quadrature_rule`); K (the smooth angular factor)
     is interpolated by that quadratic. Where that would decrease G (K varying wildly between nodes) the interval
     takes the mean of K at its ends times the exact integral of c.
     """
@@ -150,7 +150,7 @@ def cumulative_weighted(K, W, stencil, out):
 def area(G, law):
     r"""Area of real contact P(G) of the contact law ``law`` = (gamma, ln P table, ln G of its first node,
     nodes per unit ln G): :math:`\mathrm{erf}(1/(2\sqrt G))` (Persson 2001) when the table is empty, else the
-    corrected area of :mod:`persson.corrections` (ln P linear in ln G between nodes; P = erf(...) = 1 to double
+    corrected area of :mod:`persson.contact.corrections` (ln P linear in ln G between nodes; P = erf(...) = 1 to double
     precision below the table, P ~ G^(-1/2) past it)."""
     if G <= 0.0:
         return 1.0
@@ -254,7 +254,7 @@ def interval_node_weights(G, K, i, quad, law, kind):
     :math:`\int_{G_i}^{G_{i+1}} F\, w(G)\, dG \approx \sum_m w_m F_{a+m}` for a factor F smooth in ln q.
 
     The interval is cut at the PSD's breakpoints into pieces (``quad`` = (W, stencil, piece start, Lb, Wp) of
-    :func:`persson.solver.quadrature_rule`). On each piece G is known at its ends and middle from the partial
+    :func:`persson.engine.solver.quadrature_rule`). On each piece G is known at its ends and middle from the partial
     PSD weights ``Wp`` (exact PSD, angular factor K quadratic in ln q), F there from its quadratic in ln q
     (basis values ``Lb``), and F w dG is integrated with F quadratic in G through those three points and the weight
     w exact (:func:`_interval_weights`). F is never interpolated across a kink of the PSD, where G(ln q) bends.
@@ -379,7 +379,7 @@ def _friction_all(q, lq10, lv10, q4C, quad, shift, vshift, fq, gq, lw0, inv_dlw,
 
 #: Hysteresis friction and contact area for every speed, in parallel over speeds (prange). Arguments: nodes
 #: ``q`` and ``lq10`` = log10 q (n_q,), ``lv10`` (n_speed,), ``q4C`` = q^4 C(q) (n_q,), the quadrature rule
-#: ``quad`` of :func:`persson.solver.quadrature_rule`, ``shift`` and ``vshift`` (n_speed, n_q), strain factors
+#: ``quad`` of :func:`persson.engine.solver.quadrature_rule`, ``shift`` and ``vshift`` (n_speed, n_q), strain factors
 #: ``fq``, ``gq`` (n_speed, n_q), the log tables, ``scale`` = 1/((1-nu^2) sigma0) per speed, the contact law
 #: (:func:`area`), the coarse
 #: and coarser node indices with their quadrature rules, outputs (n_speed, n_q) and (n_speed,).

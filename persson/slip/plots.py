@@ -9,7 +9,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from .errors import InputError  # noqa: E402
+from ..errors import InputError  # noqa: E402
 
 __all__ = ["plot_mu_slip", "plot_mu_speed", "plot_two_coefficient_map", "plot_slip_comparison", "plot_patch_profile"]
 
@@ -22,7 +22,7 @@ def plot_mu_slip(result, *, fits=None, ax=None, title: str = "", mark_peaks: boo
     result : persson.slip.SlipResult
         With 2D arrays (slip along axis 0, speed along axis 1; e.g. from ``slip[:, None]``, ``speed[None, :]``)
         or 1D arrays (one curve).
-    fits : sequence of persson.tire.MagicFormulaFit, optional
+    fits : sequence of persson.slip.MagicFormulaFit, optional
         Fitted curves drawn dashed, one per speed (same order as the columns).
     ax : matplotlib Axes, optional
     title : str
@@ -41,7 +41,7 @@ def plot_mu_slip(result, *, fits=None, ax=None, title: str = "", mark_peaks: boo
     for j in range(mu.shape[1]):
         line, = ax.plot(100 * s[:, j], mu[:, j], "-", label=f"V = {V[0, j]:.3g} m/s")
         if mark_peaks and mu.shape[0] >= 3:
-            from .tire import peak
+            from .peaks import peak
 
             pm, ps = peak(s[:, j], mu[:, j])
             ax.plot([100 * ps], [pm], "o", color=line.get_color(), ms=4)
@@ -60,7 +60,7 @@ def plot_mu_slip(result, *, fits=None, ax=None, title: str = "", mark_peaks: boo
 
 
 def plot_mu_speed(speed, mu, *, fits=(), sigma=None, ax=None, title: str = "", logx: bool = True):
-    """mu against speed with fitted friction-speed laws (:class:`persson.tire.FitResult`) and their parameters."""
+    """mu against speed with fitted friction-speed laws (:class:`persson.slip.FitResult`) and their parameters."""
     V = np.asarray(speed, dtype=float).ravel()
     m = np.asarray(mu, dtype=float).ravel()
     if V.size != m.size or V.size == 0 or np.any(V <= 0):
@@ -116,8 +116,8 @@ def plot_slip_comparison(slip, mu, *, mu_std=None, brush=None, magic_formula=Non
         Standard uncertainties of ``mu`` (error bars).
     brush : persson.slip.BrushFit or callable, optional
         The brush-model fit (:func:`persson.slip.fit_brush`).
-    magic_formula : persson.tire.MagicFormulaFit or MagicFormula or callable, optional
-        A Magic Formula (:func:`persson.tire.fit_magic_formula`, :func:`persson.tire.magic_formula_from_peak`);
+    magic_formula : persson.slip.MagicFormulaFit or MagicFormula or callable, optional
+        A Magic Formula (:func:`persson.slip.fit_magic_formula`, :func:`persson.slip.magic_formula_from_peak`);
         its peak is marked.
     persson : persson.slip.SlipResult (1D over slip) or (slip, mu) pair or callable, optional
         The Persson model with the brush (:func:`persson.slip.mu_slip`, e.g. with patch heating).

@@ -1,6 +1,6 @@
 r"""Slow, independent reference quadratures of the Persson integrals, for verification.
 
-They share no numerics with the engine (:mod:`persson._kernels`): the angular integrals are high-order
+They share no numerics with the engine (:mod:`persson.engine.kernels`): the angular integrals are high-order
 Gauss-Legendre quadratures of ``material.E`` itself on half-decade panels in :math:`t = -\log_{10}\cos\phi`,
 tabulated on a log-frequency grid and interpolated by cubic splines (they are smooth: angle averages of the
 modulus), and the q integrals are one adaptive ODE solve (:func:`scipy.integrate.solve_ivp`, DOP853) in
@@ -137,7 +137,7 @@ def reference_flash_friction(surface, material, speed, temperature=20.0, pressur
 
     (Persson, J. Phys.: Condens. Matter 18, 7789 (2006)), the modulus at T_q by the material's shift law
     (``log10_aT``), q_m = ``macro_scale_ratio`` q0, t0 = d / v with d = ``contact_diameter`` or pi/q_m. The heat
-    kernel g is the closed form of :func:`persson._kernels.heat_kernel`, itself checked against quadrature in k
+    kernel g is the closed form of :func:`persson.engine.kernels.heat_kernel`, itself checked against quadrature in k
     (``tests/test_effects.py``). G and P come from an adaptive ODE solve with the current T_q; the heat integral is
     the trapezoid rule in q on ``nodes_per_decade`` log-spaced nodes plus nodes graded geometrically towards q0,
     where P falls steeply for glassy rubber.
@@ -147,7 +147,7 @@ def reference_flash_friction(surface, material, speed, temperature=20.0, pressur
     ReferenceResult
         With ``temperature_q`` on ``q_eval`` = the grid.
     """
-    from ._kernels import heat_kernel
+    from .kernels import heat_kernel
 
     v = np.atleast_1d(np.asarray(speed, dtype=float))
     q0, q1 = (float(x) for x in surface.q_range)

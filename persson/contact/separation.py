@@ -18,8 +18,8 @@ with :math:`P(q, p') = \mathrm{erf}(p' w(q)/E^*)`. Writing :math:`w(q)\sigma_0/E
       = \frac{\gamma}{2} E_1(x^2) + 3(1-\gamma) \int_x^\infty \frac{\mathrm{erf}^2 t\, e^{-t^2}}{t}dt,
     \quad x = \frac{1}{2\sqrt G}.
 
-The same formula holds with an area correction (:mod:`persson.corrections`) when J is the kernel of the
-corrected area, :func:`persson.corrections.separation_kernel` (the relation between u_bar and the elastic
+The same formula holds with an area correction (:mod:`persson.contact.corrections`) when J is the kernel of the
+corrected area, :func:`persson.contact.corrections.separation_kernel` (the relation between u_bar and the elastic
 energy, :math:`\bar u = \int_{\sigma_0}^\infty dp\, p^{-1}\, d(U_{el}/A_0)/dp`, kept).
 Numerically the q integral runs over :math:`s = (\int_{q_0}^{q} q'^3 C dq')^{1/2}`, since
 :math:`\sqrt\pi q^2 C w\, dq = 2\, ds / q` is regular at q0 where w(q) diverges (:func:`integral_over_s`):
@@ -45,7 +45,7 @@ from frictioncite import doi
 
 from .corrections import _table as _corrections_table
 from .corrections import check_correction, separation_kernel_ln
-from .errors import InputError
+from ..errors import InputError
 
 __all__ = ["mean_separation", "separation_decay_length", "penetration_depth", "excited_layer_thickness",
            "integral_over_s", "segment_moments", "moment_from_start", "PENETRATION_DEFINITIONS"]
@@ -69,7 +69,7 @@ def mean_separation(q, C, G, gamma: float, *, correction: str | None = None) -> 
     gamma : float
         Parameter of Yang & Persson (2008); 1 recovers Persson (2007).
     correction : {None, "yang-persson", "xu2024"}
-        Area correction (:mod:`persson.corrections`); None is uncorrected Persson theory.
+        Area correction (:mod:`persson.contact.corrections`); None is uncorrected Persson theory.
 
     Returns
     -------

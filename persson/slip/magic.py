@@ -30,37 +30,21 @@ covariance is scaled by the residual variance (``absolute_sigma=False``); with `
 from __future__ import annotations
 
 import math
-import warnings
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
 from frictioncite import doi
 
-from ._checks import finite_array, number
-from .errors import InputError
+from .._checks import finite_array, number
+from ..errors import InputError
+from .fitting import FitResult, _fit, _propagate, _xy
+from .peaks import _curve_peak
+from .references import MAGIC_FORMULA, PACEJKA_BOOK
 
-__all__ = [
-    "magic_formula", "magic_formula_simple", "MagicFormula", "SimpleMagicFormula", "magic_formula_from_points",
-    "magic_formula_from_peak", "magic_formula_peak_B",
-    "FitResult", "MagicFormulaFit", "fit_magic_formula", "peak",
-    "piarc", "piarc_ifi", "do_marsac_mosset", "rado", "fit_speed_law", "fit_piarc", "fit_do_marsac_mosset",
-    "fit_rado", "SPEED_LAWS", "MAGIC_FORMULA", "PIARC_1995", "DO_2004", "RADO_1994",
-]
-
-#: H. B. Pacejka, E. Bakker, The Magic Formula tyre model, Vehicle System Dynamics 21 (S1), 1-18 (1992).
-MAGIC_FORMULA = "10.1080/00423119208969994"
-#: Pacejka, Tire and Vehicle Dynamics (3rd ed. 2012), ch. 4 (Magic Formula): same key as persson.slip.
-PACEJKA_BOOK = "isbn:9780080970165"
-#: PIARC (World Road Association), International PIARC experiment to compare and harmonize texture and skid
-#: resistance measurements, report 01.04.T (1995).
-PIARC_1995 = "piarc:01.04.T-1995"
-#: M.-T. Do, P. Marsac, A. Mosset, Tribology approach to predict the variation of tire/wet road friction with
-#: slip speed, 5th Symposium on Pavement Surface Characteristics (SURF 2004), Toronto (HAL hal-00851262).
-DO_2004 = "hal:hal-00851262"
-#: Z. Rado, A study of road surface texture and its relationship to friction, PhD thesis, Pennsylvania State
-#: University (1994).
-RADO_1994 = "rado:psu-phd-1994"
+__all__ = ["magic_formula", "magic_formula_simple", "MagicFormula", "SimpleMagicFormula",
+           "magic_formula_from_points", "magic_formula_peak_B", "magic_formula_from_peak", "MagicFormulaFit",
+           "fit_magic_formula"]
 
 
 # =========================================================================================================
@@ -77,22 +61,6 @@ def magic_formula(slip, B, C, D, E=0.0):
 def magic_formula_simple(slip, a, b, c, d=0.0):
     r"""Simple Magic Formula of road-friction trailers :math:`a\sin(b\arctan(cs)) + d` (vectorised)."""
     return a * np.sin(b * np.arctan(c * np.asarray(slip, dtype=float))) + d
-
-
-def _curve_peak(f, lo: float = 0.0, hi: float = 1.0, n: int = 2001) -> tuple[float, float]:
-    """(max f, argmax) of a smooth function on [lo, hi]: grid search then bounded Brent refinement."""
-    from scipy.optimize import minimize_scalar
-
-    s = np.linspace(lo, hi, n)
-    y = f(s)
-    j = int(np.argmax(y))
-    if j == n - 1 or j == 0:
-        return float(y[j]), float(s[j])
-    r = minimize_scalar(lambda x: -float(f(np.asarray(x))), bounds=(s[j - 1], s[j + 1]), method="bounded",
-                        options={"xatol": 1e-12})
-    if r.success and -r.fun >= y[j]:
-        return float(-r.fun), float(r.x)
-    return float(y[j]), float(s[j])
 
 
 @dataclass(frozen=True)
@@ -428,90 +396,6 @@ def _fit_with_peak(x, y, sig, peak, fixed, p0):
                            locked_mu=float(lk), locked_mu_std=lk_std)
 
 
-# =========================================================================================================
-# Fit results
-# =========================================================================================================
-class NamedParameters:
-    """Access by name to the ``names``, ``values`` and ``stderr`` of a fit result (its ``_index`` names the error)."""
-
-    def __getitem__(self, name: str) -> float:
-        return float(self.values[self._index(name)])
-
-    def std(self, name: str) -> float:
-        """Standard uncertainty of the parameter ``name``."""
-        return float(self.stderr[self._index(name)])
-
-    @property
-    def params(self) -> dict[str, float]:
-        """Parameter values by name."""
-        return {n: float(v) for n, v in zip(self.names, self.values)}
-
-    @property
-    def uncertainties(self) -> dict[str, float]:
-        """Standard uncertainties by name."""
-        return {n: float(v) for n, v in zip(self.names, self.stderr)}
-
-
-@dataclass(frozen=True, eq=False)
-class FitResult(NamedParameters):
-    """A fitted curve law: parameters, standard uncertainties, covariance.
-
-    Attributes
-    ----------
-    law : str
-        Name of the law (``"magic_formula"``, ``"magic_formula_simple"``, ``"piarc"``, ``"do_marsac_mosset"``,
-        ``"rado"``).
-    names : tuple of str
-        Parameter names, in the order of ``values``.
-    values, stderr : ndarray
-        Best-fit values and standard uncertainties (0 for parameters held fixed).
-    covariance : ndarray
-        Covariance of all parameters (rows/columns of fixed ones are 0).
-    fixed : tuple of str
-        Names of the parameters held fixed.
-    x, y : ndarray
-        The data (slip or speed, mu).
-    sigma : ndarray or None
-        Standard uncertainties of ``y`` given to the fit (absolute).
-    rms : float
-        Root-mean-square residual.
-    dof : int
-        Degrees of freedom (points - free parameters).
-    notes : tuple of str
-    citations : tuple of str
-    """
-
-    law: str
-    names: tuple
-    values: np.ndarray
-    stderr: np.ndarray
-    covariance: np.ndarray
-    fixed: tuple
-    x: np.ndarray
-    y: np.ndarray
-    sigma: np.ndarray | None
-    rms: float
-    dof: int
-    notes: tuple = ()
-    citations: tuple = ()
-    func: object = field(default=None, repr=False)
-
-    def __call__(self, x):
-        """The fitted law at ``x``."""
-        return self.func(np.asarray(x, dtype=float), *self.values)
-
-    def propagate(self, quantity) -> tuple[float, float]:
-        """Value and standard uncertainty of ``quantity(values)`` (a scalar function of the parameter vector),
-        by linear propagation of the covariance (central differences)."""
-        return _propagate(quantity, self.values, self.covariance)
-
-    def _index(self, name: str) -> int:
-        try:
-            return self.names.index(name)
-        except ValueError:
-            raise InputError(f"parameter: {name!r} is not a parameter of {self.law} (has {list(self.names)})") from None
-
-
 @dataclass(frozen=True, eq=False)
 class MagicFormulaFit(FitResult):
     """A Magic Formula fit with the curve characteristics and their standard uncertainties.
@@ -540,97 +424,12 @@ class MagicFormulaFit(FitResult):
         return MagicFormula(**p) if self.law == "magic_formula" else SimpleMagicFormula(**p)
 
 
-def _propagate(quantity, values, cov) -> tuple[float, float]:
-    v0 = float(quantity(values))
-    free = np.flatnonzero(np.diag(cov) > 0)
-    if free.size == 0:
-        return v0, 0.0
-    grad = np.zeros(values.size)
-    for i in free:
-        h = 1e-6 * max(abs(values[i]), math.sqrt(cov[i, i]) * 1e-2, 1e-12)
-        up = values.copy()
-        dn = values.copy()
-        up[i] += h
-        dn[i] -= h
-        grad[i] = (float(quantity(up)) - float(quantity(dn))) / (2 * h)
-    var = float(grad @ cov @ grad)
-    return v0, math.sqrt(max(var, 0.0))
-
-
-def _fit(law, func, names, bounds, x, y, sigma, fixed, starts, citations, *, tol: float = 1e-14,
-         maxfev: int = 20000) -> dict:
-    """Multi-start curve_fit of ``func(x, *params)`` with some parameters fixed; the pieces of a FitResult."""
-    from scipy.optimize import OptimizeWarning, curve_fit
-
-    fixed = dict(fixed or {})
-    unknown = sorted(set(fixed) - set(names))
-    if unknown:
-        raise InputError(f"fixed: unknown parameter(s) {unknown} of {law} (has {list(names)})")
-    for k, v in fixed.items():
-        fixed[k] = number(v, f"fixed[{k!r}]")
-    free = [n for n in names if n not in fixed]
-    if not free:
-        raise InputError(f"fixed: every parameter of {law} is fixed; nothing to fit")
-    if x.size <= len(free):
-        raise InputError(f"x, mu: {x.size} points cannot determine {len(free)} free parameters of {law}")
-    idx = [names.index(n) for n in free]
-    lo = np.array([bounds[n][0] for n in free], dtype=float)
-    hi = np.array([bounds[n][1] for n in free], dtype=float)
-
-    def full(p):
-        v = np.array([fixed.get(n, np.nan) for n in names], dtype=float)
-        v[idx] = p
-        return v
-
-    def f(xx, *p):
-        return func(xx, *full(np.asarray(p)))
-
-    best = None
-    notes = []
-    for start in starts:
-        p0 = np.array([start.get(n, 1.0) for n in free], dtype=float)
-        p0 = np.clip(p0, lo + 1e-9 * (np.abs(lo) + 1), hi - 1e-9 * (np.abs(hi) + 1))
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", OptimizeWarning)
-            try:
-                p, cov = curve_fit(f, x, y, p0=p0, sigma=sigma, absolute_sigma=sigma is not None,
-                                   bounds=(lo, hi), maxfev=maxfev, method="trf", x_scale="jac",
-                                   ftol=tol, xtol=tol, gtol=tol)
-            except (RuntimeError, ValueError):
-                continue
-        r = y - f(x, *p)
-        w = r if sigma is None else r / sigma
-        cost = float(w @ w)
-        if best is None or cost < best[0] * (1 - 1e-12):
-            best = (cost, p, cov)
-    if best is None:
-        raise InputError(f"x, mu: the {law} fit did not converge from any starting point")
-    cost, p, cov = best
-    values = full(p)
-    n_all = len(names)
-    C = np.zeros((n_all, n_all))
-    if not np.all(np.isfinite(cov)):
-        msg = f"{law}: the parameter covariance could not be estimated (parameters not all determined by the data)"
-        notes.append(msg)
-        warnings.warn(msg, RuntimeWarning, stacklevel=3)
-        cov = np.where(np.isfinite(cov), cov, np.inf)
-    C[np.ix_(idx, idx)] = cov
-    stderr = np.sqrt(np.clip(np.diag(C), 0.0, None))
-    at_bound = [free[i] for i in range(len(free)) if np.isclose(p[i], lo[i]) or np.isclose(p[i], hi[i])]
-    if at_bound:
-        msg = f"{law}: parameter(s) {at_bound} at their bound; the uncertainties there are not meaningful"
-        notes.append(msg)
-    resid = y - func(x, *values)
-    return dict(law=law, names=tuple(names), values=values, stderr=stderr, covariance=C,
-                fixed=tuple(n for n in names if n in fixed), x=x, y=y, sigma=sigma,
-                rms=float(np.sqrt(np.mean(resid**2))), dof=int(x.size - len(free)), notes=tuple(notes),
-                citations=tuple(citations), func=func)
-
-
 # =========================================================================================================
 # Magic Formula fits
 # =========================================================================================================
 _MF_BOUNDS = {"B": (1e-3, 1e4), "C": (1e-3, 3.0), "D": (1e-6, 10.0), "E": (-20.0, 1.0)}
+
+
 _MFS_BOUNDS = {"a": (1e-6, 10.0), "b": (1e-3, 3.0), "c": (1e-3, 1e4), "d": (-5.0, 5.0)}
 
 
@@ -714,185 +513,3 @@ def fit_magic_formula(slip, mu, *, form: str = "BCDE", sigma=None, fixed: dict |
     lk, lk_std = _propagate(lambda v: func(1.0, *v), vals, cov)
     return MagicFormulaFit(**parts, peak_mu=peak_mu, peak_mu_std=peak_std, slip_at_peak=sp, slip_at_peak_std=sp_std,
                            locked_mu=float(lk), locked_mu_std=lk_std)
-
-
-# =========================================================================================================
-# Peak of a tabulated curve
-# =========================================================================================================
-def peak(slip, mu, axis: int = -1):
-    """Peak mu and the slip at the peak of tabulated curve(s) mu(slip), along ``axis``.
-
-    The discrete maximum is refined by the parabola through it and its two neighbours (in the slip variable);
-    a maximum at either end of the range is returned as it is. ``slip`` is broadcast against ``mu``.
-
-    Returns
-    -------
-    (peak_mu, slip_at_peak) : floats for one curve, arrays for several.
-    """
-    m = np.asarray(mu, dtype=float)
-    try:
-        s = np.broadcast_to(np.asarray(slip, dtype=float), m.shape)
-    except ValueError:
-        raise InputError(f"slip, mu: shapes {np.shape(slip)} and {m.shape} do not broadcast") from None
-    if m.ndim == 0 or m.shape[axis] < 3:
-        raise InputError("mu: expected at least three points along the slip axis")
-    if not (np.all(np.isfinite(m)) and np.all(np.isfinite(s))):
-        raise InputError("slip, mu: NaN or infinite values")
-    m = np.moveaxis(m, axis, -1)
-    s = np.moveaxis(s, axis, -1)
-    n = m.shape[-1]
-    j = np.argmax(m, axis=-1)
-    jm = np.clip(j, 1, n - 2)
-    take = lambda a, d: np.take_along_axis(a, (jm + d)[..., None], -1)[..., 0]  # noqa: E731
-    x = np.stack([take(s, d) for d in (-1, 0, 1)])
-    y = np.stack([take(m, d) for d in (-1, 0, 1)])
-    from .slip import _parabola_vertex
-
-    xv, yv, ok = _parabola_vertex(x, y)
-    ok &= (j >= 1) & (j <= n - 2)
-    pm = np.where(ok, yv, np.take_along_axis(m, j[..., None], -1)[..., 0])
-    ps = np.where(ok, xv, np.take_along_axis(s, j[..., None], -1)[..., 0])
-    if pm.ndim == 0:
-        return float(pm), float(ps)
-    return pm, ps
-
-
-# =========================================================================================================
-# Friction-speed laws
-# =========================================================================================================
-@doi(PIARC_1995)
-def piarc(speed, mu0, Sp):
-    r"""PIARC exponential friction-speed law :math:`\mu_0 e^{-V/S_p}` (V and the speed constant Sp in m/s)."""
-    return mu0 * np.exp(-np.asarray(speed, dtype=float) / Sp)
-
-
-@doi(PIARC_1995)
-def piarc_ifi(S_km_h, F60, Sp_km_h):
-    r"""PIARC / IFI form :math:`F(S) = F_{60}\,e^{(60 - S)/S_p}`, slip speed S and Sp in km/h.
-
-    F60 is the friction at 60 km/h.
-
-    Equal to :func:`piarc` with :math:`\mu_0 = F_{60} e^{60/S_p}` after converting the speeds to m/s.
-    """
-    return F60 * np.exp((60.0 - np.asarray(S_km_h, dtype=float)) / Sp_km_h)
-
-
-@doi(DO_2004, PIARC_1995)
-def do_marsac_mosset(speed, mu0, Vs, alpha, beta=0.0):
-    r"""Do-Marsac-Mosset modified exponential :math:`\mu_0 e^{-(V/V_s)^\alpha} + \beta V` (V, Vs in m/s; beta in s/m).
-
-    The stretched exponential is the law of Do, Marsac & Mosset (2004), a generalisation of the PIARC model
-    (alpha = 1); the linear term :math:`\beta V` is the extension specified in issue 6 (the "modified
-    exponential"). With alpha = 1 and beta = 0 it is exactly :func:`piarc` with Sp = Vs.
-    """
-    V = np.asarray(speed, dtype=float)
-    return mu0 * np.exp(-((V / Vs) ** alpha)) + beta * V
-
-
-@doi(RADO_1994)
-def rado(speed, mu_peak, Vc, C, mu_locked=0.0):
-    r"""Rado's log-normal model :math:`\mu_L + (\mu_{peak} - \mu_L)\exp\{-[\ln(V/V_c)/C]^2\}`.
-
-    ``Vc`` the (critical) speed of the peak, m/s; ``C`` the shape (width) factor; ``mu_locked`` (:math:`\mu_L`)
-    the level far from the peak (0 in Rado's three-parameter form).
-    """
-    V = np.asarray(speed, dtype=float)
-    return mu_locked + (mu_peak - mu_locked) * np.exp(-((np.log(V / Vc) / C) ** 2))
-
-
-#: name -> (function, parameter names, bounds)
-SPEED_LAWS = {
-    "piarc": (piarc, ("mu0", "Sp"), {"mu0": (1e-6, 10.0), "Sp": (1e-6, 1e6)}),
-    "do_marsac_mosset": (do_marsac_mosset, ("mu0", "Vs", "alpha", "beta"),
-                         {"mu0": (1e-6, 10.0), "Vs": (1e-6, 1e6), "alpha": (0.05, 10.0), "beta": (-10.0, 10.0)}),
-    "rado": (rado, ("mu_peak", "Vc", "C", "mu_locked"),
-             {"mu_peak": (1e-6, 10.0), "Vc": (1e-9, 1e6), "C": (1e-3, 100.0), "mu_locked": (0.0, 10.0)}),
-}
-
-
-def fit_speed_law(law: str, speed, mu, *, sigma=None, fixed: dict | None = None, p0: dict | None = None) -> FitResult:
-    """Fit a friction-speed law (``"piarc"``, ``"do_marsac_mosset"``, ``"rado"``) to mu(V).
-
-    Parameters
-    ----------
-    law : str
-        A key of :data:`SPEED_LAWS`.
-    speed, mu : array_like
-        Speeds (> 0, m/s) and friction coefficients.
-    sigma : array_like, optional
-        Standard uncertainties of ``mu`` (absolute).
-    fixed : dict, optional
-        Parameters held fixed (e.g. ``{"alpha": 1.0, "beta": 0.0}``).
-    p0 : dict, optional
-        An extra starting point.
-    """
-    if law not in SPEED_LAWS:
-        raise InputError(f"law: expected one of {sorted(SPEED_LAWS)}, got {law!r}")
-    x, y, sig = _xy(speed, mu, sigma, "speed")
-    if np.any(x <= 0):
-        raise InputError("speed: expected speeds > 0 m/s")
-    func, names, bounds = SPEED_LAWS[law]
-    starts = _speed_starts(law, x, y)
-    if p0:
-        starts.insert(0, {**starts[0], **{k: number(v, f"p0[{k!r}]") for k, v in p0.items()}})
-    parts = _fit(law, func, names, bounds, x, y, sig, fixed, starts, getattr(func, "__citations__", ()))
-    return FitResult(**parts)
-
-
-def _speed_starts(law, x, y):
-    pos = y > 0
-    if np.sum(pos) >= 2 and np.ptp(x[pos]) > 0:
-        slope, icpt = np.polyfit(x[pos], np.log(y[pos]), 1)
-        Sp0 = -1.0 / slope if slope < 0 else 10.0 * float(np.max(x))
-        mu00 = float(np.exp(icpt))
-    else:
-        Sp0, mu00 = float(np.max(x)), float(np.max(y))
-    if law == "piarc":
-        return [dict(mu0=mu00, Sp=Sp0), dict(mu0=float(np.max(y)), Sp=float(np.median(x)))]
-    if law == "do_marsac_mosset":
-        return [dict(mu0=mu00, Vs=Sp0, alpha=1.0, beta=0.0), dict(mu0=mu00, Vs=Sp0, alpha=0.5, beta=0.0),
-                dict(mu0=mu00, Vs=Sp0, alpha=2.0, beta=0.0), dict(mu0=float(np.max(y)), Vs=float(np.median(x)),
-                                                               alpha=1.5, beta=0.0)]
-    j = int(np.argmax(y))
-    lx = np.log(x)
-    w = max(float(np.ptp(lx)) / 3.0, 0.3)
-    return [dict(mu_peak=float(y[j]), Vc=float(x[j]), C=w, mu_locked=float(np.min(y)) * 0.5),
-            dict(mu_peak=float(y[j]), Vc=float(x[j]), C=2 * w, mu_locked=0.0),
-            dict(mu_peak=float(y[j]), Vc=float(np.exp(np.mean(lx))), C=w, mu_locked=0.0)]
-
-
-@doi(PIARC_1995)
-def fit_piarc(speed, mu, *, sigma=None) -> FitResult:
-    """Fit the PIARC exponential mu0 exp(-V/Sp) (see :func:`fit_speed_law`)."""
-    return fit_speed_law("piarc", speed, mu, sigma=sigma)
-
-
-@doi(DO_2004)
-def fit_do_marsac_mosset(speed, mu, *, sigma=None, fixed: dict | None = None) -> FitResult:
-    """Fit the Do-Marsac-Mosset law mu0 exp(-(V/Vs)^alpha) + beta V (``fixed`` e.g. ``{"beta": 0.0}``)."""
-    return fit_speed_law("do_marsac_mosset", speed, mu, sigma=sigma, fixed=fixed)
-
-
-@doi(RADO_1994)
-def fit_rado(speed, mu, *, sigma=None, fit_mu_locked: bool = False) -> FitResult:
-    """Fit Rado's log-normal law (``mu_locked`` held at 0 unless ``fit_mu_locked``)."""
-    return fit_speed_law("rado", speed, mu, sigma=sigma, fixed=None if fit_mu_locked else {"mu_locked": 0.0})
-
-
-# =========================================================================================================
-# helpers
-# =========================================================================================================
-def _xy(x, y, sigma, xname: str):
-    x = finite_array(x, xname).ravel()
-    y = finite_array(y, "mu").ravel()
-    if x.size != y.size:
-        raise InputError(f"{xname}, mu: expected equal lengths, got {x.size} and {y.size}")
-    sig = None
-    if sigma is not None:
-        sig = np.broadcast_to(finite_array(sigma, "sigma").ravel(), y.shape).astype(float) if np.size(sigma) in (1, y.size) \
-            else None
-        if sig is None:
-            raise InputError(f"sigma: expected one value or {y.size} values")
-        if np.any(sig <= 0):
-            raise InputError("sigma: expected standard uncertainties > 0")
-    return x, y, sig

@@ -58,7 +58,7 @@ def build_parser(only: str | None = None) -> argparse.ArgumentParser:
     only : str, optional
         Build the sub-command of this name alone when it exists (faster start-up); otherwise all of them.
     """
-    from . import __version__
+    from .. import __version__
 
     parser = argparse.ArgumentParser(
         prog="persson",
@@ -85,7 +85,7 @@ def available_commands(only: str | None = None) -> dict:
     found: dict = {}
     for name in COMMANDS:
         try:
-            found[name] = importlib.import_module(f".commands.{name}", __package__)
+            found[name] = importlib.import_module(f".{name}", __package__)
         except ModuleNotFoundError as exc:
             if exc.name and exc.name.endswith(f"commands.{name}"):
                 continue  # command not available in this build
@@ -104,7 +104,7 @@ def available_commands(only: str | None = None) -> dict:
 def _one_command(name: str):
     """The module of command ``name``, or None when no engine command or entry point has that name."""
     if name in COMMANDS:
-        return importlib.import_module(f".commands.{name}", __package__)
+        return importlib.import_module(f".{name}", __package__)
     for ep in _entry_points():
         if ep.name == name:
             try:

@@ -92,7 +92,7 @@ def cached(kind: str, files, options: dict, build: Callable, *, notes: list | No
             pass
     obj = build()
     try:
-        from .io import atomic_write
+        from ..io import atomic_write
 
         with atomic_write(entry, "wb") as fh:
             pickle.dump(obj, fh, protocol=pickle.HIGHEST_PROTOCOL)

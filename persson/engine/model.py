@@ -25,13 +25,14 @@ import numpy as np
 
 from frictioncite import citations_of, doi
 
-from . import corrections, separation, solver
-from ._checks import number, plausible_pressure, plausible_temperature
-from .effects.base import Conditions, Effect, SolverState
-from .errors import AccuracyWarning, ConvergenceWarning, InputError, PhysicsWarning
+from ..contact import corrections, separation
+from . import solver
+from .._checks import number, plausible_pressure, plausible_temperature
+from .conditions import Conditions, SolverState
+from ..effects.base import Effect
+from ..errors import AccuracyWarning, ConvergenceWarning, InputError, PhysicsWarning
 from .grid import GridSettings
 from .results import FrictionResult
-from .tabulate import modulus_table, relative_shifts, shift_table
 
 __all__ = ["Model"]
 
@@ -60,7 +61,7 @@ class Model:
         Numerical resolution; the defaults keep the quadrature error below 1e-3 of mu from soft to glassy rubber,
         and every result carries its own estimate (``error_estimate``).
     correction : {None, "yang-persson", "xu2024"}
-        Area correction of :mod:`persson.corrections` (None, the default: Persson's P = erf(1/(2 sqrt G))).
+        Area correction of :mod:`persson.contact.corrections` (None, the default: Persson's P = erf(1/(2 sqrt G))).
         A correction raises the small-load contact area towards exact numerical contact mechanics and, through
         P in the friction integral, the hysteresis friction (by about 40 % on the example road): see
         ``docs/contact.md``.
@@ -109,7 +110,7 @@ class Model:
             raise InputError("effects: at most one effect may set the temperature at each scale")
         if not isinstance(self.grid, GridSettings):
             raise InputError(f"grid: expected persson.GridSettings, got {self.grid!r}")
-        from .corrections import check_correction
+        from ..contact.corrections import check_correction
 
         object.__setattr__(self, "correction", check_correction(self.correction, gamma)[0])
         object.__setattr__(self, "nu", nu)

@@ -1,6 +1,6 @@
 """Numerical grid of the solver: wavevector nodes, the modulus table and the error tolerance.
 
-The method (see :mod:`persson._kernels`) integrates the contact weight S(P) P dG exactly and the angular integrals
+The method (see :mod:`persson.engine.kernels`) integrates the contact weight S(P) P dG exactly and the angular integrals
 exactly on the modulus table, so the defaults are accurate from soft to glassy rubber: the worst relative error of
 mu over the regime grid of ``benchmarks/accuracy.py`` (speeds 1e-8..30 m/s, -20..80 C, 0.02..2 MPa, |E|/sigma0
 from 10 to 1e5, sandpaper to road surfaces) is documented in the README. Every result carries its own estimate
@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .errors import InputError
+from ..errors import InputError
 
 __all__ = ["GridSettings"]
 
@@ -29,7 +29,7 @@ class GridSettings:
         Wavevector nodes per decade of q (log-uniform; third-order rules in ln q). Default 24.
     n_phi : int
         Not used: the angular integrals are computed exactly for the tabulated modulus (a convolution in log
-        frequency, see :func:`persson.tabulate.angular_table`). Kept so that existing scripts keep working.
+        frequency, see :func:`persson.engine.tabulate.angular_table`). Kept so that existing scripts keep working.
     omega_per_decade : int
         Nodes per decade of the tabulated modulus and of its angular integrals (cubic interpolation in log
         omega). Default 40.

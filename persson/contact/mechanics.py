@@ -4,7 +4,7 @@ r"""Contact mechanics of Persson's theory on its own: area, separation, elastic 
 any elastic solid) at one or many nominal pressures:
 
 * the area of real contact :math:`A/A_0 = P(q_1)` and its scale dependence P(q) (Persson, J. Chem. Phys. 115,
-  3840 (2001)), optionally corrected (:mod:`persson.corrections`);
+  3840 (2001)), optionally corrected (:mod:`persson.contact.corrections`);
 * the mean interfacial separation :math:`\bar u` (Persson, Phys. Rev. Lett. 99, 125502 (2007); Yang &
   Persson, J. Phys.: Condens. Matter 20, 215214 (2008));
 * the elastic energy stored per unit nominal area (Yang & Persson 2008)
@@ -15,8 +15,8 @@ any elastic solid) at one or many nominal pressures:
   which tends to :math:`E^* m_2/4` (:math:`m_2 = 2\pi\int q^2 C dq`) at full contact, and is tied to the
   separation by :math:`\bar u(\sigma_0) = \int_{\sigma_0}^\infty dp\, p^{-1}\, d(U_{el}/A_0)/dp` (Persson 2007);
 * the penetration depth of the asperities into the rubber, by the definitions of
-  :func:`persson.separation.penetration_depth`;
-* the thickness of the deformed layer (:func:`persson.separation.excited_layer_thickness`).
+  :func:`persson.contact.separation.penetration_depth`;
+* the thickness of the deformed layer (:func:`persson.contact.separation.excited_layer_thickness`).
 
 Two ways in. **Elastic**: give the effective modulus :math:`E^* = E/(1-\nu^2)` as a number; everything is then
 computed here, with :math:`G(q) = (\pi/4)(E^*/\sigma_0)^2\int_{q_0}^q q'^3 C dq'` integrated exactly for a PSD
@@ -37,8 +37,8 @@ import numpy as np
 from frictioncite import citations_of, doi
 
 from . import corrections, separation
-from ._checks import finite_array, number
-from .errors import InputError
+from .._checks import finite_array, number
+from ..errors import InputError
 
 __all__ = ["contact", "ContactResult"]
 
@@ -68,7 +68,7 @@ def contact(surface, material_or_Estar, pressure, *, speed=None, temperature: fl
     nu : float
         Poisson ratio of the material (viscoelastic path), 0 <= nu <= 0.5.
     correction : {None, "yang-persson", "xu2024"}
-        Area correction (:mod:`persson.corrections`); None (default) is uncorrected Persson theory.
+        Area correction (:mod:`persson.contact.corrections`); None (default) is uncorrected Persson theory.
     penetration : {"persson", "kluppel"}
         Definition reported as ``penetration_depth`` (both are in ``penetration_depths``).
     n_sigma : float
@@ -264,7 +264,7 @@ def _elastic(surface, Es: float, p: np.ndarray, gamma: float, correction, q_per_
 
 
 def _viscoelastic(surface, material, p, v, T, nu, gamma, correction, grid) -> dict:
-    from .model import Model
+    from ..engine.model import Model
 
     kwargs = {} if grid is None else {"grid": grid}
     model = Model(surface, material, nu=nu, gamma=gamma, **kwargs)

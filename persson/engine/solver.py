@@ -2,7 +2,7 @@ r"""The numerical core behind :meth:`persson.Model.friction`: grids, tables and 
 
 :func:`solve` turns (surface, material, conditions) into G(q), P(q), d mu/d ln q, the cumulative hysteresis
 friction, the temperature at each scale and a quadrature-error estimate per speed. The method
-(:mod:`persson._kernels`): angular integrals tabulated once per call on the modulus table (exact product
+(:mod:`persson.engine.kernels`): angular integrals tabulated once per call on the modulus table (exact product
 integration in log frequency), the contact weight S(P) P dG integrated exactly in G, and an embedded coarse-grid
 estimate of the q-quadrature error.
 """
@@ -18,9 +18,9 @@ from dataclasses import dataclass, replace
 import numpy as np
 from scipy.special import erfcx
 
-from . import _kernels
-from .effects.base import Conditions
-from .errors import ConvergenceWarning, InputError
+from . import kernels as _kernels
+from .conditions import Conditions
+from ..errors import ConvergenceWarning, InputError
 from .grid import GridSettings
 from .tabulate import angular_table, relative_shifts, shift_table
 
@@ -145,7 +145,7 @@ def solve(surface, material, cond: Conditions, grid: GridSettings, nu: float, ga
 
     Speeds at different temperatures share one modulus table through time-temperature superposition
     (``material.log10_aT``); a material without it is evaluated at each distinct temperature separately.
-    ``correction`` names an area correction of :mod:`persson.corrections` (None: Persson's erf law);
+    ``correction`` names an area correction of :mod:`persson.contact.corrections` (None: Persson's erf law);
     ``modulus`` is an effect whose ``modulus_factors`` give per-scale factors on E' and E'' (strain softening at
     the local strain of each scale), or None.
     """
@@ -413,7 +413,7 @@ def run_plain(prep: Prepared) -> Solved:
 
 def run_flash(prep: Prepared, *, q_m: float, a_t0: np.ndarray, diffusivity: float,
               heat_factor: np.ndarray, tol: float, max_iter: int) -> Solved:
-    """The self-consistent flash temperature (:func:`persson._kernels._flash_speed`) for every speed.
+    """The self-consistent flash temperature (:func:`persson.engine.kernels._flash_speed`) for every speed.
 
     Parameters
     ----------
@@ -563,11 +563,11 @@ def _flash(prep, q_m, a_t0, D, heat_factor, tol, max_iter, T_start=None):
 
 
 def contact_law(gamma: float, correction: str | None = None) -> tuple:
-    """The contact law the kernels take (:func:`persson._kernels.area`): gamma and, for an area correction of
-    :mod:`persson.corrections`, its table of ln P_c on a uniform grid of ln G."""
+    """The contact law the kernels take (:func:`persson.engine.kernels.area`): gamma and, for an area correction of
+    :mod:`persson.contact.corrections`, its table of ln P_c on a uniform grid of ln G."""
     if correction is None or float(gamma) == 1.0:
         return (float(gamma), np.empty(0), 0.0, 1.0)
-    from .corrections import _table, check_correction
+    from ..contact.corrections import _table, check_correction
 
     correction, gamma = check_correction(correction, gamma)
     tab = _table(correction, gamma)
@@ -607,11 +607,11 @@ def _quadrature_rule(surface, x: np.ndarray, n_gauss: int = 6) -> tuple:
     (i, i+1, i+2; i-1, i, i+1 for the last interval):
 
     * ``W[i, m]`` = :math:`\int_{x_i}^{x_{i+1}} \ell_m c\, dx`, the weights of G (see
-      :func:`persson._kernels.cumulative_weighted`);
+      :func:`persson.engine.kernels.cumulative_weighted`);
     * the intervals are cut at the PSD's breakpoints into pieces (``piece_start[i]`` .. ``piece_start[i+1]`` - 1 are
       interval i's); for each piece p and its start, middle and end point k, ``Wp[p, k, m]`` =
       :math:`\int_{x_i}^{x_k} \ell_m c\, dx` (G there) and ``Lb[p, k, m]`` = :math:`\ell_m(x_k)`, used by
-      :func:`persson._kernels.interval_node_weights`.
+      :func:`persson.engine.kernels.interval_node_weights`.
 
     So G is exact for any PSD to the interpolation of the smooth angular factor, and the friction integrand is
     never interpolated across a kink of the PSD.

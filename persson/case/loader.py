@@ -1,6 +1,6 @@
 """Case files (``case.toml``): one study bound together.
 
-Every section and key is declared in :mod:`persson.case_schema` and documented in ``docs/conventions.md``
+Every section and key is declared in :mod:`persson.case.schema` and documented in ``docs/conventions.md``
 ("The case file"); an unknown key is an error ("did you mean ..."), and every value is type-checked with its key
 named. :func:`parse_case` reads and checks the file without building anything (fast: the command line uses it to
 check its outputs before computing); :func:`read_case` builds the :class:`~persson.Model` (surface, material,
@@ -8,7 +8,7 @@ Poisson ratio, gamma, baseline effects) and the operating conditions; :func:`val
 measurements. Paths in the file are relative to the file's folder.
 
 A master curve built from DMA isotherms is cached by the content of its input files and options (see
-:mod:`persson.case_cache`), so a second run on the same case does not refit it.
+:mod:`persson.case.cache`), so a second run on the same case does not refit it.
 """
 
 from __future__ import annotations
@@ -21,10 +21,10 @@ from typing import Any, Callable
 
 import numpy as np
 
-from ._checks import plausible_pressure, plausible_temperature
-from .case_schema import check_case, suggest
-from .errors import InputError
-from .model import Model
+from .._checks import plausible_pressure, plausible_temperature
+from .schema import check_case, suggest
+from ..errors import InputError
+from ..engine.model import Model
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -123,7 +123,7 @@ class CaseSpec:
         """The :class:`persson.slip.Contact` of the ``[contact]`` table (InputError when absent)."""
         if not self.contact:
             raise InputError(f"{self.path}: no [contact] table (needed for slip < 1)")
-        from .slip import Contact
+        from ..slip.contact import Contact
 
         c = self.contact
         missing = [k for k in ("length_m", "width_m", "stiffness_Pa_per_m") if k not in c]
@@ -169,7 +169,7 @@ def read_case(path, *, progress: Callable | None = None) -> CaseSpec:
     effects = _effects(model_tab, path)
     kwargs: dict[str, Any] = {}
     if "grid" in model_tab:
-        from .grid import GridSettings
+        from ..engine.grid import GridSettings
 
         with _key(path, "model", "grid"):
             kwargs["grid"] = GridSettings(**model_tab["grid"])
@@ -345,7 +345,7 @@ def _master_curve_table(tab: dict, base: Path, path: Path):
 def _master_curve_from_dma(tab: dict, base: Path, path: Path, progress, notes: list):
     import materials
 
-    from .case_cache import cached
+    from .cache import cached
 
     source = _dma_source(tab["dma"], base, path)
     files = _expand_dma(source)
@@ -462,7 +462,7 @@ def _with_thermal(material, thermal):
 
 
 def _effects(model_tab: dict, path: Path) -> tuple:
-    from . import effects as fx
+    from .. import effects as fx
 
     out = []
     for n in model_tab.get("effects", []):

@@ -1,0 +1,17 @@
+"""The multiscale engine: :class:`Model` and its solver.
+
+Bottom-up: :mod:`~persson.engine.conditions` (operating conditions, the solved state handed to effects),
+:mod:`~persson.engine.grid` (quadrature settings), :mod:`~persson.engine.kernels` (numba kernels: angular
+integrals, contact area, flash temperature), :mod:`~persson.engine.tabulate` (modulus and shift tables on a
+log-frequency grid), :mod:`~persson.engine.solver` (the q quadrature with its error estimate, adaptive refinement
+and the flash-temperature fixed point), :mod:`~persson.engine.results` (:class:`FrictionResult`),
+:mod:`~persson.engine.model` (:class:`Model`, the public entry point) and :mod:`~persson.engine.reference` (a slow,
+independent quadrature the tests compare with).
+"""
+
+from .conditions import Conditions, SolverState
+from .grid import GridSettings
+from .model import Model
+from .results import FrictionResult
+
+__all__ = ["Model", "FrictionResult", "GridSettings", "Conditions", "SolverState"]

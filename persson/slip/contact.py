@@ -1,0 +1,255 @@
+"""The contact patch of a slipping wheel: length, width, pressure distribution and tread stiffness (:class:`Contact`)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from frictioncite import doi
+
+from .._checks import number, positive
+from ..errors import InputError
+from .references import PACEJKA_BOOK, SAKAI_1981
+
+__all__ = ["Contact", "CONTACT_PARAMETERS"]
+
+
+# =========================================================================================================
+# Contact
+# =========================================================================================================
+@doi(PACEJKA_BOOK)
+@dataclass(frozen=True)
+class Contact:
+    r"""Contact patch of the brush model.
+
+    Parameters
+    ----------
+    length : float
+        Contact length :math:`l` in the rolling direction, m (> 0).
+    width : float
+        Contact width :math:`w`, m (> 0). The friction coefficient does not depend on it; forces do
+        (load :math:`\sigma_0 l w`).
+    stiffness : float
+        Shear stiffness of the tread per unit contact area per unit displacement, :math:`k`, Pa/m (> 0).
+        For a rubber layer of shear modulus G and thickness h, :math:`k \approx G/h` (tread + carcass
+        compliance in series lower it). The initial slope of mu(s) is :math:`k l/(2\sigma_0)`.
+    pressure_distribution : str, dict or callable
+        ``"parabolic"`` (default): :math:`p = 6\sigma_0 (x/l)(1-x/l)`;
+        ``"uniform"``: :math:`p = \sigma_0`;
+        ``{"sakai_n": n}`` (n > 0): Sakai's n-power law
+        :math:`p(x) = \sigma_0 \frac{n+1}{n}\left[1 - \left|2x/l - 1\right|^n\right]`, normalised to the mean
+        :math:`\sigma_0` (the mean of :math:`1-|\xi|^n` on [-1, 1] is n/(n+1)). n = 2 is the parabolic law,
+        larger n flatter, towards the uniform law as n -> infinity. Source: H. Sakai, Int. J. Vehicle Design
+        2 (1981) ("Sakai's n-power form"; the absolute value makes odd and
+        non-integer n symmetric; for even n it is Sakai's polynomial);
+        a callable ``f(xi)``: the shape :math:`p/\sigma_0` as a function of :math:`\xi = x/l \in [0, 1]`
+        (vectorised, finite, >= 0); it must integrate to the load, i.e. :math:`\int_0^1 f\,d\xi = 1`
+        within 0.1 %.
+    n_points : int
+        Nodes along the patch (>= 11, default 401; error of mu about 1e-5 for the parabolic law).
+
+    Raises
+    ------
+    InputError
+        Naming the argument: non-positive or non-finite sizes or stiffness, an unknown distribution, a negative
+        pressure, or a pressure that does not integrate to the load.
+    """
+
+    length: float
+    width: float
+    stiffness: float
+    pressure_distribution: object = "parabolic"
+    n_points: int = 401
+    _kind: str = field(init=False, repr=False, compare=False, default="")
+    _sakai_n: float = field(init=False, repr=False, compare=False, default=float("nan"))
+    _xi: np.ndarray = field(init=False, repr=False, compare=False, default=None)
+    _g: np.ndarray = field(init=False, repr=False, compare=False, default=None)
+    _G: np.ndarray = field(init=False, repr=False, compare=False, default=None)
+    _shape: object = field(init=False, repr=False, compare=False, default=None)
+
+    def __post_init__(self):
+        for name in ("length", "width", "stiffness"):
+            v = number(getattr(self, name), f"contact.{name}")
+            if v <= 0:
+                raise InputError(f"contact.{name}: expected a value > 0, got {v:g}")
+            object.__setattr__(self, name, v)
+        n = self.n_points
+        if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 11:
+            raise InputError(f"contact.n_points: expected an integer >= 11, got {n!r}")
+        object.__setattr__(self, "n_points", int(n))
+        kind, sakai_n, shape = _parse_distribution(self.pressure_distribution)
+        object.__setattr__(self, "_kind", kind)
+        object.__setattr__(self, "_sakai_n", sakai_n)
+        xi = np.linspace(0.0, 1.0, self.n_points)
+        g = np.asarray(shape(xi), dtype=float)
+        if g.shape != xi.shape or not np.all(np.isfinite(g)) or np.any(g < 0):
+            raise InputError("contact.pressure_distribution: the pressure must be finite and >= 0 on 0 <= x <= l")
+        h = np.diff(xi)
+        G = np.concatenate(([0.0], np.cumsum(0.5 * h * (g[1:] + g[:-1]))))
+        if not G[-1] > 0:
+            raise InputError("contact.pressure_distribution: the pressure is zero everywhere on the patch")
+        # normalise the discrete load to exactly sigma0 l (the continuous one was checked to 0.1 %)
+        object.__setattr__(self, "_xi", xi)
+        object.__setattr__(self, "_g", g / G[-1])
+        object.__setattr__(self, "_G", G / G[-1])
+        object.__setattr__(self, "_shape", shape)
+
+    def __hash__(self):
+        return hash((self.length, self.width, self.stiffness, repr(self.pressure_distribution), self.n_points))
+
+    # ------------------------------------------------------------------------------------------------------
+    @property
+    def kind(self) -> str:
+        """``"uniform"``, ``"parabolic"``, ``"sakai"`` or ``"custom"``."""
+        return self._kind
+
+    @property
+    def sakai_n(self) -> float | None:
+        """Exponent n of Sakai's law (2 for ``"parabolic"``, None for uniform and custom)."""
+        if self._kind == "parabolic":
+            return 2.0
+        return self._sakai_n if self._kind == "sakai" else None
+
+    @property
+    def citations(self) -> tuple[str, ...]:
+        """References of the brush model (and of Sakai's pressure law when used)."""
+        return (PACEJKA_BOOK, SAKAI_1981) if self._kind == "sakai" else (PACEJKA_BOOK,)
+
+    def shape(self, xi) -> np.ndarray:
+        r"""Pressure shape :math:`p/\sigma_0` at :math:`\xi = x/l` (zero outside [0, 1]); mean 1 on [0, 1]."""
+        xi = np.asarray(xi, dtype=float)
+        f = self._shape
+        inside = (xi >= 0) & (xi <= 1)
+        out = np.zeros_like(xi)
+        out[inside] = np.asarray(f(xi[inside]), dtype=float)
+        return out
+
+    def pressure(self, x, pressure: float) -> np.ndarray:
+        """Normal pressure p(x), Pa, at distance ``x`` (m) from the leading edge, for the mean ``pressure``."""
+        sigma0 = positive(pressure, "pressure")
+        return sigma0 * self.shape(np.asarray(x, dtype=float) / self.length)
+
+    def load(self, pressure: float) -> float:
+        """Normal load sigma0 l w, N."""
+        return positive(pressure, "pressure") * self.length * self.width
+
+    def initial_slope(self, pressure: float) -> float:
+        r"""Initial slope :math:`d\mu/ds|_{s\to 0} = k l / (2\sigma_0)` of the brush model."""
+        return self.stiffness * self.length / (2.0 * positive(pressure, "pressure"))
+
+    def full_sliding_slip(self, mu: float, pressure: float) -> float:
+        r"""Slip at which the stick zone vanishes for a **constant** local friction ``mu``.
+
+        For a pressure that vanishes at the leading edge, :math:`\theta_{sl} = \mu\, p'(0)/k`, i.e.
+        :math:`6\mu\sigma_0/(kl)` (parabolic) and :math:`2(n+1)\mu\sigma_0/(kl)` (Sakai), and
+        :math:`s_{sl} = \theta_{sl}/(1+\theta_{sl})`. With a pressure > 0 at the leading edge (uniform) some of the
+        patch sticks at every slip < 1, and 1.0 is returned. For a custom shape p'(0) is estimated from the
+        first node.
+        """
+        mu = number(mu, "mu")
+        sigma0 = positive(pressure, "pressure")
+        if mu < 0:
+            raise InputError(f"mu: expected a friction coefficient >= 0, got {mu:g}")
+        if self._kind == "uniform" or self._g[0] > 0:
+            return 1.0
+        if self._kind == "parabolic":
+            dg0 = 6.0
+        elif self._kind == "sakai":
+            dg0 = 2.0 * (self._sakai_n + 1.0)
+        else:
+            dg0 = self._g[1] / self._xi[1]
+        theta = mu * sigma0 * dg0 / (self.stiffness * self.length)
+        return theta / (1.0 + theta)
+
+    # ------------------------------------------------------------------------------------------------------
+    def parameter_values(self) -> dict[str, float]:
+        """The fittable contact parameters (:data:`CONTACT_PARAMETERS`) and their values; ``sakai_n`` only for a
+        parabolic (n = 2) or Sakai pressure."""
+        out = {"length": self.length, "stiffness": self.stiffness}
+        if self.sakai_n is not None:
+            out["sakai_n"] = float(self.sakai_n)
+        return out
+
+    def with_parameters(self, **values) -> "Contact":
+        """Copy with some parameters changed: ``length``, ``width``, ``stiffness``, ``n_points``,
+        ``pressure_distribution``, or ``sakai_n`` (sets the pressure to Sakai's law with that exponent; a parabolic
+        contact is Sakai's n = 2). Validated like the constructor (InputError naming the parameter)."""
+        import dataclasses
+
+        known = {"length", "width", "stiffness", "n_points", "pressure_distribution", "sakai_n"}
+        unknown = sorted(set(values) - known)
+        if unknown:
+            raise InputError(f"contact: unknown parameter(s) {unknown}; known: {sorted(known)}")
+        if "sakai_n" in values:
+            if "pressure_distribution" in values:
+                raise InputError("contact: give sakai_n or pressure_distribution, not both")
+            if self._kind not in ("parabolic", "sakai"):
+                raise InputError(f"contact.sakai_n: the contact's pressure is {self._kind!r}, not Sakai's n-power law")
+            values = dict(values)
+            values["pressure_distribution"] = {"sakai_n": number(values.pop("sakai_n"), "contact.sakai_n")}
+        return dataclasses.replace(self, **values)
+
+
+def _contact_parameters():
+    from ..effects.base import Parameter
+
+    return (
+        Parameter("length", 0.02, (1.0e-4, 1.0), "m", "contact length l in the rolling direction", log_scale=True,
+                  plausible=(1.0e-3, 0.3)),
+        Parameter("stiffness", 3.0e9, (1.0e5, 1.0e13), "Pa/m",
+                  "shear stiffness k of the tread per unit area per unit displacement", log_scale=True,
+                  plausible=(1.0e6, 1.0e11)),
+        Parameter("sakai_n", 2.0, (0.5, 50.0), "1", "exponent of Sakai's pressure law (2: parabolic)",
+                  log_scale=True, plausible=(1.0, 20.0)),
+    )
+
+
+#: The contact parameters a fit may vary (name, default, bounds, unit, meaning, log scale, plausible range: a
+#: tread's k ~ G/h with G ~ 0.5-5 MPa, h ~ 1-20 mm; patches from a small test wheel to a truck tire), as for
+#: effects: ``"contact.length"``, ``"contact.stiffness"``, ``"contact.sakai_n"`` in :func:`fit_slip`.
+CONTACT_PARAMETERS = _contact_parameters()
+
+
+def _parse_distribution(spec):
+    """(kind, sakai_n, shape function of xi) of a pressure-distribution specification."""
+    if isinstance(spec, str):
+        key = spec.strip().lower()
+        if key == "uniform":
+            return "uniform", float("nan"), lambda xi: np.ones_like(np.asarray(xi, dtype=float))
+        if key == "parabolic":
+            return "parabolic", float("nan"), lambda xi: 6.0 * np.asarray(xi) * (1.0 - np.asarray(xi))
+        raise InputError(f"contact.pressure_distribution: expected \"uniform\", \"parabolic\", "
+                         f"{{\"sakai_n\": n}} or a callable, got {spec!r}")
+    if isinstance(spec, dict):
+        if set(spec) != {"sakai_n"}:
+            raise InputError(f"contact.pressure_distribution: a mapping must be {{\"sakai_n\": n}}, got {spec!r}")
+        n = number(spec["sakai_n"], "contact.pressure_distribution.sakai_n")
+        if n <= 0:
+            raise InputError(f"contact.pressure_distribution.sakai_n: expected n > 0, got {n:g}")
+
+        def sakai(xi, n=n):
+            xi = np.asarray(xi, dtype=float)
+            return (n + 1.0) / n * (1.0 - np.abs(2.0 * xi - 1.0) ** n)
+
+        return "sakai", n, sakai
+    if callable(spec):
+        xi = np.linspace(0.0, 1.0, 2001)
+        try:
+            g = np.asarray(spec(xi), dtype=float)
+        except Exception as exc:  # noqa: BLE001  (a user function failing is bad input)
+            raise InputError(f"contact.pressure_distribution: the callable failed on x/l in [0, 1]: {exc}") from None
+        if g.shape != xi.shape or not np.all(np.isfinite(g)):
+            raise InputError("contact.pressure_distribution: the callable must return finite values of the "
+                             "shape of its argument x/l")
+        if np.any(g < 0):
+            raise InputError(f"contact.pressure_distribution: negative pressure at x/l = {xi[np.argmax(g < 0)]:.4g}")
+        from scipy.integrate import simpson
+
+        total = float(simpson(g, x=xi))
+        if not abs(total - 1.0) <= 1e-3:
+            raise InputError(f"contact.pressure_distribution: the pressure integrates to {total:.6g} times the load "
+                             "sigma0*l*w; expected 1 (the shape p/sigma0 on x/l in [0, 1] must have mean 1)")
+        return "custom", float("nan"), spec
+    raise InputError(f"contact.pressure_distribution: expected \"uniform\", \"parabolic\", {{\"sakai_n\": n}} or "
+                     f"a callable, got {spec!r}")

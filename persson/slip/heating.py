@@ -1,0 +1,394 @@
+r"""Patch heating: the background temperature of the rubber builds up along the contact patch of a slipping wheel.
+
+Physics
+-------
+In the contact patch of a braked wheel (brush model, :mod:`persson.slip`) the rubber slides on the counter-surface
+(the disk of a DRFT-style tester, or the road) behind the stick zone with the local shear stress
+:math:`\tau(x) = \mu\,p(x)` and the sliding speed :math:`v_s`. The frictional power per unit nominal area,
+:math:`q(x) = \tau(x) v_s`, heats both solids. Persson splits the temperature of the rubber into a background
+temperature that varies slowly in space and time and the flash temperature of the macro-asperity contacts on top
+of it (Persson & Miyashita, "Tire tread block dynamics", arXiv:2602.22078 (2026); the flash part is
+:class:`~persson.effects.FlashTemperature`). This effect supplies the background part along the patch.
+
+Model (one-dimensional heat conduction in both bodies, Jaeger's high-Peclet moving-source limit). In the frame of
+the patch, the counter-surface passes from the leading edge (:math:`x = 0`) to the trailing edge at the speed
+:math:`V` and the tread at the wheel's circumferential speed :math:`V_r = \omega r = (1 - s)V` (braking slip
+:math:`s`). Both enter at the background temperature :math:`T_0`. When :math:`V l / D \gg 1` heat flows only
+normal to the surface over the patch, so each surface element is a semi-infinite solid heated by a flux
+:math:`J_i(t)` for the time :math:`t = x / V_i` it has spent in the patch. The surface temperature of a
+semi-infinite solid under a time-dependent flux is Duhamel's integral (Carslaw & Jaeger, *Conduction of Heat in
+Solids*, 2nd ed. 1959, ch. II: the constant-flux solution :math:`2J\sqrt{t}/(e\sqrt\pi)` superposed in time)
+
+.. math:: \Delta T_i(t) = \frac{1}{e_i\sqrt\pi}\int_0^t \frac{J_i(t')\,dt'}{\sqrt{t - t'}}
+    = \frac{1}{e_i\sqrt{\pi V_i}}\int_0^x \frac{J_i(x')\,dx'}{\sqrt{x - x'}},
+    \qquad e_i = \sqrt{\lambda_i\rho_i c_i}
+
+(:math:`e_i` the thermal effusivity). With a common interface temperature (Blok's postulate, Blok 1937; Jaeger,
+J. Proc. R. Soc. N.S.W. 76, 203 (1942)) and :math:`J_r + J_c = \eta q`, the Abel operator being the same for both
+bodies, the flux splits in the constant ratio :math:`J_r : J_c = e_r\sqrt{V_r} : e_c\sqrt{V}` and
+
+.. math:: T(x) = T_0 + \frac{\eta}{\sqrt\pi\,(e_r\sqrt{V_r} + e_c\sqrt{V})}
+    \int_{x_c}^{x}\frac{\tau(x')\,v_s}{\sqrt{x - x'}}\,dx' ,
+    \qquad \tau(x) = \mu\big(v_s, p(x), T(x)\big)\,p(x)\quad (x > x_c),
+
+with :math:`x_c` the end of the stick zone (no sliding, no heat ahead of it). The local friction
+:math:`\mu(v_s, p, T)` is the engine's sliding friction at the local pressure and the local background temperature
+(with the flash temperature on top when the model has it). The equation is a Volterra equation of Abel type,
+solved by marching along the patch (see :func:`patch_friction`).
+
+Limits. :math:`\eta = 0`: no heating; the local friction still follows the local pressure :math:`p(x)`. Locked
+wheel (:math:`s = 1`, pure sliding): :math:`V_r = 0`, the stationary rubber has reached the interface
+temperature and takes no net flux, the counter-surface carries all the heat away, so the temperature along the
+patch stays finite; :math:`\mu(s \to 1)` tends continuously to this value, which is what this effect means by the
+friction at ``slip = 1``: the patch average
+:math:`\mu = \frac{1}{\sigma_0 l}\int_0^l \mu(V, p(x), T(x))\,p(x)\,dx`. It needs the contact patch, so it acts
+through :func:`persson.slip.mu_slip` and :func:`validation.predict` (rows with slip <= 1 and a contact);
+:meth:`persson.Model.friction` alone is unchanged by it (a note says so).
+
+Assumptions: perfect thermal contact over the nominal patch; no in-plane conduction (:math:`V l / D \gg 1` for the
+counter-surface; the rubber's share vanishes where its Peclet number is small); the counter-surface enters the patch
+at :math:`T_0` (a DRFT track warmed by earlier turns is a higher :math:`T_0`); constant thermal properties.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from frictioncite import doi
+
+from ..effects.base import Effect, Parameter
+from ..errors import InputError
+from .heating_kernels import _march_parallel, _march_serial
+from .heating_tables import _Tables, _speed_nodes, _unit_weights
+from .references import BLOK_1937, CARSLAW_JAEGER, JAEGER_1942, PERSSON_TREAD_2026
+
+__all__ = ["PatchHeating", "PatchSolution", "patch_friction"]
+
+
+_PARALLEL_MIN_ROWS = 4
+
+
+_P_FLOOR = 0.02  # pressures below 2 % of sigma0 (the patch edges) are evaluated at 2 % of sigma0
+
+
+# =========================================================================================================
+# The effect
+# =========================================================================================================
+@doi(CARSLAW_JAEGER, JAEGER_1942, BLOK_1937, PERSSON_TREAD_2026)
+@dataclass(frozen=True)
+class PatchHeating(Effect):
+    r"""Background temperature built up along the contact patch by the frictional power, and local pressure.
+
+    See the module docstring for the model. The local friction along the patch is
+    :math:`\mu(v_s, p(x), T(x))`, with
+
+    .. math:: T(x) = T_0 + \frac{\eta}{\sqrt\pi\,(e_r\sqrt{(1-s)V} + e_c\sqrt{V})}
+        \int_{x_c}^{x}\frac{\mu(x')\,p(x')\,v_s}{\sqrt{x - x'}}\,dx'.
+
+    Parameters
+    ----------
+    counter_effusivity : float
+        Thermal effusivity :math:`e_c = \sqrt{\lambda\rho c}` of the counter-surface (disk, road),
+        W s^0.5 / (m^2 K) (default 1500, an asphalt or stone road; granite about 2400, steel about 13000, a
+        sandpaper-covered disk lower). Fitted in log space; plausible 100-30000 (polymers to aluminium).
+    heat_fraction : float
+        :math:`\eta`, the fraction of the frictional power that heats the patch (default 1: all of it; less stands
+        for heat leaving by paths the model leaves out, e.g. a thermal contact resistance or cooling).
+    rubber_effusivity : float
+        :math:`e_r` of the tread, W s^0.5 / (m^2 K); 0 (default) means :math:`\sqrt{\lambda\rho c_p}` of
+        ``material.thermal``.
+    max_rise : float
+        Largest background temperature rise the table covers, K (default 250); a patch hotter than that is
+        evaluated at T0 + max_rise and the result says so.
+    points_per_decade : float
+        Nodes per decade of sliding speed of the friction table (default 3; the distinct sliding speeds
+        themselves when they are fewer).
+    n_pressure : int
+        Nodes of the table over the local pressure (default 6).
+    temperature_points_per_decade : float
+        Nodes of the table over the background temperature per decade of the time-temperature shift factor
+        :math:`a_T` of the material (default 3; per 10 K for a material without ``log10_aT``). On this axis
+        rubber friction is about as smooth as on the speed axis (exactly so for hysteresis without flash
+        temperature, which depends on :math:`v a_T` only).
+
+    Notes
+    -----
+    The friction is tabulated over (sliding speed, pressure, temperature) with one engine call at T0 and one
+    over the heated temperatures (per-speed temperature and pressure arrays) and interpolated with four-point
+    Lagrange polynomials in each variable. The temperature nodes lie on a lattice in :math:`\log_{10}a_T` that
+    does not depend on this effect's parameters: a fit of them reuses the table (see
+    :func:`patch_friction`).
+    """
+
+    name = "patch_heating"
+    parameters = (
+        Parameter("counter_effusivity", 1500.0, (50.0, 50000.0), "W s^0.5/(m^2 K)",
+                  "thermal effusivity sqrt(lambda rho c) of the disk or road", log_scale=True,
+                  plausible=(100.0, 30000.0)),
+        Parameter("heat_fraction", 1.0, (0.0, 1.0), "1",
+                  "fraction of the frictional power that heats the contact patch", physical_limits=(0.0, 1.0)),
+    )
+    counter_effusivity: float = 1500.0
+    heat_fraction: float = 1.0
+    rubber_effusivity: float = 0.0
+    max_rise: float = 250.0
+    points_per_decade: float = 3.0
+    n_pressure: int = 6
+    temperature_points_per_decade: float = 3.0
+
+    def __post_init__(self):
+        super().__post_init__()
+        checks = (("rubber_effusivity", self.rubber_effusivity, 0.0, False),
+                  ("max_rise", self.max_rise, 0.0, True), ("points_per_decade", self.points_per_decade, 0.0, True),
+                  ("temperature_points_per_decade", self.temperature_points_per_decade, 0.0, True))
+        for name, v, lo, strict in checks:
+            if isinstance(v, bool) or not isinstance(v, (int, float, np.integer, np.floating)) \
+                    or not math.isfinite(v) or (v <= lo if strict else v < lo):
+                raise InputError(f"patch_heating.{name}: expected a finite number {'>' if strict else '>='} "
+                                 f"{lo:g}, got {v!r}")
+        for name in ("n_pressure",):
+            n = getattr(self, name)
+            if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 2:
+                raise InputError(f"patch_heating.{name}: expected an integer >= 2, got {n!r}")
+
+    def effusivity_of(self, material) -> float:
+        r"""Thermal effusivity :math:`e_r = \sqrt{\lambda\rho c_p}` of the tread, W s^0.5/(m^2 K)."""
+        if self.rubber_effusivity > 0:
+            return float(self.rubber_effusivity)
+        th = getattr(material, "thermal", None)
+        if th is None:
+            raise InputError("patch_heating: the material has no thermal properties (material.thermal); give "
+                             "rubber_effusivity=")
+        return math.sqrt(th.conductivity * th.density * th.specific_heat)
+
+    def heat_factor(self, slip, speed, pressure, length, rubber_effusivity) -> np.ndarray:
+        r""":math:`\Lambda = \eta\sigma_0 v_s\sqrt{l} / (\sqrt\pi(e_r\sqrt{(1-s)V} + e_c\sqrt V))`, K.
+
+        The temperature rise is :math:`\Lambda\int_{\xi_c}^{\xi}(\mu g)(\xi')/\sqrt{\xi - \xi'}\,d\xi'` in the
+        patch coordinate :math:`\xi = x/l`, with :math:`g = p/\sigma_0`.
+        """
+        s = np.asarray(slip, dtype=float)
+        V = np.asarray(speed, dtype=float)
+        Vr = np.clip(1.0 - s, 0.0, None) * V
+        den = math.sqrt(math.pi) * (rubber_effusivity * np.sqrt(Vr) + self.counter_effusivity * np.sqrt(V))
+        return self.heat_fraction * np.asarray(pressure, dtype=float) * s * V * math.sqrt(length) / den
+
+    def rubber_share(self, slip, speed, rubber_effusivity) -> np.ndarray:
+        r"""Fraction of the heat that flows into the tread, :math:`e_r\sqrt{V_r}/(e_r\sqrt{V_r} + e_c\sqrt V)`."""
+        V = np.asarray(speed, dtype=float)
+        a = rubber_effusivity * np.sqrt(np.clip(1.0 - np.asarray(slip, dtype=float), 0.0, None) * V)
+        return a / (a + self.counter_effusivity * np.sqrt(V))
+
+    def transform_result(self, result):
+        note = ("patch_heating acts on the contact patch (persson.slip.mu_slip, validation.predict); this result "
+                "is the local friction at the given temperature and pressure")
+        if note in result.notes:
+            return result
+        return result.replace(notes=tuple(result.notes) + (note,))
+
+
+# =========================================================================================================
+# Result of the patch computation
+# =========================================================================================================
+@dataclass(frozen=True, eq=False)
+class PatchSolution:
+    """Friction of the patch for each row, and what it took.
+
+    Attributes
+    ----------
+    mu : ndarray (n,)
+        Friction coefficient of the wheel (longitudinal force / load).
+    stick_fraction : ndarray (n,)
+        x_c / l.
+    mu_local : ndarray (n,)
+        Local sliding friction at (v_s, sigma0, T0), interpolated in the T0 slice of the table (in speed and
+        pressure only; relative error about 1e-4 on a tread on a road).
+    max_rise : ndarray (n,)
+        Largest background temperature rise along the patch, K.
+    xi : ndarray (N,)
+        Patch nodes x / l.
+    temperature, shear, mu_profile : ndarray (n, N) or None
+        Background temperature (deg C), shear stress / sigma0 and local friction coefficient on the nodes
+        (``profiles=True``).
+    table_points : int
+        Engine evaluations spent on the tables in this call (0 when a cached table served).
+    engine_calls : int
+        Engine calls made in this call.
+    converged : bool
+        Whether the engine's self-consistent iterations converged everywhere.
+    notes : tuple of str
+    """
+
+    mu: np.ndarray
+    stick_fraction: np.ndarray
+    mu_local: np.ndarray
+    max_rise: np.ndarray
+    xi: np.ndarray
+    temperature: np.ndarray | None
+    shear: np.ndarray | None
+    mu_profile: np.ndarray | None
+    table_points: int
+    engine_calls: int
+    converged: bool
+    notes: tuple
+
+
+# =========================================================================================================
+# Driver: tabulate once, march along the patch for every row
+# =========================================================================================================
+def patch_friction(model, heating: PatchHeating, contact, slip, speed, temperature, pressure, *,
+                   profiles: bool = False, tables=None) -> PatchSolution:
+    r"""Brush-model friction with the local friction :math:`\mu(v_s, p(x), T(x))` along the patch.
+
+    Parameters
+    ----------
+    model : persson.Model or object with ``friction(speed, temperature=, pressure=)`` (per-speed arrays)
+        The local sliding friction (its own ``patch_heating`` effect is not used here: ``heating`` is).
+    heating : PatchHeating
+    contact : persson.slip.Contact
+    slip, speed, temperature, pressure : array_like, one value per row (broadcast together)
+        Braking slip in (0, 1], rolling speed V (m/s), background temperature T0 (deg C), mean pressure
+        sigma0 (Pa).
+    profiles : bool
+        Also return T(x), the shear and mu(x) on the patch nodes.
+    tables : dict, optional
+        A cache (a dict the caller keeps) of friction tables: reused when the engine (:func:`engine_key`), the
+        table settings (``max_rise``, ``n_pressure``, ``temperature_points_per_decade``), the contact's pressure
+        shape and the rows' (T0, sigma0, v_s) are the same, whatever the heating strength, contact length or
+        stiffness (e.g. in a fit of the counter-surface effusivity or the stiffness). It holds references to the
+        model it was built with, so identities stay valid while it lives.
+
+    Returns
+    -------
+    PatchSolution
+
+    Notes
+    -----
+    Numerics. For each (T0, sigma0) of the rows the friction is tabulated over the sliding speeds (their distinct
+    values, or ``points_per_decade`` log-spaced nodes when those are fewer), the local pressure
+    (``n_pressure`` nodes over the range of p(x), floored at 2 % of sigma0) and the background temperature on
+    the lattice :math:`y_k = k/n_y`, :math:`y = \log_{10}a_T(T_0) - \log_{10}a_T(T)`,
+    :math:`n_y` = ``temperature_points_per_decade``, from T0 up to :math:`T_0 + \Delta T_{max}(v)`
+    (:math:`\Delta T_{max}` 1.15 times the rise the patch would reach with the friction held at its T0 value;
+    more nodes are added if the patch gets hotter; at least 4 nodes per speed); values in between by
+    tensor-product four-point Lagrange interpolation. The lattice does not depend on the heating parameters, so
+    a table kept in ``tables`` serves any counter-surface effusivity or heat fraction and only grows (one engine
+    call for the missing nodes) when a hotter patch needs a higher temperature range. Along the patch (the
+    contact's nodes), the stick zone ends at the first sign change of :math:`\mu(v_s, p, T_0)p - k\theta x` (as in :func:`persson.slip.mu_slip`); behind it the
+    Abel integral is evaluated by product integration (the shear piecewise linear between nodes, the kernel
+    integrated exactly), implicitly at the new node (secant iteration, bisection as fallback). The stick part is
+    integrated exactly, the slide part by the trapezoid rule, as in the brush model without heating.
+    """
+    from .contact import Contact
+
+    if not isinstance(heating, PatchHeating):
+        raise InputError(f"heating: expected persson.effects.PatchHeating, got {heating!r}")
+    if not isinstance(contact, Contact):
+        raise InputError(f"contact: expected a persson.slip.Contact, got {contact!r}")
+    if not hasattr(model, "friction"):
+        raise InputError(f"model: expected a persson.Model (or an object with friction(speed, temperature=, "
+                         f"pressure=)), got {model!r}")
+    s, V, T0, p0 = (np.atleast_1d(np.asarray(a, dtype=float)).ravel() for a in
+                    np.broadcast_arrays(slip, speed, temperature, pressure))
+    n = s.size
+    if np.any(~np.isfinite(s) | (s <= 0) | (s > 1)):
+        raise InputError("slip: expected braking slip ratios in (0, 1]")
+    if np.any(~np.isfinite(V) | (V <= 0)):
+        raise InputError("speed: expected rolling speeds > 0 m/s")
+    if np.any(~np.isfinite(p0) | (p0 <= 0)):
+        raise InputError("pressure: expected mean pressures > 0 Pa")
+    if np.any(~np.isfinite(T0)):
+        raise InputError("temperature: expected finite temperatures")
+    material = getattr(model, "material", None)
+    e_r = heating.effusivity_of(material)
+    vs = s * V
+    lam = heating.heat_factor(s, V, p0, contact.length, e_r)
+    with np.errstate(divide="ignore"):
+        theta = np.where(s < 1.0, s / np.where(s < 1.0, 1.0 - s, 1.0), np.inf)
+    a = contact.stiffness * contact.length / p0 * theta
+
+    # ---- the (T0, sigma0) sweeps and their friction tables
+    keys, sweep = np.unique(np.column_stack([T0, p0]), axis=0, return_inverse=True)
+    sweep = np.asarray(sweep).ravel()
+    g = contact._g
+    g_lo = max(float(np.min(g)), _P_FLOOR)
+    g_hi = max(float(np.max(g)), g_lo)
+    n_g = 1 if g_hi - g_lo <= 1e-12 * g_hi else int(heating.n_pressure)
+    gnodes = np.linspace(g_lo, g_hi, n_g)
+    heated = heating.heat_fraction > 0
+    vnode_list = []
+    for c in range(keys.shape[0]):
+        vnode_list.append(_speed_nodes(vs[sweep == c], heating.points_per_decade))
+    voff = np.zeros(len(vnode_list) + 1, dtype=np.int64)
+    voff[1:] = np.cumsum([v.size for v in vnode_list])
+    vnodes = np.concatenate(vnode_list)
+    V_lo = np.array([float(np.min(V[sweep == c])) for c in range(keys.shape[0])])
+
+    # The table does not depend on how strongly the patch is heated (counter_effusivity, heat_fraction, e_r):
+    # its temperature nodes lie on a lattice fixed by T0 and the material, so a fit of those parameters only adds
+    # the nodes a hotter patch needs.
+    cache_key = (heating.max_rise, n_g, heating.temperature_points_per_decade,
+                 contact._g.tobytes(), keys.tobytes(), vnodes.tobytes(), voff.tobytes(), V_lo.tobytes())
+    ekey = engine_key(model)
+    if tables is not None and tables.get("engine") == ekey and tables.get("key") == cache_key:
+        tab = tables["value"]
+        calls0, points0 = tab.calls, tab.points
+    else:
+        calls0, points0 = 0, 0
+        engine = model.without("patch_heating") if "patch_heating" in getattr(model, "effect_names", ()) else model
+        tab = _Tables(engine, keys, vnodes, voff, gnodes, V_lo, heating)
+        if tables is not None:
+            tables.clear()
+            tables.update(engine=ekey, key=cache_key, value=tab, model=model)
+    xi = np.ascontiguousarray(contact._xi)
+    gg = np.ascontiguousarray(contact._g)
+    W = _unit_weights(xi.size)
+    rows = sweep.astype(np.int64)
+    lvs = np.log(vs)
+    # each row costs about N^2 operations (the Abel sums): threads pay off from a few rows on
+    march = _march_parallel if n >= _PARALLEL_MIN_ROWS else _march_serial
+    if heated and not tab.has_heated():
+        # the heating with the friction held at T0 bounds the temperature range the rows need (a kept table
+        # with heated nodes goes straight to the march below, which grows it if the patch is hotter)
+        pre = march(rows, lvs, a, lam, xi, gg, W, *tab.args(), *tab.targs(), False)
+        tab.fill(pre[2], vs, sweep)
+    for _ in range(6):
+        out = march(rows, lvs, a, lam, xi, gg, W, *tab.args(), *tab.targs(), bool(profiles))
+        mu, xc, rise, umax, Tprof, shear, muprof = out
+        over = np.zeros(keys.shape[0], dtype=bool)
+        for c in range(keys.shape[0]):
+            over[c] = bool(np.max(umax[sweep == c]) > 1.0 + 1e-9) and not tab.capped(c)
+        if not over.any():
+            break
+        tab.extend(over, np.array([float(np.max(umax[sweep == c])) for c in range(keys.shape[0])]))
+    notes = list(tab.notes)
+    converged = tab.converged
+    if over.any():
+        converged = False
+        notes.append(f"patch_heating: the friction table did not reach the patch temperature at {int(over.sum())} "
+                     f"condition(s); evaluated at the table's top")
+    hot = [c for c in range(keys.shape[0]) if float(np.max(rise[sweep == c])) > heating.max_rise * (1 + 1e-9)]
+    if hot:
+        notes.append(f"patch_heating: background temperature rise above the table ({heating.max_rise:g} K cap) at "
+                     f"{len(hot)} condition(s); evaluated at the cap")
+    mu_loc = tab.mu_at_sigma0(vs, sweep)
+    return PatchSolution(mu=mu, stick_fraction=xc, mu_local=mu_loc, max_rise=rise, xi=xi.copy(),
+                         temperature=Tprof if profiles else None, shear=shear if profiles else None,
+                         mu_profile=muprof if profiles else None, table_points=tab.points - points0,
+                         engine_calls=tab.calls - calls0,
+                         converged=converged, notes=tuple(dict.fromkeys(notes)))
+
+
+def engine_key(model):
+    """What the engine's friction depends on: the model's surface and material (by identity), nu, gamma, grid and
+    its effects other than patch heating (by value). Two models with equal keys give equal friction."""
+    if all(hasattr(model, a) for a in ("surface", "material", "effects", "nu", "gamma")):
+        return ("model", id(model.surface), id(model.material), model.nu, model.gamma, getattr(model, "grid", None),
+                tuple(e for e in model.effects if getattr(e, "name", "") != "patch_heating"))
+    return ("object", id(model))
+
+
+

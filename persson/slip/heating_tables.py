@@ -1,0 +1,262 @@
+"""Tables of the patch-heating march: the modulus shift coordinate and the friction lattice over (speed, pressure, temperature)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..errors import InputError
+
+from .heating_kernels import _interp_rows, _segment_weights
+
+_NY = 1025  # nodes of the fine y(T) table per sweep from T0 to T0 + max_rise (and as many again above)
+
+
+_MAX_NU = 512  # most temperature nodes of one speed node
+
+
+class _Tables:
+    r"""Friction tables of every (T0, sigma0) sweep over (v, g = p/sigma0, y).
+
+    The temperature coordinate is :math:`y(T) = \log_{10}a_T(T_0) - \log_{10}a_T(T)` (decades of the shift factor;
+    :math:`(T - T_0)/10` K for a material without ``log10_aT``), tabulated finely (``_NY`` nodes from T0 to
+    T0 + max_rise, continued as far again so that the lattice node above the cap has its temperature) and
+    interpolated linearly. The temperature nodes lie on the lattice :math:`y_k = k h`, :math:`h` = 1 /
+    ``temperature_points_per_decade``, the same for every heating strength: a table grows (more nodes per speed) as
+    the patch gets hotter and is never refilled. Layout: for the global v node i (``voff`` delimits the sweeps), a
+    block of shape (n_g, nu[i]) at ``vtoff[i]`` in ``values``, holding the nodes k = 0 .. nu[i] - 1.
+    """
+
+    def __init__(self, model, keys, vnodes, voff, gnodes, V_lo, heating):
+        import warnings
+
+        self.model = model
+        self.T0 = np.ascontiguousarray(keys[:, 0])
+        self.sig0 = np.ascontiguousarray(keys[:, 1])
+        self.vnodes = vnodes
+        self.lv = np.ascontiguousarray(np.log(vnodes))
+        self.voff = voff
+        self.gnodes = gnodes
+        self.hy = 1.0 / float(heating.temperature_points_per_decade)
+        self.V_lo = np.ascontiguousarray(V_lo)
+        self.cap = float(heating.max_rise)
+        self.points = 0
+        self.calls = 0
+        self.converged = True
+        self.notes: list[str] = []
+        self._warnings = warnings
+        nc = keys.shape[0]
+        ng = gnodes.size
+        self._capped = np.zeros(nc, dtype=bool)
+        self.B = np.zeros(nc)  # temperature range of this call: dT_max(v) = min(B v / sqrt(v + V_lo), cap)
+        self.dTf = self.cap / (_NY - 1)
+        self.yT = np.empty((nc, 2 * _NY - 1))
+        la = getattr(model, "material", None)
+        la = getattr(la, "log10_aT", None)
+        for c in range(nc):
+            self.yT[c] = _shift_coordinate(la, self.T0[c], self.T0[c] + self.dTf * np.arange(2 * _NY - 1))
+        self.ycap = np.ascontiguousarray(self.yT[:, _NY - 1])
+        # the T0 slice (k = 0) of every sweep, one engine call
+        V_, G_ = [], []
+        for c in range(nc):
+            a, b = np.meshgrid(vnodes[voff[c]:voff[c + 1]], gnodes, indexing="ij")
+            V_.append(a.ravel())
+            G_.append(b.ravel() * self.sig0[c])
+        T_ = [np.full(int(voff[c + 1] - voff[c]) * ng, self.T0[c]) for c in range(nc)]
+        mu = self._call(np.concatenate(V_), np.concatenate(T_), np.concatenate(G_))
+        # blocks[c]: (n_v of sweep c, n_g, capacity) friction values; nus[c]: nodes filled at each speed node
+        self.blocks = [mu.reshape(-1, ng)[voff[c]:voff[c + 1], :, None].copy() for c in range(nc)]
+        self.nus = [np.ones(voff[c + 1] - voff[c], dtype=np.int64) for c in range(nc)]
+        self.mu_max = np.array([float(np.max(b)) for b in self.blocks])
+        self._layout()
+
+    def _layout(self):
+        """Flatten the blocks into (values, vtoff, nu) for the kernels."""
+        parts = []
+        for c, blk in enumerate(self.blocks):
+            for i in range(blk.shape[0]):
+                parts.append(np.ascontiguousarray(blk[i, :, :self.nus[c][i]]).ravel())
+        self.nu = np.concatenate(self.nus).astype(np.int64)
+        sizes = np.array([p_.size for p_ in parts], dtype=np.int64)
+        self.vtoff = np.zeros(sizes.size + 1, dtype=np.int64)
+        self.vtoff[1:] = np.cumsum(sizes)
+        self.values = np.concatenate(parts)
+
+    def dT_max(self, c, v):
+        return np.minimum(self.B[c] * v / np.sqrt(v + self.V_lo[c]), self.cap)
+
+    def y_of(self, c, T):
+        return np.interp(T, self.T0[c] + self.dTf * np.arange(self.yT.shape[1]), self.yT[c])
+
+    def T_of(self, c, y):
+        return np.interp(y, self.yT[c], self.T0[c] + self.dTf * np.arange(self.yT.shape[1]))
+
+    def fill(self, rise0, vs, sweep):
+        """Make the table reach the temperatures of this call. ``rise0``: the rise of every row with the friction
+        held at its T0 value (an upper bound when the friction falls with temperature); the range covers 1.15
+        times it."""
+        nc = self.B.size
+        for c in range(nc):
+            sel = sweep == c
+            v = vs[sel]
+            need = rise0[sel] * np.sqrt(v + self.V_lo[c]) / v
+            self.B[c] = 1.15 * float(np.max(need)) if need.size else 0.0
+            if not self.B[c] > 0:
+                self.B[c] = 1e-6 * self.cap  # nothing slides: a tiny range keeps the table regular
+        self._grow(np.ones(nc, dtype=bool))
+
+    def _grow(self, which):
+        """Add the lattice nodes that the sweeps ``which`` need for their current range and are missing."""
+        ng = self.gnodes.size
+        V_, T_, P_, where = [], [], [], []
+        for c in np.flatnonzero(which):
+            vv = self.vnodes[self.voff[c]:self.voff[c + 1]]
+            ymax = np.minimum(self.y_of(c, self.T0[c] + self.dT_max(c, vv)), self.ycap[c])
+            self._capped[c] = self._capped[c] or bool(np.any(ymax >= self.ycap[c] * (1 - 1e-12)))
+            # a row between speed nodes interpolates over the four around it: each node covers the range of the
+            # two above it as well, and the last four that of the last
+            reach = ymax.copy()
+            for d in (1, 2):
+                reach[:-d] = np.maximum(reach[:-d], ymax[d:])
+            reach[-4:] = np.maximum(reach[-4:], ymax[-1])
+            n_new = np.maximum(_temperature_counts(reach, 1.0 / self.hy), self.nus[c])
+            grow = np.flatnonzero(n_new > self.nus[c])
+            if grow.size == 0:
+                continue
+            blk = self.blocks[c]
+            if int(n_new.max()) > blk.shape[2]:
+                bigger = np.zeros((blk.shape[0], ng, max(int(n_new.max()), 2 * blk.shape[2])))
+                bigger[:, :, :blk.shape[2]] = blk
+                self.blocks[c] = bigger
+            for i in grow:
+                k = np.arange(self.nus[c][i], n_new[i])
+                T = self.T_of(c, k * self.hy)
+                G, TT = np.meshgrid(self.gnodes, T, indexing="ij")
+                V_.append(np.full(G.size, vv[i]))
+                P_.append(G.ravel() * self.sig0[c])
+                T_.append(TT.ravel())
+                where.append((c, i, int(self.nus[c][i]), int(n_new[i])))
+            self.nus[c] = n_new
+        if not where:
+            return
+        mu = self._call(np.concatenate(V_), np.concatenate(T_), np.concatenate(P_))
+        k = 0
+        for c, i, n0, n1 in where:
+            m = ng * (n1 - n0)
+            self.blocks[c][i, :, n0:n1] = mu[k:k + m].reshape(ng, n1 - n0)
+            k += m
+        for c in np.flatnonzero(which):
+            self.mu_max[c] = max(self.mu_max[c], float(np.max(self.blocks[c])))
+        self._layout()
+
+    def targs(self):
+        """The temperature arguments of the march kernel."""
+        return (self.T0, self.hy, self.cap, self.mu_max, self.yT, self.dTf)
+
+    def has_heated(self) -> bool:
+        """Whether every sweep has temperature nodes above T0."""
+        return all(int(n.min()) > 1 for n in self.nus)
+
+    def capped(self, c) -> bool:
+        return bool(self._capped[c])
+
+    def extend(self, over, umax):
+        """Raise the temperature range of the sweeps ``over`` (the patch got hotter than the bound) and grow."""
+        for c in np.flatnonzero(over):
+            self.B[c] *= 1.25 * float(umax[c])
+        self._grow(over)
+
+    def _call(self, v, T, p):
+        from .._checks import UnitWarning
+
+        with self._warnings.catch_warnings(record=True) as caught:
+            self._warnings.simplefilter("always")
+            r = self.model.friction(v, temperature=T, pressure=p)
+        for w in caught:
+            if issubclass(w.category, UnitWarning):
+                continue  # the table's temperatures are degrees Celsius by construction
+            self.notes.append(f"{w.category.__name__}: {w.message}")
+        self.notes.extend(getattr(r, "notes", ()) or ())
+        self.converged = self.converged and bool(getattr(r, "converged", True))
+        self.points += v.size
+        self.calls += 1
+        mu = np.atleast_1d(np.asarray(r.mu, dtype=float))
+        if mu.shape != v.shape:
+            raise InputError(f"model: friction returned {mu.shape} values for {v.size} speeds")
+        bad = ~np.isfinite(mu) | (mu < 0)
+        if np.any(bad):
+            j = int(np.argmax(bad))
+            raise InputError(f"model: local sliding friction {mu[j]!r} at v_s = {v[j]:g} m/s, T = {T[j]:g} C, "
+                             f"p = {p[j]:g} Pa; expected a finite value >= 0")
+        return mu
+
+    def args(self):
+        """The table arguments of the kernels."""
+        return (self.lv, self.voff, self.gnodes, self.values, self.vtoff, self.nu)
+
+    def mu_at_sigma0(self, vs, sweep):
+        """mu(v_s, sigma0, T0) of every row, interpolated in the T0 slice of the table."""
+        return _interp_rows(sweep.astype(np.int64), np.log(vs), *self.args())
+
+
+def _shift_coordinate(log10_aT, T0: float, T: np.ndarray) -> np.ndarray:
+    """y(T) = log10 a_T(T0) - log10 a_T(T) on the increasing temperatures ``T`` (from T0), or (T - T0)/10 when the
+    material has no usable shift factor (none, or not finite and increasing in y over the table's first half).
+    Beyond the first half (above the cap) a y that stops increasing is continued linearly."""
+    import warnings
+
+    half = (T.size + 1) // 2
+    y = None
+    if log10_aT is not None:
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")  # extrapolated shift factors: the engine's own calls report them
+                y = float(np.asarray(log10_aT(T0), dtype=float)) - np.asarray(log10_aT(T), dtype=float)
+        except Exception:  # noqa: BLE001  (an unusual material: fall back to kelvin)
+            y = None
+    if y is None or y.shape != T.shape or not (np.all(np.isfinite(y[:half])) and np.all(np.diff(y[:half]) > 0)):
+        return (T - T0) / 10.0
+    ok = np.isfinite(y) & np.concatenate([[True], np.diff(y) > 0])
+    bad = np.flatnonzero(~ok)
+    if bad.size:
+        j = int(bad[0])  # >= half
+        slope = (y[j - 1] - y[half - 2]) / (T[j - 1] - T[half - 2])
+        y[j:] = y[j - 1] + slope * (T[j:] - T[j - 1])
+    return y
+
+
+# =========================================================================================================
+# Numba kernels
+# =========================================================================================================
+def _unit_weights(N: int) -> np.ndarray:
+    r"""Product-integration weights of the Abel kernel on a uniform grid of unit spacing.
+
+    For a segment from node j to node j+1 evaluated at node k = j + d (d >= 1), with f linear on the segment,
+    :math:`\int f/\sqrt{x_k - x'}\,dx' = h^{1/2}(w_l[d] f_j + w_r[d] f_{j+1})`; see :func:`_segment_weights`.
+    Returns shape (2, N) (column 0 unused).
+    """
+    W = np.zeros((2, N))
+    for dd in range(1, N):
+        W[0, dd], W[1, dd] = _segment_weights(float(dd), float(dd - 1), 1.0)
+    return W
+
+
+def _speed_nodes(v: np.ndarray, per_decade: float) -> np.ndarray:
+    """Table nodes in sliding speed: the distinct values when they are few, else log-spaced nodes spanning them
+    (at least four, spacing at most 1/``per_decade`` decade)."""
+    u = np.unique(v)
+    lo, hi = math.log10(float(u[0])), math.log10(float(u[-1]))
+    n_int = max(3, int(math.ceil((hi - lo) * per_decade - 1e-9)))
+    if u.size <= n_int + 1:
+        return u
+    return 10.0 ** np.linspace(lo, hi, n_int + 1)
+
+
+def _temperature_counts(ymax: np.ndarray, per_decade: float) -> np.ndarray:
+    """Temperature nodes of each speed node that reach ``ymax`` (decades of a_T) on the lattice of spacing
+    1/``per_decade``: at least 4 (cubic interpolation) when ``ymax`` > 0, else 1 (the T0 slice alone)."""
+    x = np.asarray(ymax, dtype=float) * per_decade
+    n = np.ceil(np.maximum(x, 0.0) - 1e-9).astype(np.int64) + 1
+    n = np.where(x > 0.0, np.maximum(n, 4), 1)
+    return np.clip(n, 1, _MAX_NU).astype(np.int64)
