@@ -7,7 +7,7 @@ import warnings
 
 import numpy as np
 
-from .errors import InputError
+from .errors import InputError, UnitWarning
 
 __all__ = ["number", "positive", "finite_array", "plausible_pressure", "plausible_temperature", "UnitWarning",
            "PRESSURE_RANGE_PA", "KELVIN_LOOKING_C"]
@@ -58,10 +58,6 @@ PRESSURE_RANGE_PA = (1.0e3, 1.0e8)
 #: Background temperatures that look like kelvin (20 C = 293.15 K); no tread compound is tested this hot.
 KELVIN_LOOKING_C = (200.0, 450.0)
 ABSOLUTE_ZERO_C = -273.15
-
-
-class UnitWarning(UserWarning):
-    """A value looks like another unit (MPa or kPa typed as Pa, kelvin typed as degrees Celsius)."""
 
 
 def plausible_pressure(value, name: str, *, strict: bool = False, stacklevel: int = 3) -> np.ndarray:
