@@ -21,17 +21,19 @@ Typical use::
     tread = materials.example_tread()                   # synthetic, documented
 """
 
-from .errors import InputError
-from .viscoelastic import WLF, ConstantModulus, Prony, Thermal
+from .errors import AccuracyWarning, ConvergenceWarning, DataWarning, InputError, MaterialsWarning, PhysicsWarning
+from .laws import (WLF, Arrhenius, TemperatureShift, WLFArrhenius, WLFFit, fit_arrhenius, fit_wlf,
+                   wlf_change_reference)
+from .viscoelastic import ConstantModulus, Prony, Thermal
 from .examples import example_tread
 from .dma import DMAData, read_dma, read_dma_long, read_eplexor, read_pyvisco
-from .tts import (Arrhenius, ShiftFactors, TemperatureShift, WLFArrhenius, WLFFit, fit_arrhenius, fit_wlf,
-                  shift_isotherms, wlf_change_reference)
+from .tts import ShiftFactors, shift_isotherms
 from .shift import SingleTemperature, TabulatedShift, read_shift_factors
 from .shiftfit import ShiftLawScore
 from .prony_fit import FitQuality, PronyFit, fit_prony
 from .curves import CausalityCheck, InterpolatedModulus, causality_check
-from .master import MasterCurve, ReducedData, TabulatedModulus, isotherm_misfit, master_curve, read_master_curve
+from .mastercurve import MasterCurve, ReducedData, TabulatedModulus, isotherm_misfit
+from .master import master_curve, read_master_curve
 from .strain import (StrainFactors, StrainSoftened, StrainSoftening, StrainSweep, read_strain_sweep,
                      strain_factors, strain_softening_from_sweep)
 
@@ -47,7 +49,8 @@ def __getattr__(name):
 
 
 __all__ = [
-    "InputError", "WLF", "Thermal", "ConstantModulus", "Prony", "example_tread",
+    "InputError", "MaterialsWarning", "DataWarning", "AccuracyWarning", "ConvergenceWarning", "PhysicsWarning",
+    "WLF", "Thermal", "ConstantModulus", "Prony", "example_tread",
     "DMAData", "read_dma", "read_dma_long", "read_pyvisco", "read_eplexor",
     "ShiftFactors", "shift_isotherms", "WLFFit", "fit_wlf", "Arrhenius", "fit_arrhenius", "TemperatureShift",
     "WLFArrhenius", "TabulatedShift", "SingleTemperature", "read_shift_factors", "ShiftLawScore",

@@ -1,4 +1,8 @@
-"""Small file helpers shared by the readers and writers of :mod:`materials` (not public)."""
+"""Small file helpers shared by the readers and writers of :mod:`materials` (not public).
+
+Writing a CSV atomically; decoding a text file (UTF-8, else Latin-1, refusing UTF-16 and binary); parsing rows of
+cells to floats and finding columns by name, with errors that name the file, line and column.
+"""
 
 from __future__ import annotations
 
@@ -11,7 +15,7 @@ import numpy as np
 
 from .errors import InputError
 
-__all__ = ["write_csv_atomic", "read_csv_columns"]
+__all__ = ["write_csv_atomic", "read_csv_columns", "decode_text", "parse_rows", "column_of", "is_numeric_row"]
 
 
 def write_csv_atomic(path, columns: Mapping[str, np.ndarray], comments: Sequence[str] = ()) -> Path:
@@ -55,27 +59,93 @@ def read_csv_columns(path, required: Sequence[str], optional: Sequence[str] = ()
     Returns the columns (case-insensitive names, keyed as given in ``required``/``optional``) and the file line
     number of each data row. A missing column or an unparsable cell raises :class:`InputError`.
     """
-    from .dma import _col, _decode, _table
-
     path = Path(path)
     if not path.is_file():
         raise InputError(f"{path}: no such file")
-    text, _ = _decode(path, encoding)
+    text, _ = decode_text(path, encoding)
     content = [(i + 1, ln) for i, ln in enumerate(text.splitlines())
                if ln.strip() and not ln.lstrip().startswith("#")]
     if not content:
         raise InputError(f"{path}: empty file (expected a header row {', '.join(required)} and data rows)")
     names = [c.strip() for c in content[0][1].split(",")]
-    idx = {k: _col(path, names, k) for k in required}
+    idx = {k: column_of(path, names, k) for k in required}
     for k in optional:
-        j = _col(path, names, k, required=False)
+        j = column_of(path, names, k, required=False)
         if j is not None:
             idx[k] = j
     rows = content[1:]
     if not rows:
         raise InputError(f"{path}: no data rows after the header")
-    data = _table(path, rows, names, ",")
+    data = parse_rows(path, rows, names, ",")
     return {k: data[:, j] for k, j in idx.items()}, np.array([r[0] for r in rows])
+
+
+def decode_text(path: Path, encoding: str | None) -> tuple[str, list[str]]:
+    """The text of ``path`` and notes: ``encoding`` if given, else UTF-8 (with or without BOM), else Latin-1
+    (noted). UTF-16 and binary files (NUL bytes) are refused with a hint."""
+    try:
+        raw = path.read_bytes()
+    except OSError as exc:
+        raise InputError(f"{path}: cannot read ({exc.strerror})") from None
+    notes = []
+    if encoding is not None:
+        try:
+            return raw.decode(encoding), notes
+        except (UnicodeDecodeError, LookupError) as exc:
+            raise InputError(f"{path}: not valid {encoding} text ({exc}); expected {encoding} bytes") from None
+    if raw[:2] in (b"\xff\xfe", b"\xfe\xff") or b"\x00" in raw[:4096]:
+        raise InputError(f"{path}: wrong encoding: the file holds NUL bytes (UTF-16 or binary); expected UTF-8 "
+                         "or Latin-1 text (re-save as UTF-8, or pass encoding=...)")
+    try:
+        return raw.decode("utf-8-sig"), notes
+    except UnicodeDecodeError:
+        text = raw.decode("latin-1")
+        notes.append(f"{path.name}: decoded as Latin-1 (not valid UTF-8)")
+        return text, notes
+
+
+def is_numeric_row(cells) -> bool:
+    """True when every non-empty cell is a number and at least one is not empty."""
+    try:
+        [float(c) for c in cells if c.strip()]
+        return any(c.strip() for c in cells)
+    except ValueError:
+        return False
+
+
+def parse_rows(path: Path, rows, names, sep) -> np.ndarray:
+    """Parse data rows to floats; a bad cell raises naming line and column."""
+    ncol = len(names)
+    out = np.empty((len(rows), ncol))
+    for r, (lineno, ln) in enumerate(rows):
+        cells = [c.strip() for c in (ln.split(sep) if sep else ln.split())]
+        if len(cells) < ncol:
+            cells += [""] * (ncol - len(cells))
+        elif len(cells) > ncol and any(cells[ncol:]):
+            raise InputError(f"{path}, line {lineno}: {len(cells)} fields, expected {ncol} ({', '.join(names)})")
+        for c in range(ncol):
+            s = cells[c]
+            if s == "" or s.lower() in ("nan", "na"):
+                out[r, c] = np.nan
+                continue
+            try:
+                out[r, c] = float(s)
+            except ValueError:
+                raise InputError(f"{path}, line {lineno}, column {names[c]!r}: expected a number, "
+                                 f"got {s[:40]!r}") from None
+    return out
+
+
+def column_of(path, names, *candidates, required=True):
+    """Index of the first of ``candidates`` among the column ``names`` (case-insensitive); a missing required
+    column raises naming the file and the columns found, an optional one gives None."""
+    low = [n.lower() for n in names]
+    for cand in candidates:
+        if cand.lower() in low:
+            return low.index(cand.lower())
+    if required:
+        raise InputError(f"{path}: missing column {candidates[0]!r} (found columns: {', '.join(names)})")
+    return None
 
 
 def _file_mode() -> int:

@@ -20,6 +20,7 @@ from typing import Mapping, Sequence
 
 import numpy as np
 
+from ._io import decode_text
 from .errors import InputError
 from .units import split_unit_suffix, to_celsius, unit_factor
 
@@ -71,12 +72,10 @@ def read_table(path, *, encoding: str | None = None) -> RawTable:
         Missing or empty file, more than two header rows, a non-numeric cell inside the data (naming the line
         and column), a row with the wrong number of fields.
     """
-    from .dma import _decode
-
     path = Path(path)
     if not path.is_file():
         raise InputError(f"{path}: no such file")
-    text, notes = _decode(path, encoding)
+    text, notes = decode_text(path, encoding)
     content = [(i + 1, ln) for i, ln in enumerate(text.splitlines())
                if ln.strip() and not ln.lstrip().startswith("#")]
     if not content:
@@ -143,24 +142,6 @@ ALIASES = {
 _CASE_SENSITIVE = {"f": "f", "t": "T", "w": "w"}
 
 
-def _norm(name: str) -> str:
-    n = name.strip().lower().replace("\u2019", "'").replace("\u2032", "'").replace("''", '"')
-    return re.sub(r"[\s_\-.]", "", n)
-
-
-def _role_of(name: str) -> tuple[str | None, str | None]:
-    """(role, unit from a name suffix) of a column name, or (None, None)."""
-    base, suffix_unit = split_unit_suffix(name)
-    for cand, unit in ((base, suffix_unit), (name, None)):
-        key = _norm(cand)
-        if key in _CASE_SENSITIVE and cand.strip() != _CASE_SENSITIVE[key]:
-            continue
-        for role, names in ALIASES.items():
-            if key in names:
-                return role, unit
-    return None, None
-
-
 def pick_columns(table: RawTable, *, required: Sequence[str], optional: Sequence[str] = (), columns=None,
                  units: Mapping[str, str] | None = None, defaults: Sequence[str] | None = None
                  ) -> dict[str, Column]:
@@ -224,6 +205,24 @@ _DEFAULT_UNIT = {"f": "Hz", "omega": "rad/s", "E_storage": "Pa", "E_loss": "Pa",
 
 _ROLE_FAMILY = {"f": "f", "omega": "f", "E_storage": "E_storage", "G_storage": "E_storage", "E_loss": "E_loss",
                 "G_loss": "E_loss", "T": "T", "strain": "strain"}
+
+
+def _norm(name: str) -> str:
+    n = name.strip().lower().replace("\u2019", "'").replace("\u2032", "'").replace("''", '"')
+    return re.sub(r"[\s_\-.]", "", n)
+
+
+def _role_of(name: str) -> tuple[str | None, str | None]:
+    """(role, unit from a name suffix) of a column name, or (None, None)."""
+    base, suffix_unit = split_unit_suffix(name)
+    for cand, unit in ((base, suffix_unit), (name, None)):
+        key = _norm(cand)
+        if key in _CASE_SENSITIVE and cand.strip() != _CASE_SENSITIVE[key]:
+            continue
+        for role, names in ALIASES.items():
+            if key in names:
+                return role, unit
+    return None, None
 
 
 def _assign(table, required, optional, columns, defaults):

@@ -155,21 +155,6 @@ class InterpolatedModulus:
                 f"Hz" + (f", {self.source}" if self.source else "") + ")")
 
 
-def _end_slope(x, y, *, low: bool, span: float = 1.0) -> float:
-    """Least-squares slope of y(x) over the last ``span`` of x at one end (at least the two end nodes)."""
-    if low:
-        m = x <= x[0] + span
-        if m.sum() < 2:
-            m[:2] = True
-    else:
-        m = x >= x[-1] - span
-        if m.sum() < 2:
-            m[-2:] = True
-    xs, ys = x[m], y[m]
-    dx = xs - xs.mean()
-    return float(np.dot(dx, ys - ys.mean()) / np.dot(dx, dx))
-
-
 # ==================================================================================================== causality
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -220,50 +205,6 @@ class CausalityCheck:
     def __repr__(self) -> str:
         return (f"CausalityCheck({'ok' if self.ok else f'{int(self.violated.sum())} of {self.omega.size} nodes off'}"
                 f", factor {self.factor:g}, scatter {self.scatter:.2g})")
-
-
-def _derivative(x, y):
-    """dy/dx on a non-uniform grid (second-order central differences, first-order at the ends) and the noise gain
-    sqrt(sum of squared weights): the SD of the derivative is gain * SD of y for independent errors."""
-    n = x.size
-    h1 = np.diff(x)[:-1]
-    h2 = np.diff(x)[1:]
-    a = -h2 / (h1 * (h1 + h2))
-    b = (h2 - h1) / (h1 * h2)
-    c = h1 / (h2 * (h1 + h2))
-    d = np.empty(n)
-    g = np.empty(n)
-    d[1:-1] = a * y[:-2] + b * y[1:-1] + c * y[2:]
-    g[1:-1] = np.sqrt(a * a + b * b + c * c)
-    d[0] = (y[1] - y[0]) / (x[1] - x[0])
-    d[-1] = (y[-1] - y[-2]) / (x[-1] - x[-2])
-    g[0] = math.sqrt(2.0) / (x[1] - x[0])
-    g[-1] = math.sqrt(2.0) / (x[-1] - x[-2])
-    return d, g
-
-
-def _local_scatter(y, half_width: int = 12) -> np.ndarray:
-    """Relative scatter of a sequence at each node: robust SD of its second differences over a moving window.
-
-    For white noise of SD sigma the second difference has SD sqrt(6) sigma; the median absolute value over
-    2 * half_width + 1 nodes, times 1.4826 / sqrt(6), estimates sigma (a smooth curve contributes only its
-    small curvature). The window's estimate is kept at least the whole sequence's, since a median of a few
-    correlated differences can fall far below the true scatter (the check then errs on the side of silence).
-    """
-    d2 = np.abs(np.diff(y, 2))
-    d2 = np.concatenate([d2[:1], d2, d2[-1:]])
-    n = d2.size
-    out = np.empty(n)
-    for i in range(n):
-        out[i] = np.median(d2[max(0, i - half_width): i + half_width + 1])
-    out = np.maximum(out, float(np.median(d2)))
-    return 1.4826 * out / math.sqrt(6.0)
-
-
-def _bands(f, mask) -> str:
-    idx = np.flatnonzero(mask)
-    groups = np.split(idx, np.flatnonzero(np.diff(idx) > 1) + 1)
-    return ", ".join(f"{f[g[0]]:.3g}-{f[g[-1]]:.3g} Hz" if g.size > 1 else f"{f[g[0]]:.3g} Hz" for g in groups[:5])
 
 
 @doi("10.1007/BF01520701", "isbn:978-0-471-04894-7")
@@ -378,6 +319,8 @@ def smooth_master(log10_omega, ln_storage, ln_loss, *, per_decade: float = 10.0,
     return 10.0 ** xn, np.exp(out[0]), np.exp(out[1]), scatter
 
 
+# ==================================================================================================== helpers
+
 def _pspline(x, y, knots_per_decade, robust):
     r"""P-spline fit (GCV-chosen penalty, optional Huber reweighting); returns the fitted curve and residuals.
 
@@ -444,3 +387,63 @@ def _isotonic(y):
             vals.append((v1 * n1 + v2 * n2) / (n1 + n2))
             sizes.append(n1 + n2)
     return np.repeat(vals, sizes)
+
+
+
+def _end_slope(x, y, *, low: bool, span: float = 1.0) -> float:
+    """Least-squares slope of y(x) over the last ``span`` of x at one end (at least the two end nodes)."""
+    if low:
+        m = x <= x[0] + span
+        if m.sum() < 2:
+            m[:2] = True
+    else:
+        m = x >= x[-1] - span
+        if m.sum() < 2:
+            m[-2:] = True
+    xs, ys = x[m], y[m]
+    dx = xs - xs.mean()
+    return float(np.dot(dx, ys - ys.mean()) / np.dot(dx, dx))
+
+
+def _derivative(x, y):
+    """dy/dx on a non-uniform grid (second-order central differences, first-order at the ends) and the noise gain
+    sqrt(sum of squared weights): the SD of the derivative is gain * SD of y for independent errors."""
+    n = x.size
+    h1 = np.diff(x)[:-1]
+    h2 = np.diff(x)[1:]
+    a = -h2 / (h1 * (h1 + h2))
+    b = (h2 - h1) / (h1 * h2)
+    c = h1 / (h2 * (h1 + h2))
+    d = np.empty(n)
+    g = np.empty(n)
+    d[1:-1] = a * y[:-2] + b * y[1:-1] + c * y[2:]
+    g[1:-1] = np.sqrt(a * a + b * b + c * c)
+    d[0] = (y[1] - y[0]) / (x[1] - x[0])
+    d[-1] = (y[-1] - y[-2]) / (x[-1] - x[-2])
+    g[0] = math.sqrt(2.0) / (x[1] - x[0])
+    g[-1] = math.sqrt(2.0) / (x[-1] - x[-2])
+    return d, g
+
+
+def _local_scatter(y, half_width: int = 12) -> np.ndarray:
+    """Relative scatter of a sequence at each node: robust SD of its second differences over a moving window.
+
+    For white noise of SD sigma the second difference has SD sqrt(6) sigma; the median absolute value over
+    2 * half_width + 1 nodes, times 1.4826 / sqrt(6), estimates sigma (a smooth curve contributes only its
+    small curvature). The window's estimate is kept at least the whole sequence's, since a median of a few
+    correlated differences can fall far below the true scatter (the check then errs on the side of silence).
+    """
+    d2 = np.abs(np.diff(y, 2))
+    d2 = np.concatenate([d2[:1], d2, d2[-1:]])
+    n = d2.size
+    out = np.empty(n)
+    for i in range(n):
+        out[i] = np.median(d2[max(0, i - half_width): i + half_width + 1])
+    out = np.maximum(out, float(np.median(d2)))
+    return 1.4826 * out / math.sqrt(6.0)
+
+
+def _bands(f, mask) -> str:
+    idx = np.flatnonzero(mask)
+    groups = np.split(idx, np.flatnonzero(np.diff(idx) > 1) + 1)
+    return ", ".join(f"{f[g[0]]:.3g}-{f[g[-1]]:.3g} Hz" if g.size > 1 else f"{f[g[0]]:.3g} Hz" for g in groups[:5])

@@ -10,7 +10,8 @@ import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
-from .errors import InputError
+from .errors import AccuracyWarning, InputError, ignoring
+from .shift import EXTRAPOLATED_SHIFT
 
 __all__ = ["plot_master_curve", "plot_shift_factors"]
 
@@ -99,9 +100,7 @@ def plot_shift_factors(master, *, title: str | None = None) -> Figure:
     wlf = getattr(shift, "wlf", None)
     if getattr(shift, "kind", "") == "wlf" and wlf is not None:
         T = T[T > wlf.T_ref - wlf.C2 + 1]           # the WLF law is singular below T_ref - C2
-    import warnings
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")             # extrapolation of a tabulated law is the point of the plot
+    with ignoring(AccuracyWarning, EXTRAPOLATED_SHIFT):     # extrapolating a tabulated law is the point here
         y = np.asarray(shift.log10_aT(T), dtype=float)
     describe = getattr(shift, "describe", None)
     text = describe() if callable(describe) else type(shift).__name__

@@ -29,17 +29,23 @@ import numpy as np
 
 from frictioncite import doi
 
-from .errors import InputError
-from .tts import Arrhenius, TemperatureShift, WLFArrhenius, WLFFit, fit_wlf
-from .viscoelastic import WLF
+from ._tables import _column_index, _role_of, read_table
+from .errors import AccuracyWarning, InputError, PhysicsWarning, ignoring
+from .laws import UNDETERMINED_COVARIANCE, WLF, Arrhenius, TemperatureShift, WLFFit, as_shift_law, fit_wlf
+from .units import check_temperatures, normalise_units, to_celsius, unit_factor
 
-__all__ = ["TabulatedShift", "SingleTemperature", "read_shift_factors", "as_shift_law", "SHIFT_LAW_TYPES"]
+__all__ = ["TabulatedShift", "SingleTemperature", "read_shift_factors", "as_shift_law", "SHIFT_LAW_TYPES",
+           "EXTRAPOLATED_SHIFT"]
 
 _K0 = 273.15
 
 #: Temperatures this close (K) outside a table are continued without a warning: the measured temperatures of a
 #: DMA isotherm scatter by about this much around the isotherm's own.
 QUIET_MARGIN_K = 1.0
+
+#: Text of the warning given when a tabulated shift is continued outside its table (a regular expression, for
+#: filters that silence that warning and no other).
+EXTRAPOLATED_SHIFT = ".*temperatures outside the shift-factor table"
 
 
 @doi("10.1137/0717021", "10.1021/ja01619a008")
@@ -115,8 +121,7 @@ class TabulatedShift:
         T_ref = self._zero() if T_ref is None else float(T_ref)
         if not math.isfinite(T_ref):
             raise InputError(f"T_ref: expected a finite temperature in deg C, got {T_ref!r}")
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
+        with ignoring(AccuracyWarning, EXTRAPOLATED_SHIFT):      # a reference outside the table is the user's
             offset = float(self._raw(np.array([T_ref]))[0])
         if offset != 0.0:
             y = y - offset
@@ -165,7 +170,7 @@ class TabulatedShift:
         if np.any(T1 < lo - QUIET_MARGIN_K) or np.any(T1 > hi + QUIET_MARGIN_K):
             warnings.warn(f"{self.source}: temperatures outside the shift-factor table ({lo:g} to {hi:g} C): "
                           f"a_T extrapolated with {self._outside_text()}, continuous at the table's ends",
-                          stacklevel=3)
+                          AccuracyWarning, stacklevel=3)
         if below.any() or above.any():
             for mask, T_end, y_end in ((below, lo, self.log10_aT_nodes[0]), (above, hi, self.log10_aT_nodes[-1])):
                 if mask.any():
@@ -221,24 +226,6 @@ class TabulatedShift:
         return f"TabulatedShift({self.describe()})"
 
 
-def _rebuild_tabulated(T, y, T_ref, outside, source):
-    return TabulatedShift(T, y, T_ref=T_ref, outside=outside, source=source)
-
-
-def _wlf_fit_of_table(T, y, source) -> WLFFit | None:
-    """The WLF fit of a table (None when it has too few points or no WLF law fits)."""
-    if T.size < 3:
-        return None
-    i0 = T.size // 2
-    try:
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            fit = fit_wlf(T, y - y[i0], float(T[i0]))
-    except InputError:
-        return None
-    return fit
-
-
 @dataclass(frozen=True)
 class SingleTemperature:
     """The 'law' of a master curve known at one temperature only: :math:`a_T = 1` there, undefined elsewhere.
@@ -273,44 +260,12 @@ class SingleTemperature:
         return f"single temperature: usable at T = {self.T_ref:g} C only (no shift law)"
 
 
-#: The shift-law classes of this package (any object with ``log10_aT`` and ``T_ref`` works too).
+#: The shift-law classes of this package (any object with ``log10_aT`` and ``T_ref`` works too; see
+#: :func:`as_shift_law`, defined with the closed-form laws in :mod:`materials.laws`).
 SHIFT_LAW_TYPES = (WLF, Arrhenius, TemperatureShift, TabulatedShift, SingleTemperature)
 
 
-def as_shift_law(law, *, name: str = "shift"):
-    """A shift-law object from a law, a WLF mapping ``{C1, C2, T_ref_C}``, a WLF+Arrhenius mapping
-    ``{C1, C2, T_ref_C, E_a, T_g}`` or an Arrhenius mapping ``{E_a, T_ref_C}``.
-
-    Raises
-    ------
-    InputError
-        Naming the argument and what was expected.
-    """
-    if isinstance(law, SHIFT_LAW_TYPES):
-        return law
-    if isinstance(law, Mapping):
-        keys = set(law)
-        if {"C1", "C2"} <= keys and {"E_a", "T_g"} <= keys:
-            return WLFArrhenius.from_mapping(law)
-        if {"C1", "C2"} <= keys:
-            return WLF.from_mapping(law)
-        if "E_a" in keys:
-            return Arrhenius.from_mapping(law)
-        raise InputError(f"{name}: a mapping needs C1, C2, T_ref_C (WLF), plus E_a, T_g (WLF+Arrhenius), or "
-                         f"E_a, T_ref_C (Arrhenius); got keys {sorted(keys)}")
-    if callable(getattr(law, "log10_aT", None)) and hasattr(law, "T_ref"):
-        return law
-    raise InputError(f"{name}: expected a shift law (materials.WLF, Arrhenius, WLFArrhenius, TabulatedShift) or a "
-                     f"mapping of its constants, got {law!r}")
-
-
 # ==================================================================================================== reader
-
-_LOG10_NAMES = ("log10at", "logat", "lgat", "log10(at)", "log(at)", "loga", "log10a", "logshift", "log10shift",
-                "logshiftfactor", "log10shiftfactor")
-_LN_NAMES = ("lnat", "ln(at)", "lna")
-_LINEAR_NAMES = ("at", "shiftfactor")
-
 
 def read_shift_factors(path, *, columns=None, units=None, T_ref: float | None = None, outside=None,
                        encoding: str | None = None) -> TabulatedShift:
@@ -352,9 +307,6 @@ def read_shift_factors(path, *, columns=None, units=None, T_ref: float | None = 
         Missing or ambiguous columns, non-positive :math:`a_T`, repeated temperatures, temperatures below
         absolute zero or looking like kelvin, unknown units (naming the file, line and column).
     """
-    from ._tables import _role_of, read_table
-    from .units import check_temperatures, normalise_units, to_celsius, unit_factor
-
     table = read_table(path, encoding=encoding)
     units = normalise_units(units)
     jT, T_unit_name, kind, jS, from_option = _shift_columns(table, columns, _role_of)
@@ -397,8 +349,33 @@ def read_shift_factors(path, *, columns=None, units=None, T_ref: float | None = 
     if rises.size:
         pairs = ", ".join(f"{T[order][i]:g}->{T[order][i + 1]:g} C" for i in rises[:4])
         warnings.warn(f"{table.path}: log10 a_T increases with temperature between {pairs} (a_T normally "
-                      "decreases as the temperature rises); check the table", stacklevel=2)
+                      "decreases as the temperature rises); check the table", PhysicsWarning, stacklevel=2)
     return TabulatedShift(T, y, T_ref=T_ref, outside=outside, source=str(table.path))
+
+
+# ==================================================================================================== helpers
+
+def _rebuild_tabulated(T, y, T_ref, outside, source):
+    return TabulatedShift(T, y, T_ref=T_ref, outside=outside, source=source)
+
+
+def _wlf_fit_of_table(T, y, source) -> WLFFit | None:
+    """The WLF fit of a table (None when it has too few points or no WLF law fits)."""
+    if T.size < 3:
+        return None
+    i0 = T.size // 2
+    try:
+        with ignoring(AccuracyWarning, UNDETERMINED_COVARIANCE):   # only the continuation is used, not its errors
+            fit = fit_wlf(T, y - y[i0], float(T[i0]))
+    except InputError:
+        return None
+    return fit
+
+
+_LOG10_NAMES = ("log10at", "logat", "lgat", "log10(at)", "log(at)", "loga", "log10a", "logshift", "log10shift",
+                "logshiftfactor", "log10shiftfactor")
+_LN_NAMES = ("lnat", "ln(at)", "lna")
+_LINEAR_NAMES = ("at", "shiftfactor")
 
 
 def _shift_columns(table, columns, role_of):
@@ -472,7 +449,6 @@ def _shift_columns(table, columns, role_of):
 
 
 def _index(table, ref) -> int:
-    from ._tables import _column_index
     return _column_index(table, ref)
 
 

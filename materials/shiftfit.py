@@ -24,16 +24,15 @@ the isotherms, where the friction engine uses it, and does not reward following 
 from __future__ import annotations
 
 import math
-import warnings
 from dataclasses import dataclass
 
 import numpy as np
 
 from frictioncite import doi
 
-from .errors import InputError
-from .tts import WLFArrhenius, TemperatureShift, WLFFit, fit_arrhenius, fit_wlf
-from .viscoelastic import WLF
+from .errors import AccuracyWarning, InputError, ignoring
+from .laws import UNDETERMINED_COVARIANCE, WLF, TemperatureShift, WLFArrhenius, WLFFit, fit_arrhenius, fit_wlf
+from .shift import EXTRAPOLATED_SHIFT, TabulatedShift
 
 __all__ = ["SHIFT_LAWS", "ShiftLawScore", "fit_shift_law", "score_shift_laws", "choose_shift_law"]
 
@@ -151,7 +150,6 @@ def fit_shift_law(kind: str, T, log10_aT, T0: float, *, Tg=None, wlf_range=None,
         arr = fit_arrhenius(T[below], y1[below], Tg, float(wlf.log10_aT(Tg)))
         return WLFArrhenius(wlf, arr, None if anchor == T0 else float(T0))
     if kind == "tabulated":
-        from .shift import TabulatedShift
         return TabulatedShift(T, y, T_ref=T0, outside=outside, source="shift factors of the isotherms")
     raise InputError(f"shift_law: expected one of {', '.join(SHIFT_LAWS)} or 'auto', got {kind!r}")
 
@@ -176,8 +174,7 @@ def best_split(T, y, wlf_range=None):
         i0 = int(np.flatnonzero(m)[np.argmin(T[m])])
         yy = y - y[i0]
         try:
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore")
+            with ignoring(AccuracyWarning, UNDETERMINED_COVARIANCE):  # the split is chosen by the residuals alone
                 fit = fit_wlf(T[m], yy[m], float(T[i0]), valid_from=Tg)
                 arr = fit_arrhenius(T[below], yy[below], Tg, float(fit.wlf.log10_aT(Tg)))
         except InputError:
@@ -249,8 +246,7 @@ def score_shift_laws(kinds, T_iso, log10_aT, T0, misfit_of, *, Tg=None, wlf_rang
 
     def evaluate(kind, outside_kind=None):
         try:
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore")
+            with _quiet_trials():
                 law, offset = fit(kind, all_iso, outside_kind)
                 r_in = misfit_of(shifted(law, offset), all_iso)
         except InputError as exc:
@@ -259,8 +255,7 @@ def score_shift_laws(kinds, T_iso, log10_aT, T0, misfit_of, *, Tg=None, wlf_rang
         for k in folds:
             keep = all_iso[all_iso != k]
             try:
-                with warnings.catch_warnings():
-                    warnings.simplefilter("ignore")
+                with _quiet_trials():
                     loo.append(misfit_of(shifted(*fit(kind, keep, outside_kind)), np.array([k])))
             except InputError:
                 loo.append(np.array([math.inf]))
@@ -300,6 +295,12 @@ def choose_shift_law(scores) -> ShiftLawScore:
 
 
 # ---------------------------------------------------------------------------------------------- helpers
+
+def _quiet_trials():
+    """Silence what a trial law says while it is scored: a continuation of a tabulated law outside its table (a
+    left-out isotherm lies outside by construction) and an undetermined WLF covariance (not used here)."""
+    return ignoring(AccuracyWarning, EXTRAPOLATED_SHIFT, UNDETERMINED_COVARIANCE)
+
 
 def _rms(r) -> float:
     r = np.asarray(r, dtype=float)

@@ -30,7 +30,11 @@ import numpy as np
 
 from frictioncite import doi
 
+from ._dma_formats import expand, natural_key
+from ._tables import pick_columns, read_table
+from .dma import DMAData
 from .errors import InputError
+from .units import check_moduli, check_strains, check_temperatures, normalise_units
 
 __all__ = ["StrainSoftening", "StrainSoftened", "strain_softening_from_sweep", "StrainSweep", "StrainFactors",
            "read_strain_sweep", "strain_factors"]
@@ -216,7 +220,7 @@ def strain_softening_from_sweep(dma, *, reference_strain: float | None = None) -
         F.append(f)
         G.append(gg)
     with warnings.catch_warnings():
-        warnings.simplefilter("ignore", RuntimeWarning)
+        warnings.filterwarnings("ignore", "All-NaN slice", RuntimeWarning)      # a strain no sweep reached
         f_med = np.nanmedian(np.array(F), axis=0)
         g_med = np.nanmedian(np.array(G), axis=0)
     return StrainSoftening(grid, f_med, g_med, source=f"strain sweeps in {dma.source} ({len(groups)} sweeps)")
@@ -349,11 +353,7 @@ def read_strain_sweep(path, *, columns=None, units=None, T: float | None = None,
     InputError
         Missing file or column, unknown unit, a unit slip, a bad value (naming file, line and column).
     """
-    from ._tables import pick_columns, read_table
-    from .dma import _expand
-    from .units import check_moduli, check_strains, check_temperatures, normalise_units
-
-    files = _expand_sweeps(path, _expand)
+    files = _expand_sweeps(path, expand)
     units = normalise_units(units)
     parts = []
     notes: list[str] = []
@@ -388,33 +388,6 @@ def read_strain_sweep(path, *, columns=None, units=None, T: float | None = None,
     source = str(files[0]) if len(files) == 1 else f"{len(files)} files ({files[0].name} ... {files[-1].name})"
     return StrainSweep.from_arrays(cat[0], cat[1], cat[2], cat[3], f_Hz=f_all, source=source, line=cat[4],
                                    notes=notes)
-
-
-def _expand_sweeps(path, expand) -> list:
-    if isinstance(path, (str, Path)) and Path(path).is_dir():
-        files = sorted(q for q in Path(path).iterdir()
-                       if q.is_file() and q.suffix.lower() in (".csv", ".txt", ".dat"))
-        if not files:
-            raise InputError(f"{path}: folder holds no *.csv, *.txt or *.dat strain-sweep files")
-        from .dma import _natural_key
-        return sorted(files, key=_natural_key)
-    return expand(path)
-
-
-def _temperature_of(path: Path, T) -> float:
-    if T is not None:
-        try:
-            T = float(T)
-        except (TypeError, ValueError):
-            raise InputError(f"T: expected a temperature in deg C, got {T!r}") from None
-        if not math.isfinite(T) or T < -273.15:
-            raise InputError(f"T: expected a temperature in deg C above -273.15, got {T!r}")
-        return T
-    m = re.search(r"(?:^|[_\-\s])T_?(-?\d+(?:\.\d+)?)(?:C)?(?:$|[_\-\s])", path.stem)
-    if not m:
-        raise InputError(f"{path}: no temperature column and none in the file name (e.g. T20.txt); pass T= "
-                         "(deg C) or columns naming a temperature column")
-    return float(m.group(1))
 
 
 @doi("10.1063/1.4919221", "10.1063/1.1388626")
@@ -557,18 +530,6 @@ class StrainFactors:
                 + (f", {self.source}" if self.source else "") + ")")
 
 
-def _bracket(x, nodes):
-    """Indices of the nodes around x and the weight of the upper one, x clamped to the nodes' range."""
-    n = nodes.size
-    if n == 1:
-        zero = np.zeros(x.shape, dtype=np.intp)
-        return zero, zero, np.zeros(x.shape)
-    xc = np.clip(x, nodes[0], nodes[-1])
-    i0 = np.clip(np.searchsorted(nodes, xc, side="right") - 1, 0, n - 2)
-    w = (xc - nodes[i0]) / (nodes[i0 + 1] - nodes[i0])
-    return i0, i0 + 1, w
-
-
 @doi("10.1063/1.4919221")
 def strain_factors(sweeps, *, reference_strain: float | None = None, isotherm_tol: float = 1.0) -> StrainFactors:
     r"""Strain factors f(strain, T), g(strain, T) from DMA strain sweeps.
@@ -638,7 +599,7 @@ def strain_factors(sweeps, *, reference_strain: float | None = None, isotherm_to
             continue
         n_sweeps += len(F_sweeps)
         with warnings.catch_warnings():
-            warnings.simplefilter("ignore", RuntimeWarning)
+            warnings.filterwarnings("ignore", "All-NaN slice", RuntimeWarning)   # a strain no sweep reached
             F_rows.append(_hold_ends(np.nanmedian(np.array(F_sweeps), axis=0)))
             G_rows.append(_hold_ends(np.nanmedian(np.array(G_sweeps), axis=0)))
         T_nodes.append(float(np.median(T[in_g])))
@@ -648,8 +609,9 @@ def strain_factors(sweeps, *, reference_strain: float | None = None, isotherm_to
                          source=f"strain sweeps in {source} ({n_sweeps} sweeps at {len(T_nodes)} temperatures)")
 
 
+# ==================================================================================================== helpers
+
 def _as_sweeps(sweeps) -> list:
-    from .dma import DMAData
     items = sweeps if isinstance(sweeps, (list, tuple)) else [sweeps]
     if not items:
         raise InputError("sweeps: empty list")
@@ -702,3 +664,42 @@ def _hold_ends(v):
         idx = np.arange(v.size)
         v[gaps] = np.interp(idx[gaps], idx[~gaps], v[~gaps])
     return v
+
+
+
+def _expand_sweeps(path, expand) -> list:
+    if isinstance(path, (str, Path)) and Path(path).is_dir():
+        files = sorted(q for q in Path(path).iterdir()
+                       if q.is_file() and q.suffix.lower() in (".csv", ".txt", ".dat"))
+        if not files:
+            raise InputError(f"{path}: folder holds no *.csv, *.txt or *.dat strain-sweep files")
+        return sorted(files, key=natural_key)
+    return expand(path)
+
+
+def _temperature_of(path: Path, T) -> float:
+    if T is not None:
+        try:
+            T = float(T)
+        except (TypeError, ValueError):
+            raise InputError(f"T: expected a temperature in deg C, got {T!r}") from None
+        if not math.isfinite(T) or T < -273.15:
+            raise InputError(f"T: expected a temperature in deg C above -273.15, got {T!r}")
+        return T
+    m = re.search(r"(?:^|[_\-\s])T_?(-?\d+(?:\.\d+)?)(?:C)?(?:$|[_\-\s])", path.stem)
+    if not m:
+        raise InputError(f"{path}: no temperature column and none in the file name (e.g. T20.txt); pass T= "
+                         "(deg C) or columns naming a temperature column")
+    return float(m.group(1))
+
+
+def _bracket(x, nodes):
+    """Indices of the nodes around x and the weight of the upper one, x clamped to the nodes' range."""
+    n = nodes.size
+    if n == 1:
+        zero = np.zeros(x.shape, dtype=np.intp)
+        return zero, zero, np.zeros(x.shape)
+    xc = np.clip(x, nodes[0], nodes[-1])
+    i0 = np.clip(np.searchsorted(nodes, xc, side="right") - 1, 0, n - 2)
+    w = (xc - nodes[i0]) / (nodes[i0 + 1] - nodes[i0])
+    return i0, i0 + 1, w

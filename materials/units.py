@@ -47,12 +47,6 @@ _STRAIN = {"%": 0.01, "percent": 0.01, "pct": 0.01, "-": 1.0, "1": 1.0, "abs": 1
 _RAD_S = 1.0 / (2.0 * math.pi)
 
 
-def _clean(unit) -> str:
-    u = str(unit).strip()
-    u = re.sub(r"^[\[(]\s*|\s*[\])]$", "", u)
-    return u.replace(" ", "").replace("\u00b0", "°").lower()
-
-
 def unit_factor(role: str, unit: str, *, where: str, omega: bool = False):
     """Factor to the project's unit (Hz, Pa, absolute strain) or, for ``role="T"``, ``"C"`` / ``"K"``.
 
@@ -70,6 +64,11 @@ def unit_factor(role: str, unit: str, *, where: str, omega: bool = False):
     ------
     InputError
         An unknown unit, naming the column and the units accepted.
+
+    Examples
+    --------
+    >>> unit_factor("E_storage", "MPa", where="dma.csv, column E'")
+    1000000.0
     """
     u = _clean(unit)
     if role == "f":
@@ -224,14 +223,6 @@ def check_moduli(E_storage, E_loss=None, *, where: str, unit: str = "Pa", truste
                          "declare the unit, e.g. units={'E': 'Pa'}")
 
 
-def _likely_scale(max_value_as_pa: float) -> str:
-    # the unit that brings the stiffest point into 1e6..1e10 Pa
-    for name, factor in (("MPa", 1e6), ("kPa", 1e3), ("GPa", 1e9)):
-        if 1e5 <= max_value_as_pa * factor <= 1e11:
-            return name
-    return "MPa"
-
-
 def check_strains(strain, *, where: str, unit: str, trusted: bool = False) -> None:
     """Refuse strain amplitudes that look like percent in a column read as absolute strain.
 
@@ -245,3 +236,20 @@ def check_strains(strain, *, where: str, unit: str, trusted: bool = False) -> No
         raise InputError(f"{where}: strain amplitudes up to {s.max():g} read as absolute strain ({100 * s.max():g} "
                          "%) are beyond any strain sweep; they look like percent: declare units={'strain': '%'} "
                          "(or units={'strain': '-'} if they really are absolute)")
+
+
+
+# ==================================================================================================== helpers
+
+def _clean(unit) -> str:
+    u = str(unit).strip()
+    u = re.sub(r"^[\[(]\s*|\s*[\])]$", "", u)
+    return u.replace(" ", "").replace("\u00b0", "°").lower()
+
+
+def _likely_scale(max_value_as_pa: float) -> str:
+    # the unit that brings the stiffest point into 1e6..1e10 Pa
+    for name, factor in (("MPa", 1e6), ("kPa", 1e3), ("GPa", 1e9)):
+        if 1e5 <= max_value_as_pa * factor <= 1e11:
+            return name
+    return "MPa"

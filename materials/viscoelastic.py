@@ -1,7 +1,8 @@
-"""Analytic viscoelastic models: a constant complex modulus and the generalized Maxwell (Prony) solid with WLF.
+"""Analytic viscoelastic models: a constant complex modulus and the generalized Maxwell (Prony) solid.
 
 Each material exposes ``E(omega, T)``: the complex Young's modulus at angular frequency ``omega`` (rad/s,
-any sign, Im E odd in omega) and temperature ``T`` (deg C), vectorized, plus ``thermal`` properties.
+any sign, Im E odd in omega) and temperature ``T`` (deg C), vectorized, plus ``thermal`` properties. The
+temperature enters through a shift law of :mod:`materials.laws` (:class:`WLF` is importable from here too).
 """
 
 from __future__ import annotations
@@ -11,88 +12,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from frictioncite import doi
-
 from .errors import InputError
+from .laws import WLF, as_shift_law
 
 __all__ = ["WLF", "Thermal", "ConstantModulus", "Prony"]
-
-
-@doi("10.1021/ja01619a008")
-@dataclass(frozen=True)
-class WLF:
-    r"""Williams-Landel-Ferry shift factor.
-
-    .. math:: \log_{10} a_T = -\frac{C_1 (T - T_{ref})}{C_2 + T - T_{ref}}
-
-    (Williams, Landel & Ferry, J. Am. Chem. Soc. 77, 3701 (1955), Eq. 7), so that
-    :math:`E(\omega, T) = b_T E(\omega a_T, T_{ref})`.
-
-    Parameters
-    ----------
-    C1 : float
-        Dimensionless WLF constant (> 0).
-    C2 : float
-        WLF constant, K (> 0).
-    T_ref : float
-        Reference temperature, deg C.
-    """
-
-    C1: float
-    C2: float
-    T_ref: float
-
-    kind = "wlf"
-
-    def __post_init__(self):
-        for name in ("C1", "C2", "T_ref"):
-            v = getattr(self, name)
-            if not isinstance(v, (int, float, np.floating, np.integer)) or not math.isfinite(v):
-                raise InputError(f"WLF.{name}: expected a finite number, got {v!r}")
-        if self.C1 <= 0 or self.C2 <= 0:
-            raise InputError(f"WLF: expected C1 > 0 and C2 > 0 K, got C1={self.C1}, C2={self.C2}")
-
-    def log10_aT(self, T):
-        """log10 of the shift factor at temperature(s) ``T`` (deg C). Raises below the WLF singularity."""
-        dT = np.asarray(T, dtype=float) - self.T_ref
-        if not np.all(np.isfinite(dT)):
-            raise InputError(f"temperature: expected finite temperatures in deg C, got {T!r}")
-        if np.any(self.C2 + dT <= 0):
-            raise InputError(f"temperature: WLF (C2={self.C2} K, T_ref={self.T_ref} C) is singular at or below "
-                             f"T = {self.T_ref - self.C2:g} C")
-        return -self.C1 * dT / (self.C2 + dT)
-
-    def aT(self, T):
-        """Shift factor a_T (dimensionless)."""
-        return 10.0 ** self.log10_aT(T)
-
-    def with_T_ref(self, T_ref: float) -> "WLF":
-        r"""The same law referred to another reference temperature (exact, Ferry 1980, ch. 11).
-
-        With :math:`\Delta = T_{ref}' - T_{ref}`: :math:`C_2' = C_2 + \Delta`, :math:`C_1' = C_1 C_2 / C_2'`.
-
-        Raises
-        ------
-        InputError
-            The new reference is at or below the singularity :math:`T_{ref} - C_2`.
-        """
-        C2n = self.C2 + (float(T_ref) - self.T_ref)
-        if not C2n > 0:
-            raise InputError(f"T_ref: {T_ref} C is at or below the WLF singularity {self.T_ref - self.C2:g} C")
-        return WLF(C1=self.C1 * self.C2 / C2n, C2=C2n, T_ref=float(T_ref))
-
-    def describe(self) -> str:
-        """One line: the law and its constants."""
-        return f"WLF: C1 = {self.C1:.4g}, C2 = {self.C2:.4g} K at T_ref = {self.T_ref:.4g} C"
-
-    @classmethod
-    def from_mapping(cls, m) -> "WLF":
-        """Build from a mapping with keys ``C1``, ``C2`` and ``T_ref_C`` (or ``T_ref``)."""
-        try:
-            T_ref = m["T_ref_C"] if "T_ref_C" in m else m["T_ref"]
-            return cls(C1=float(m["C1"]), C2=float(m["C2"]), T_ref=float(T_ref))
-        except KeyError as exc:
-            raise InputError(f"wlf: missing key {exc.args[0]!r} (expected C1, C2, T_ref_C)") from None
 
 
 @dataclass(frozen=True)
@@ -107,6 +30,11 @@ class Thermal:
         Specific heat c_p, J/(kg K).
     conductivity : float
         Thermal conductivity lambda, W/(m K).
+
+    Examples
+    --------
+    >>> print(f"{Thermal().diffusivity:.3g} m^2/s")
+    1.39e-07 m^2/s
     """
 
     density: float = 1200.0
@@ -188,6 +116,12 @@ class Prony:
         Thermal properties.
     label : str
         Free-text description (e.g. ``"synthetic"`` or the data source); shown in reports.
+
+    Examples
+    --------
+    >>> m = Prony(E_inf=1e6, E_i=[9e6], tau_i=[1e-3])     # one Debye term: relaxed 1 MPa, glassy 10 MPa
+    >>> complex(m.E(1e3))                                  # at omega tau = 1: half of the term, in phase and out
+    (5500000+4500000j)
     """
 
     E_inf: float
@@ -214,7 +148,6 @@ class Prony:
         object.__setattr__(self, "tau_i", tau_i)
         if self.wlf is not None and not isinstance(self.wlf, WLF):
             # any shift law (WLF+Arrhenius, Arrhenius, a tabulated a_T) or a mapping of its constants
-            from .shift import as_shift_law
             object.__setattr__(self, "wlf", as_shift_law(self.wlf, name="Prony.wlf"))
 
     def log10_aT(self, T):

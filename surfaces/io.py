@@ -362,8 +362,8 @@ def _parse_block(text, n_lines, first_line, path, delimiter, usecols, names, nco
     if plain:
         for fill in (False, True):
             try:
-                with warnings.catch_warnings():
-                    warnings.simplefilter("ignore")  # numpy's "empty input" warning: handled below
+                with warnings.catch_warnings():     # numpy's "empty input" warning: handled below
+                    warnings.filterwarnings("ignore", "loadtxt: input contained no data", UserWarning)
                     a = np.loadtxt(io.StringIO(_fill_empty(text, delimiter) if fill else text), delimiter=delimiter,
                                    usecols=usecols, ndmin=2, dtype=float)
             except ValueError:

@@ -24,6 +24,7 @@ from ._util import flat_after_detrend, positive, span
 from .errors import InputError
 from .profiles import Profile, ProfileSet
 from .psd import PSD
+from .psdfit import with_estimated_rolloff
 
 __all__ = ["HeightMap"]
 
@@ -179,8 +180,6 @@ class HeightMap:
         q_bin = np.exp(np.bincount(b, weights=w_sel * np.log(q_sel))[keep] / wsum[keep])
         C_bin = np.bincount(b, weights=w_sel * C_sel)[keep] / wsum[keep]
         ok = C_bin > 0
-        from .cutoffs import with_estimated_rolloff
-
         Lmax = max(self.size)
         return with_estimated_rolloff(PSD(q_bin[ok], C_bin[ok], q_r=q_lim, extrapolated=False,
                                           source=f"{self.source or 'height map'} (radial average)",

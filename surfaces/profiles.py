@@ -18,7 +18,9 @@ from scipy import ndimage
 from frictioncite import doi
 
 from ._util import flat_after_detrend, optional_positive, positive, span
-from .errors import InputError
+from .cutoffs import reliability_limit
+from .errors import DataWarning, InputError
+from .profile_metrics import height_difference_correlation, mean_profile_depth
 from .spectra import PSD1D, log_bin, periodogram_1d
 
 __all__ = ["Profile", "ProfileSet"]
@@ -146,8 +148,19 @@ class ProfileSet:
 
     Examples
     --------
-    >>> ps = surfaces.read_profiles("scan.csv")                    # doctest: +SKIP
-    >>> psd2d = ps.psd().to_isotropic()                             # doctest: +SKIP
+    Two random walks (self-affine, H = 1/2) of 2048 heights 10 um apart, as read from a file with
+    ``surfaces.read_profiles("scan.csv")``:
+
+    >>> import numpy as np, surfaces
+    >>> z = np.cumsum(np.random.default_rng(0).normal(size=(2, 2048)), axis=1) * 1e-6
+    >>> ps = surfaces.profiles_from_array(z, dx=10e-6)
+    >>> len(ps), ps[0].n
+    (2, 2048)
+    >>> psd2d = ps.psd().to_isotropic()            # averaged line-scan PSD -> isotropic 2D PSD
+    >>> isinstance(psd2d, surfaces.PSD)
+    True
+    >>> print(f"reliable up to q_r = pi / dx = {psd2d.q_r:.5g} rad/m")
+    reliable up to q_r = pi / dx = 3.1416e+05 rad/m
     """
 
     profiles: tuple
@@ -404,8 +417,6 @@ class ProfileSet:
                           safety_factor: float = 0.5) -> float:
         """Reliability limit q_r (rad/m) from the sampling, and optionally the lateral resolution and a stylus
         tip radius (see :func:`surfaces.reliability_limit`)."""
-        from .cutoffs import reliability_limit
-
         ps = self.fill_dropouts(1.0)
         return reliability_limit(dx=max(p.dx for p in ps), lateral_resolution=lateral_resolution,
                                  tip_radius=tip_radius, profiles=ps if tip_radius is not None else None,
@@ -413,15 +424,11 @@ class ProfileSet:
 
     def mpd(self, **options):
         """Mean profile depth per ISO 13473-1; see :func:`surfaces.mpd`."""
-        from .texture import mpd
-
-        return mpd(self, **options)
+        return mean_profile_depth(self, **options)
 
     def hdc(self, **options):
         """Height-difference correlation; see :func:`surfaces.hdc`."""
-        from .texture import hdc
-
-        return hdc(self, **options)
+        return height_difference_correlation(self, **options)
 
 
 def _shared_x_groups(profiles, extra=None) -> list[list[int]]:
@@ -462,4 +469,4 @@ def _refuse_flat(raw: "ProfileSet", detrended: "ProfileSet", kind: str) -> None:
                          "column (a constant or reference column?)")
     warnings.warn(f"{raw.source or '<array>'}: profile(s) {', '.join(flat[:5])}"
                   f"{' ...' if len(flat) > 5 else ''} have heights {what}; they add no roughness and lower the "
-                  "averaged PSD", UserWarning, stacklevel=3)
+                  "averaged PSD", DataWarning, stacklevel=3)

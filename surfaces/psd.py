@@ -26,6 +26,7 @@ from frictioncite import doi
 from ._util import atomic_write_text
 from ._util import finite_float, positive, powerlaw_segments_integral
 from .errors import InputError
+from .powerlaw import self_affine_line
 
 __all__ = ["SelfAffine", "PSD", "Cutoffs", "read_psd"]
 
@@ -93,6 +94,12 @@ class SelfAffine:
         Root-mean-square slope over the whole support (dimensionless, :math:`\xi^2 = 2\pi\int q^3 C dq`), the
         amplitude used by contact mechanics (e.g. the contact-mechanics challenge, Müser et al., Tribol. Lett.
         65, 118 (2017), specifies a slope of 1).
+
+    Examples
+    --------
+    >>> s = SelfAffine(hurst=0.8, q0=1e3, q1=1e7, hrms=20e-6)
+    >>> print(f"hrms {s.hrms():.3g} m, rms slope {s.rms_slope():.2f}, C(1e4) = {s.C(1e4):.3g} m^4")
+    hrms 2e-05 m, rms slope 0.25, C(1e4) = 2.56e-20 m^4
     """
 
     hurst: float
@@ -374,9 +381,8 @@ class PSD:
             return self.with_cutoff(q1=q1)
         if hurst is None:
             lo, hi = fit_band if fit_band is not None else (q_s / 10.0, q_s)
-            from .cutoffs import fit_self_affine  # cutoffs imports this module: import on use
-
-            hurst = fit_self_affine(self, q_min=max(lo, self.q0), q_max=min(hi, q_s)).hurst
+            hurst = self_affine_line(self.q, self.C_values, "isotropic", max(lo, self.q0), min(hi, q_s),
+                                     where=self.source or type(self).__name__).hurst
         H = finite_float(hurst, "hurst")
         if not 0.0 < H <= 1.0:
             raise InputError(f"hurst: expected 0 < H <= 1 for the extrapolated tail, got {H:g}")

@@ -31,8 +31,10 @@ import numpy as np
 from frictioncite import doi
 
 from ._util import band, loglog_interp, optional_positive, positive
-from .errors import InputError
+from .errors import AccuracyWarning, InputError
+from .powerlaw import gamma_factor, loglog_line
 from .psd import PSD, SelfAffine
+from .psdfit import SelfAffineFit, fit_table_self_affine, with_estimated_rolloff
 
 __all__ = ["PSD1D", "abel_forward", "gamma_factor", "periodogram_1d", "log_bin"]
 
@@ -204,11 +206,12 @@ class PSD1D:
         return PSD1D(self.q[m], self.C_values[m], self.spread[m], self.stderr[m], self.counts[m], self.n_profiles,
                      self.qL, self.q_r, self.source, self.history, self.widths[m])
 
-    def fit_self_affine(self, q_min: float | None = None, q_max: float | None = None):
+    def fit_self_affine(self, q_min: float | None = None, q_max: float | None = None) -> SelfAffineFit:
         """Self-affine fit (H, C0 of the equivalent isotropic PSD) on a band; see :func:`surfaces.fit_self_affine`."""
-        from .cutoffs import fit_self_affine
-
-        return fit_self_affine(self, q_min=q_min, q_max=q_max)
+        if q_max is None and self.q_r is not None:
+            q_max = self.q_r
+        return fit_table_self_affine(self.q, self.C_values, "1d", q_min, q_max,
+                                     where=self.source or type(self).__name__)
 
     # ------------------------------------------------------------------ 1D -> 2D
     @doi(_PERSSON_2005, _JACOBS_2017)
@@ -291,15 +294,11 @@ class PSD1D:
             raise InputError(f"to_isotropic ({self.source}): the inverse Abel transform is not positive at "
                              f"q = {bad:g} rad/m (C1D rises too steeply there); smooth more (smoothing=...), "
                              "narrow the band or use method='gamma'")
-        from .cutoffs import with_estimated_rolloff
-
         return with_estimated_rolloff(PSD(q, C2, q_r=self.q_r, extrapolated=False, source=self.source, qL=self.qL,
                                           hurst=H_out))
 
     def _fit_hurst(self, q, C1, strict: bool = True) -> float:
-        from .cutoffs import _linear_loglog_fit
-
-        slope, _, _ = _linear_loglog_fit(q, C1, where=f"PSD1D ({self.source})")
+        slope, _, _ = loglog_line(q, C1, where=f"PSD1D ({self.source})")
         H = (-slope - 1.0) / 2.0
         if strict or 0.0 < H <= 1.0:
             return _check_hurst(H, fitted=True)
@@ -307,19 +306,12 @@ class PSD1D:
         clamped = min(max(H, 0.01), 1.0)
         warnings.warn(f"to_isotropic ({self.source}): the 1D PSD is not self-affine on [{q[0]:.3g}, {q[-1]:.3g}] "
                       f"rad/m (fitted H = {H:.2f}, e.g. an instrument noise floor); the tail past the band uses "
-                      f"H = {clamped:.2f}. Lower q_max (e.g. to the reliability limit) or give hurst=.", stacklevel=3)
+                      f"H = {clamped:.2f}. Lower q_max (e.g. to the reliability limit) or give hurst=.",
+                      AccuracyWarning, stacklevel=3)
         return clamped
 
 
 # ---------------------------------------------------------------------- public helpers
-
-
-@doi(_PERSSON_2005, _JACOBS_2017)
-def gamma_factor(hurst: float) -> float:
-    r""":math:`\Gamma(1+H) / (\sqrt{\pi}\,\Gamma(H+1/2))`, the ratio :math:`q\,C(q)/C_{1D}(q)` of a pure power law."""
-    from scipy import special
-    H = float(hurst)
-    return float(np.exp(special.gammaln(1.0 + H) - special.gammaln(H + 0.5)) / math.sqrt(math.pi))
 
 
 @doi(_PERSSON_2005, _JACOBS_2017)

@@ -103,3 +103,17 @@ def test_plots_return_figures(tmp_path):
     # cut-offs are marked (vertical lines with labels)
     labels = [t.get_text() for t in figs[2].axes[0].texts]
     assert {"$q_L$", "$q_0$", "$q_r$", "$q_1$"} <= set(labels)
+
+
+def test_the_texture_functions_take_the_options_of_the_computations_behind_them():
+    """surfaces.mpd / hdc / fit_hdc accept profiles in any form and hand the options to the computations that
+    ProfileSet.mpd() and .hdc() use too: the two keep the same options and defaults."""
+    import inspect
+
+    from surfaces import profile_metrics, texture
+
+    for public, core in ((texture.mpd, profile_metrics.mean_profile_depth),
+                         (texture.hdc, profile_metrics.height_difference_correlation),
+                         (texture.fit_hdc, profile_metrics.fit_height_difference_correlation)):
+        options = [(p.name, p.default, p.kind) for p in list(inspect.signature(public).parameters.values())[1:]]
+        assert options == [(p.name, p.default, p.kind) for p in list(inspect.signature(core).parameters.values())[1:]]
