@@ -7,3 +7,13 @@ class InputError(ValueError):
 
 class UnitWarning(UserWarning):
     """A measurement column holds values that look like another unit (km/h, kPa, percent, kelvin)."""
+
+
+class ChannelWarning(UserWarning):
+    """Raw channels of a friction rig failed a check (a frozen channel, a force balance that does not close): the
+    message names the tire, the channels and the rows, and the affected samples are left out of the reduction."""
+
+
+class IdentificationWarning(UserWarning):
+    """No Magic Formula passes through the (slip, mu) points of some road positions, or too few samples fell
+    there: those positions carry no peak or locked mu, and the result says which."""
