@@ -229,8 +229,9 @@ def check_balance(raw: TrailerRun, rig, *, threshold: float = 6.0, min_samples: 
         A flagged range needs this many flagged samples (isolated single-sample spikes are not reported); flagged
         samples closer than this are merged into one range.
     frozen_samples : int
-        A force or wheel-speed channel that repeats exactly the same value over this many measured samples in a
-        row is frozen (a loaded cell's noise never does). The chain angle is not checked: it may be a constant.
+        A load-cell or chain-tension channel that repeats exactly the same value over this many measured samples
+        in a row is frozen (a loaded cell's noise never does). Wheel speeds (often quantised by pulse counting) and
+        the chain angle (which may be a constant) are not checked.
 
     Returns
     -------
@@ -393,8 +394,8 @@ def _ranges(mask, min_count: int, *, merge: bool = True) -> list[tuple[int, int]
 
 
 def _frozen(raw: TrailerRun, k: int, measured, frozen_samples: int) -> list[ChannelFlag]:
-    # the chain angle is left out: a rig may record its geometric angle as a constant
-    names = ["fxl_{k}_N", "fxr_{k}_N", "fzl_{k}_N", "fzr_{k}_N", "omega_{k}_rad_s", "fcu_{k}_N", "fcd_{k}_N"]
+    # wheel speeds from pulse counts repeat legitimately, and a rig may record its chain angle as a constant
+    names = ["fxl_{k}_N", "fxr_{k}_N", "fzl_{k}_N", "fzr_{k}_N", "fcu_{k}_N", "fcd_{k}_N"]
     out = []
     for pattern in names:
         name = pattern.format(k=k)
