@@ -8,6 +8,7 @@ and a drifting load-cell offset. Zero rows (tires lifted: no force on the road) 
 """
 
 import math
+import re
 import warnings
 
 import numpy as np
@@ -38,10 +39,10 @@ SIGMA_CELL = 2.0                  # N, every load cell
 ZERO_S = 1.0                      # s of zero rows at each end
 
 
-def true_mu(s, x, wet):
+def true_mu(s, x, wet, step_m=STEP_M):
     out = np.empty(np.broadcast(s, x).shape)
     s, x = np.broadcast_arrays(s, x)
-    for pave, sel in (("A", x < STEP_M), ("B", x >= STEP_M)):
+    for pave, sel in (("A", x < step_m), ("B", x >= step_m)):
         B, C, D = SURFACES[(pave, wet)]
         out[sel] = D * np.sin(C * np.arctan(B * s[sel]))
     return out
@@ -53,20 +54,22 @@ def true_peak_lock(pave, wet):
     return D, D * math.sin(C * math.atan(B))
 
 
-def forward_run(seconds=40.0, *, wet=False, seed=0, drift=True, start_m=0.0, chain=True, noise=1.0):
+def forward_run(seconds=40.0, *, wet=False, seed=0, drift=True, start_m=0.0, chain=True, noise=1.0, v0=12.0,
+                step_m=STEP_M):
     """Raw channels of one run, and the truth: (columns, truth dict)."""
     rng = np.random.default_rng(seed)
     t = np.arange(0.0, seconds, 1.0 / HZ)
     n = t.size
-    v = 12.0 + 0.4 * np.sin(2 * np.pi * t / 9.0)
-    x = start_m + 12.0 * t + 0.4 * 9.0 / (2 * np.pi) * (1.0 - np.cos(2 * np.pi * t / 9.0))    # exact integral of v
+    dv = 0.4 * v0 / 12.0
+    v = v0 + dv * np.sin(2 * np.pi * t / 9.0)
+    x = start_m + v0 * t + dv * 9.0 / (2 * np.pi) * (1.0 - np.cos(2 * np.pi * t / 9.0))    # exact integral of v
     zero = (t < ZERO_S) | (t >= seconds - ZERO_S)
     cols = {"t_s": t, "v_m_s": v, "zero": zero.astype(float)}
     truth = {"x": x, "mu": [], "slip": []}
     for k, (tire, s0) in enumerate(zip(RIG["tires"], SLIPS), start=1):
         lL, lR, ls, m, r = (tire[c] for c in ("l_left_m", "l_right_m", "l_span_m", "mass_kg", "wheel_radius_m"))
         slip = np.full(n, s0)
-        mu = true_mu(slip, x - tire["offset_m"], wet)
+        mu = true_mu(slip, x - tire["offset_m"], wet, step_m)
         load = 500.0 + 15.0 * np.sin(2 * np.pi * t / 1.3 + k)
         fb, nl = np.where(zero, 0.0, mu * load), np.where(zero, 0.0, load)
         pre = 250.0                                             # chain pretension, N
@@ -158,18 +161,21 @@ def _step_position(x, y):
     return 0.5 * (x[j - 1] + x[j])
 
 
-def test_alignment_recovers_a_step_in_friction_at_its_road_position(dry_run):
-    _, _, raw = dry_run
-    spacing = 12.0 / HZ
+@pytest.mark.parametrize("v0, step_m", [(12.0, STEP_M), (5 / 3.6, 30.0), (65 / 3.6, STEP_M)])
+def test_alignment_recovers_a_step_in_friction_at_its_road_position(dry_run, v0, step_m):
+    raw = dry_run[2] if v0 == 12.0 else rigs.TrailerRun.from_columns(forward_run(40.0, v0=v0, step_m=step_m)[0], RIG)
+    spacing = v0 / HZ
     aligned = rigs.reduce(raw, RIG, align=True)
     plain = rigs.reduce(raw, RIG, align=False)
     for k, tire in enumerate(RIG["tires"], start=1):
         a, p = aligned.for_tire(k), plain.for_tire(k)
-        assert _step_position(a.position, a.mu) == pytest.approx(STEP_M, abs=1.5 * spacing)
-        assert _step_position(p.position, p.mu) == pytest.approx(STEP_M + tire["offset_m"], abs=1.5 * spacing)
+        assert _step_position(a.position, a.mu) == pytest.approx(step_m, abs=1.5 * spacing)
+        assert _step_position(p.position, p.mu) == pytest.approx(step_m + tire["offset_m"], abs=1.5 * spacing)
     # aligned rows share the road positions of tire 1 where every tire has been
     np.testing.assert_array_equal(aligned.for_tire(3).position, aligned.for_tire(1).position)
-    assert any("tire 3: 13.9" in n for n in aligned.notes)     # 1.67 m at 12 m/s and 100 Hz, in samples
+    # the notes give the offsets in samples (13.9 for tire 3 at 12 m/s and 100 Hz)
+    shift = [float(m) for n in aligned.notes for m in re.findall(r"tire 3: ([0-9.]+)", n)]
+    assert shift == [pytest.approx(1.67 / (v0 / HZ), rel=0.01)]
 
 
 def test_peak_and_locked_mu_along_the_road_with_and_without_alignment(dry_run):
@@ -269,7 +275,7 @@ def test_reduced_rows_go_through_compare_as_they_are(dry_run, tmp_path):
 def test_batched_identification_matches_the_project_one(B, C, D):
     s = np.array([0.05, 0.14, 0.35])
     rng = np.random.default_rng(3)
-    levels = 1.0 + 0.1 * rng.standard_normal(4)
+    levels = 1.0 + 0.1 * rng.standard_normal(3)
     m = D * levels[:, None] * np.sin(C * np.arctan(B * s))[None, :]
     n = len(levels)
     rows = rigs.TrailerRows(position=np.repeat(np.arange(n) + 0.5, 3 * 2), tire=np.tile(np.repeat([1, 2, 3], 2), n),
