@@ -28,16 +28,8 @@ import numpy as np
 from frictioncite import doi
 
 from ..errors import ChannelWarning, InputError
-from .balance import (
-    TRAILER_2023,
-    BalanceCheck,
-    braking_force,
-    check_balance,
-    noise_level,
-    normal_load,
-    zero_offset,
-    zero_offset_std,
-)
+from .balance import (TRAILER_2023, BalanceCheck, _zero_fit, braking_force, check_balance, noise_level,
+                      normal_load)
 from .channels import TrailerRun
 from .rig import rig_from_dict
 
@@ -359,9 +351,8 @@ def reduce(raw: TrailerRun, rig, align: bool = True, *, start_m: float = 0.0, ch
         tire = rig.tire(k)
         fb = braking_force(raw.channel("fxl_{k}_N", k), raw.channel("fxr_{k}_N", k), tire)
         nl = normal_load(raw.channel("fzl_{k}_N", k), raw.channel("fzr_{k}_N", k), tire)
-        off_b, n_blocks = zero_offset(raw, fb)
-        off_n, _ = zero_offset(raw, nl)
-        sd_b, sd_n = zero_offset_std(raw, fb), zero_offset_std(raw, nl)
+        off_b, sd_b, n_blocks = _zero_fit(raw, fb)
+        off_n, sd_n, _ = _zero_fit(raw, nl)
         nl = nl - off_n
         good = measured.copy()
         if bal is not None and exclude_flagged:
