@@ -98,6 +98,16 @@ REFERENCES: dict[str, str] = {
     "blok:imeche-lubrication-1937": "H. Blok, Theoretical study of temperature rise at surfaces of actual contact "
     "under oiliness lubricating conditions, General Discussion on Lubrication and Lubricants, IMechE, vol. 2, 222 "
     "(1937).",
+    "10.3390/lubricants11070277": "Study on the influence of environmental conditions on road friction "
+    "characteristics, Lubricants 11(7), 277 (2023) (Nihon University, Nagoya University, Osaka Sangyo University "
+    "and co-workers): road-friction trailer with three fixed-slip tires, load-cell force balance (Eqs. 4-10), "
+    "tire offset correction, three-point Magic Formula identification of peak and locked mu along the road.",
+    "jcgm:100-2008": "JCGM 100:2008, Evaluation of measurement data - Guide to the expression of uncertainty in "
+    "measurement (GUM), section 5.1 (law of propagation of uncertainty).",
+    "vonneumann:ams-12-153-1941": "J. von Neumann, R. H. Kent, H. R. Bellinson, B. I. Hart, The mean square "
+    "successive difference, Ann. Math. Statist. 12, 153 (1941).",
+    "10.1080/01621459.1993.10476408": "P. J. Rousseeuw, C. Croux, Alternatives to the median absolute deviation, "
+    "J. Am. Statist. Assoc. 88, 1273 (1993).",
     "10.1076/vesd.39.3.189.14152": "C. Canudas-de-Wit, P. Tsiotras, E. Velenis, M. Basset, G. Gissinger, Dynamic "
     "friction models for road/tire longitudinal interaction, Vehicle System Dynamics 39, 189 (2003).",
 }

@@ -14,7 +14,7 @@ is missing, add it and watch the error fall::
 from .case import Case, case_path, load_case, shipped_cases
 from .compare import Comparison, GroupStat, compare
 from .diagnose import (SIGNIFICANCE_RULE, Ambiguity, Baseline, Candidate, Diagnosis, Separation, diagnose)
-from .errors import InputError, UnitWarning
+from .errors import ChannelWarning, IdentificationWarning, InputError, UnitWarning
 from .improve import Improvement, Step, improve
 from .measurements import Measurements, read_measurements
 from .noise import LackOfFit, NoiseEstimate, Pattern, estimate_noise, lack_of_fit, remaining_pattern
@@ -24,7 +24,7 @@ from .report import write_report
 from .verdict import VERDICTS, Verdict
 
 __all__ = [
-    "InputError", "UnitWarning",
+    "InputError", "UnitWarning", "ChannelWarning", "IdentificationWarning",
     "Measurements", "read_measurements", "Case", "load_case", "shipped_cases", "case_path",
     "Prediction", "predict", "Comparison", "GroupStat", "compare",
     "Diagnosis", "Baseline", "Candidate", "Ambiguity", "Separation", "diagnose", "SIGNIFICANCE_RULE",

@@ -2,7 +2,8 @@
 
 Format (``docs/conventions.md``, "Files"): a CSV with a header row; lines starting with ``#`` are comments. Columns
 ``slip, speed_m_s, T_C, pressure_Pa, mu`` are required; ``mu_std`` (standard deviation of mu, e.g. from
-repeats), ``wet`` (0/1, also true/false/yes/no) and ``series`` (a free label, e.g. the name of a run) are
+repeats), ``wet`` (0/1, also true/false/yes/no), ``series`` (a free label, e.g. the name of a run) and
+``position_m`` (where along a road the row was measured, m: rows reduced from a friction trailer) are
 optional. ``speed_m_s`` is the rolling reference speed V; the sliding speed is ``slip * V``; ``slip = 1`` is
 pure sliding. Other columns are ignored.
 
@@ -18,7 +19,7 @@ column; values that merely look odd give a :class:`~validation.UnitWarning`):
 * ``pressure_Pa <= 0``; pressures that all lie below 1000 Pa are refused as "looks like kPa, MPa or bar" (tread
   contact pressures are 1e4-1e7 Pa); a pressure below 1e4 Pa or above 1e8 Pa is warned about;
 * ``mu < 0``; ``mu`` above 5 is warned about;
-* ``mu_std <= 0`` or given on some rows and empty on others; ``wet`` not 0/1;
+* ``mu_std <= 0`` or given on some rows and empty on others; ``wet`` not 0/1; ``position_m`` not a finite number;
 * rows of a file that repeat another row exactly (same slip, speed, temperature, pressure, wet and mu) are
   warned about (:class:`DuplicateRowsWarning`, naming the lines): a copy-pasted block counts twice in every fit.
 """
@@ -39,7 +40,7 @@ __all__ = ["Measurements", "read_measurements", "REQUIRED_COLUMNS", "OPTIONAL_CO
 #: Columns every measurement file must have.
 REQUIRED_COLUMNS = ("slip", "speed_m_s", "T_C", "pressure_Pa", "mu")
 #: Columns a measurement file may have.
-OPTIONAL_COLUMNS = ("mu_std", "wet", "series")
+OPTIONAL_COLUMNS = ("mu_std", "wet", "series", "position_m")
 
 _TRUE = {"1", "1.0", "true", "yes", "y", "wet"}
 
@@ -78,6 +79,9 @@ class Measurements:
     contact : persson.slip.Contact or None
         The brush model of the test wheel, when known (set by :func:`validation.load_case` from the case's
         ``[contact]`` table); used for rows with slip < 1 when no contact is passed explicitly.
+    position : ndarray or None
+        Road position of each row, m (None when the file has no ``position_m`` column): rows reduced from a
+        friction trailer's channels (:mod:`validation.rigs`).
     """
 
     slip: np.ndarray
@@ -91,6 +95,7 @@ class Measurements:
     source: str = "<arrays>"
     lines: np.ndarray | None = None
     contact: object = None
+    position: np.ndarray | None = None
     _checked: bool = field(default=False, repr=False, compare=False)
 
     def __post_init__(self):
@@ -98,14 +103,15 @@ class Measurements:
             return
         checked = _check_arrays(
             {"slip": self.slip, "speed_m_s": self.speed, "T_C": self.temperature, "pressure_Pa": self.pressure,
-             "mu": self.mu, "mu_std": self.mu_std, "wet": self.wet}, self.series, self.source, self.lines)
+             "mu": self.mu, "mu_std": self.mu_std, "wet": self.wet, "position_m": self.position}, self.series,
+            self.source, self.lines)
         for k, v in checked.items():
             object.__setattr__(self, k, v)
 
     # ------------------------------------------------------------------------------------------------------
     @classmethod
     def from_arrays(cls, *, slip, speed, temperature, pressure, mu, mu_std=None, wet=None, series=None,
-                    source: str = "<arrays>", contact=None) -> "Measurements":
+                    source: str = "<arrays>", contact=None, position=None) -> "Measurements":
         """Measurements from arrays (scalars broadcast), with the same checks as :func:`read_measurements`."""
         names = ("slip", "speed", "temperature", "pressure", "mu")
         arrays = [_float_argument(a, name, source) for a, name in zip((slip, speed, temperature, pressure, mu), names)]
@@ -127,8 +133,9 @@ class Measurements:
         std = None if mu_std is None else per_row(_float_argument(mu_std, "mu_std", source), "mu_std")
         w = None if wet is None else per_row(np.asarray(wet), "wet")
         ser = () if series is None else tuple(str(s) for s in per_row(np.asarray(series, dtype=object), "series"))
+        pos = None if position is None else per_row(_float_argument(position, "position_m", source), "position_m")
         return cls(slip=arrays[0], speed=arrays[1], temperature=arrays[2], pressure=arrays[3], mu=arrays[4],
-                   mu_std=std, wet=w, series=ser, source=source, contact=contact)
+                   mu_std=std, wet=w, series=ser, source=source, contact=contact, position=pos)
 
     @property
     def n(self) -> int:
@@ -173,7 +180,7 @@ class Measurements:
             pressure=self.pressure[idx], mu=self.mu[idx],
             mu_std=None if self.mu_std is None else self.mu_std[idx], wet=self.wet[idx],
             series=tuple(self.series[i] for i in idx), source=self.source, lines=self.lines[idx],
-            contact=self.contact, _checked=True)
+            contact=self.contact, position=None if self.position is None else self.position[idx], _checked=True)
 
     def with_contact(self, contact) -> "Measurements":
         """A copy that carries ``contact`` (the brush model of the test wheel)."""
@@ -186,10 +193,10 @@ class Measurements:
         return Measurements(slip=self.slip, speed=self.speed, temperature=self.temperature,
                             pressure=self.pressure, mu=np.asarray(mu, dtype=float), mu_std=mu_std, wet=self.wet,
                             series=self.series, source=self.source if source is None else source,
-                            contact=self.contact)
+                            contact=self.contact, position=self.position)
 
     def as_table(self) -> dict[str, np.ndarray]:
-        """Columns in the file format (``wet`` as 0/1; ``mu_std`` and ``series`` only when present)."""
+        """Columns in the file format (``wet`` as 0/1; ``mu_std``, ``series`` and ``position_m`` only when present)."""
         cols = {"slip": self.slip, "speed_m_s": self.speed, "T_C": self.temperature,
                 "pressure_Pa": self.pressure, "mu": self.mu}
         if self.mu_std is not None:
@@ -197,6 +204,8 @@ class Measurements:
         cols["wet"] = self.wet.astype(int)
         if any(self.series):
             cols["series"] = np.asarray(self.series, dtype=object)
+        if self.position is not None:
+            cols["position_m"] = self.position
         return cols
 
     def to_csv(self, path, comments: tuple[str, ...] = ()) -> Path:
@@ -308,7 +317,7 @@ def read_measurements(path) -> Measurements:
     n = len(rows)
     lines = np.array([ln for ln, _ in rows], dtype=int)
     values: dict[str, np.ndarray] = {}
-    for name in REQUIRED_COLUMNS + ("mu_std",):
+    for name in REQUIRED_COLUMNS + ("mu_std", "position_m"):
         if name not in col:
             continue
         j = col[name]
@@ -341,7 +350,7 @@ def read_measurements(path) -> Measurements:
         series = tuple((cells[j] if j < len(cells) else "") for _, cells in rows)
     meas = Measurements(slip=values["slip"], speed=values["speed_m_s"], temperature=values["T_C"],
                         pressure=values["pressure_Pa"], mu=values["mu"], mu_std=values.get("mu_std"), wet=wet,
-                        series=series, source=str(path), lines=lines)
+                        series=series, source=str(path), lines=lines, position=values.get("position_m"))
     _warn_duplicates(meas)
     return meas
 
@@ -470,6 +479,21 @@ def _check_arrays(cols: dict, series, source: str, lines) -> dict:
                 raise InputError(f"{_where(source, lines, i, 'mu_std')}: expected a standard deviation > 0, got "
                                  f"{std[i]:g}")
     out["mu_std"] = std
+    # --- position (optional; any finite number: a road position may be negative)
+    pos = cols.get("position_m")
+    if pos is not None:
+        try:
+            pos = np.array(pos, dtype=float).ravel()
+        except (TypeError, ValueError):
+            raise InputError(f"{source}: column 'position_m': expected numbers") from None
+        if pos.size != n:
+            raise InputError(f"{source}: column 'position_m' has {pos.size} values, expected {n}")
+        bad = ~np.isfinite(pos)
+        if np.any(bad):
+            i = int(np.argmax(bad))
+            raise InputError(f"{_where(source, lines, i, 'position_m')}: expected a finite road position in m, "
+                             f"got {pos[i]!r}")
+    out["position"] = pos
     # --- wet
     w = cols.get("wet")
     if w is None:
@@ -498,7 +522,7 @@ def _check_arrays(cols: dict, series, source: str, lines) -> dict:
         raise InputError(f"{source}: column 'series' has {len(ser)} values, expected {n}")
     out["series"] = ser or ("",) * n
     out["lines"] = lines if lines is not None else np.zeros(n, dtype=int)
-    for k in ("slip", "speed", "temperature", "pressure", "mu", "mu_std", "wet", "lines"):
+    for k in ("slip", "speed", "temperature", "pressure", "mu", "mu_std", "wet", "lines", "position"):
         if out.get(k) is not None:
             out[k].setflags(write=False)
     return out
