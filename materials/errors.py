@@ -29,16 +29,16 @@ class DataWarning(MaterialsWarning):
     within an isotherm, strain amplitudes left out of a master curve."""
 
 
-class AccuracyWarning(MaterialsWarning):
+class AccuracyWarning(MaterialsWarning, frictionerrors.AccuracyWarning):
     """A result to check before trusting it: extrapolated beyond the data, a fit that describes its data poorly,
     isotherms that do not superpose, an undetermined uncertainty."""
 
 
-class ConvergenceWarning(MaterialsWarning):
+class ConvergenceWarning(MaterialsWarning, frictionerrors.ConvergenceWarning):
     """An iterative fit stopped before it converged (the result says so too)."""
 
 
-class PhysicsWarning(MaterialsWarning):
+class PhysicsWarning(MaterialsWarning, frictionerrors.PhysicsWarning):
     """The data contradict the physics: a shift factor that rises with temperature, a modulus that violates
     the Kramers-Kronig relations."""
 

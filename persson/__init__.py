@@ -11,12 +11,14 @@ from . import _moved
 
 _moved.install()  # old module paths (persson.model, persson.tire, ...) keep importing
 
-from . import effects, slip, sweeps, tire  # noqa: E402
+from . import effects, slip, sweeps  # noqa: E402
 from .contact.mechanics import ContactResult, contact  # noqa: E402
 from .engine.grid import GridSettings  # noqa: E402
 from .engine.model import Model  # noqa: E402
 from .engine.results import FrictionResult  # noqa: E402
 from .errors import AccuracyWarning, ConvergenceWarning, InputError, PhysicsWarning  # noqa: E402
+
+tire = slip  # the curve laws of the earlier persson.tire module live in persson.slip
 
 __version__ = "0.1.0"
 

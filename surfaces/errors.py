@@ -24,5 +24,5 @@ class DataWarning(SurfacesWarning):
     """The measured data hold less than they seem: profiles without roughness, no valid MPD segment."""
 
 
-class AccuracyWarning(SurfacesWarning):
+class AccuracyWarning(SurfacesWarning, frictionerrors.AccuracyWarning):
     """A result to check before trusting it: a tail extrapolated with an assumed Hurst exponent."""

@@ -36,3 +36,12 @@ def test_one_unit_warning_class_for_every_package():
         warnings.simplefilter("error", frictionerrors.UnitWarning)
         with pytest.raises(frictionerrors.UnitWarning, match="pressure"):
             plausible_pressure(0.3, "pressure")  # MPa typed as Pa
+
+
+@pytest.mark.parametrize("package", [surfaces, materials], ids=lambda m: m.__name__)
+def test_package_warning_categories_are_the_shared_ones(package):
+    # a filter on the shared category catches the package's own warning of that kind
+    for name in ("AccuracyWarning", "ConvergenceWarning", "PhysicsWarning"):
+        cls = getattr(package, name, None)
+        if cls is not None:
+            assert issubclass(cls, getattr(frictionerrors, name)), f"{package.__name__}.{name}"

@@ -84,9 +84,9 @@ def upward_imports(lower=BASE_PACKAGES, upper=UPPER_PACKAGES, root=ROOT) -> list
     ("surfaces",),
     ("materials",),
     ("surfaces", "materials"),
-    pytest.param(("persson",), marks=pytest.mark.xfail(strict=False, reason="persson layout in progress")),
-    pytest.param(("validation",), marks=pytest.mark.xfail(strict=False, reason="persson layout in progress")),
-    pytest.param(PACKAGES, marks=pytest.mark.xfail(strict=False, reason="persson layout in progress")),
+    ("persson",),
+    ("validation",),
+    PACKAGES,
 ], ids=lambda p: "+".join(p))
 def test_no_import_cycles(packages):
     cycles = find_cycles(packages)

@@ -72,8 +72,6 @@ def peak(slip, mu, axis: int = -1):
     take = lambda a, d: np.take_along_axis(a, (jm + d)[..., None], -1)[..., 0]  # noqa: E731
     x = np.stack([take(s, d) for d in (-1, 0, 1)])
     y = np.stack([take(m, d) for d in (-1, 0, 1)])
-    from .peaks import _parabola_vertex
-
     xv, yv, ok = _parabola_vertex(x, y)
     ok &= (j >= 1) & (j <= n - 2)
     pm = np.where(ok, yv, np.take_along_axis(m, j[..., None], -1)[..., 0])

@@ -33,12 +33,11 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import InputError
+from .forces import GRAVITY, normal_load
 from .rig import Rig, rig_from_dict
 
 __all__ = ["TrailerRun", "read_trailer", "tire_columns", "CHAIN_COLUMNS", "FORCE_COLUMNS", "GRAVITY"]
 
-#: Standard gravity, m/s^2 (the weight m g of Eq. 9).
-GRAVITY = 9.80665
 #: Load-cell columns of tire k (format with ``k``).
 FORCE_COLUMNS = ("fxl_{k}_N", "fxr_{k}_N", "fzl_{k}_N", "fzr_{k}_N")
 #: Optional chain columns of tire k: upper and lower tension, angle from the horizontal.
@@ -362,8 +361,6 @@ def _checked(cols: dict, rig: Rig, source: str, lines, *, header_line: int) -> T
             raise InputError(f"{_where(source, lines, i, 'x_m')}: distance {cols['x_m'][i]:g} m is less than the "
                              f"previous row's {cols['x_m'][i - 1]:g} m; the distance travelled cannot decrease")
     # --- per tire: normal load (Eq. 9) and wheel speed
-    from .balance import normal_load
-
     for k in range(1, rig.n_tires + 1):
         tire = rig.tire(k)
         fzl, fzr = cols[f"fzl_{k}_N"], cols[f"fzr_{k}_N"]
