@@ -110,6 +110,26 @@ REFERENCES: dict[str, str] = {
     "J. Am. Statist. Assoc. 88, 1273 (1993).",
     "10.1076/vesd.39.3.189.14152": "C. Canudas-de-Wit, P. Tsiotras, E. Velenis, M. Basset, G. Gissinger, Dynamic "
     "friction models for road/tire longitudinal interaction, Vehicle System Dynamics 39, 189 (2003).",
+    "kane:wear-342-163-2015": "M. Kane, V. Cerezo, A contribution to tire/road friction modeling: from a simplified "
+    "dynamic frictional contact model to a \"Dynamic Friction Tester\" model, Wear 342-343, 163 (2015).",
+    "kane:ijpe-20-965-2019": "M. Kane, M.-T. Do, V. Cerezo, Z. Rado, C. Khelifi, Contribution to pavement friction "
+    "modelling: an introduction of the wetting effect, Int. J. Pavement Eng. 20, 965 (2019).",
+    "kane:tire-pavement-tool": "Tire/pavement friction: presentation of a comprehensive physical tool through "
+    "advanced contact modelling (the element tool of Kane and co-workers, Université Gustave Eiffel, Nantes).",
+    "10.1098/rstl.1886.0005": "O. Reynolds, On the theory of lubrication and its application to Mr. Beauchamp "
+    "Tower's experiments, Phil. Trans. R. Soc. Lond. 177, 157 (1886).",
+    "hamrock:fffl-2004": "B. J. Hamrock, S. R. Schmid, B. O. Jacobson, Fundamentals of Fluid Film Lubrication, 2nd "
+    "ed., Marcel Dekker, New York (2004), ch. 8 (fixed-incline slider bearing).",
+    "nasa:TN-D-2056": "W. B. Horne, R. C. Dreher, Phenomena of pneumatic tire hydroplaning, NASA TN D-2056 (1963).",
+    "10.2346/1.2174340": "T. B. Rhyne, Development of a vertical stiffness relationship for belted radial tires, "
+    "Tire Sci. Technol. 33, 136 (2005).",
+    "10.1063/1.457480": "H. Flyvbjerg, H. G. Petersen, Error estimates on averages of correlated data, J. Chem. "
+    "Phys. 91, 461 (1989).",
+    "10.2307/1412159": "C. Spearman, The proof and measurement of association between two things, Am. J. Psychol. "
+    "15, 72 (1904).",
+    "10.1093/biomet/30.1-2.81": "M. G. Kendall, A new measure of rank correlation, Biometrika 30, 81 (1938).",
+    "10.1109/TSMC.1979.4310076": "N. Otsu, A threshold selection method from gray-level histograms, IEEE Trans. "
+    "Syst. Man Cybern. 9, 62 (1979).",
 }
 
 

@@ -308,9 +308,78 @@ SECTIONS: dict[str, str] = {
              "have its own table `[model.<effect>]` with its parameters (listed below).",
     "conditions": "Operating conditions used by `persson friction` and `persson sweep`.",
     "measurements": "Measured friction, used by `persson compare`, `diagnose`, `report`.",
+    "tire": "The tyre on the road, used by `persson tread` (the tread-element tool, `persson.tread`): the tyre, "
+            "its pattern, the water and the map's slips and speeds. The road is `[surface] profiles` (or synthetic "
+            "profiles of `psd` / `example`); the temperature is `[conditions] temperature_C`.",
 }
 
 _READ_OPTIONS = _options_of("surfaces:read_profiles_csv", "surfaces:read_captif", extra=("format",))
+
+# --- [tire]: the tread-element tool (persson.tread); its tables are checked here, built by persson.tread.case
+def _subtable(what: str, required: tuple, **keys: Kind) -> Kind:
+    """A table with known keys (``name=kind``), ``required`` among them."""
+
+    def check(value, where):
+        if not isinstance(value, dict):
+            raise _expected(where, f"a table {{ {', '.join(f'{k} = ...' for k in required)} }}", value)
+        _check_keys(value, keys, where)
+        missing = [k for k in required if k not in value]
+        if missing:
+            raise InputError(f"{where}: missing {', '.join(missing)} ({what})")
+        return {k: keys[k].check(v, f"{where} {k}") for k, v in value.items()}
+
+    return Kind("{ " + ", ".join(keys) + " }", check, lambda: {k: kd.text for k, kd in keys.items()})
+
+
+def _slips(value, where: str) -> list[float]:
+    items = value if isinstance(value, list) else [value]
+    out = [_number(v, f"{where}[{i}]" if isinstance(value, list) else where) for i, v in enumerate(items)]
+    if not out or any(not 0.0 < x <= 1.0 for x in out):
+        raise _expected(where, "slip ratios in (0, 1] (1 = locked wheel)", value)
+    return out
+
+
+_TIRE_KEYS = (
+    Key("tire", "diameter_m", POSITIVE, "Free outer diameter of the tyre, m."),
+    Key("tire", "width_m", POSITIVE, "Section width, m."),
+    Key("tire", "load_N", POSITIVE, "Normal load on the wheel, N."),
+    Key("tire", "inflation_pressure_Pa", POSITIVE, "Inflation (gauge) pressure, Pa (2.2 bar = 2.2e5)."),
+    Key("tire", "tread_depth_m", POSITIVE, "Rubber thickness of the tread, m."),
+    Key("tire", "slip_stiffness", POSITIVE, "Longitudinal slip stiffness per unit load (initial slope of "
+        "mu(slip)); sets the elements' shear stiffness.", "20"),
+    Key("tire", "rigid_elements", BOOLEAN, "true: elements rigid in shear, every contacting element slides "
+        "(the paper's equations as written; `slip_stiffness` unused).", "false"),
+    Key("tire", "pressure_distribution", PRESSURE_DISTRIBUTION, "Pressure along the footprint.", '"parabolic"'),
+    Key("tire", "vertical_stiffness_N_per_m", POSITIVE, "Vertical stiffness at 2.2 bar, N/m.",
+        "the reference tyre's, scaled with sqrt(width x diameter)"),
+    Key("tire", "grooves", Kind("table", lambda v, w: _GROOVES.check(v, w), lambda: _GROOVES.subkeys()),
+        "Straight grooves: `{ width_m, pitch_m, depth_m, angle_deg }` (angle from the lateral direction; "
+        "0 lateral, 90 circumferential; depth default the tread depth).", "none (slick)"),
+    Key("tire", "footprint_image", Kind("table", lambda v, w: _IMAGE.check(v, w), lambda: _IMAGE.subkeys()),
+        "Pattern from a footprint image instead of `grooves`: `{ file, pixel_m, rubber }` (rubber \"dark\" "
+        "or \"bright\")."),
+    Key("tire", "water", Kind("table", lambda v, w: _WATER.check(v, w), lambda: _WATER.subkeys()),
+        "Wet road: `{ thickness_m, viscosity_Pa_s, density_kg_m3, alpha, beta, outlet_gap_m }` (only "
+        "`thickness_m` is required).", "dry"),
+    Key("tire", "speeds_m_s", SPEEDS, "Vehicle speeds of the map, m/s.", "[16.7]"),
+    Key("tire", "slips", Kind("slip or list of slips in (0, 1]", _slips), "Slip ratios of the map.",
+        "11 slips from 0.02 to 1"),
+    Key("tire", "mu_loc", _range(0.0, 3.0), "Constant local friction instead of the engine's on the "
+        "sub-resolution scales."),
+    Key("tire", "q1", POSITIVE, "Short-distance cut-off of the extrapolated microtexture for mu_loc, rad/m.",
+        "1e6"),
+    Key("tire", "flash_temperature", BOOLEAN, "Flash temperature in mu_loc.", "false"),
+    Key("tire", "adhesion", BOOLEAN, "Adhesion in mu_loc on a dry road.", "true"),
+    Key("tire", "element_size_m", POSITIVE, "Tread element spacing, m.", "0.2 mm"),
+    Key("tire", "road_element_m", POSITIVE, "Road element size, m.", "the profiles' spacing"),
+)
+_GROOVES = _subtable("groove width and pitch", ("width_m", "pitch_m"), width_m=POSITIVE, pitch_m=POSITIVE,
+                     depth_m=POSITIVE, angle_deg=_range(-90.0, 90.0))
+_IMAGE = _subtable("image file and pixel size", ("file", "pixel_m"), file=FILE, pixel_m=POSITIVE,
+                   rubber=_choice("dark", "bright"))
+_WATER = _subtable("water depth", ("thickness_m",), thickness_m=POSITIVE, viscosity_Pa_s=POSITIVE,
+                   density_kg_m3=POSITIVE, alpha=_range(0.0, 1.0e4), beta=_range(0.0, 1.0e4), outlet_gap_m=POSITIVE)
+
 
 #: Every key, one declaration each (in the order of the docs).
 KEYS: tuple[Key, ...] = (
@@ -390,6 +459,7 @@ KEYS: tuple[Key, ...] = (
     # --- measurements
     Key("measurements", "file", FILE, "Measured friction CSV: `slip, speed_m_s, T_C, pressure_Pa, mu` "
         "(optional `mu_std, wet, series`)."),
+    *_TIRE_KEYS,
 )
 
 

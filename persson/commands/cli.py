@@ -20,11 +20,11 @@ import warnings
 __all__ = ["main", "build_parser", "available_commands", "COMMANDS", "COMMANDS_GROUP"]
 
 #: The engine's command modules (in ``persson.commands``).
-COMMANDS = ("friction", "sweep", "contact")
+COMMANDS = ("friction", "sweep", "contact", "tread")
 #: Entry-point group through which installed packages add commands.
 COMMANDS_GROUP = "persson.commands"
 # the order ``--help`` lists the commands in (others follow alphabetically)
-_HELP_ORDER = ("demo", "friction", "contact", "compare", "diagnose", "report", "sweep")
+_HELP_ORDER = ("demo", "friction", "contact", "compare", "diagnose", "report", "sweep", "tread")
 
 
 def main(argv: list[str] | None = None) -> int:
