@@ -162,7 +162,7 @@ def local_friction(road, material, *, temperature: float = 20.0, speeds, wet: bo
         A microtexture PSD that ends before :math:`\pi/\Delta x`, non-positive speeds or pressures, a cut-off
         below the band's start.
     """
-    from .. import Model
+    from ..engine.model import Model
     from ..effects import Adhesion
 
     T = number(temperature, "temperature")

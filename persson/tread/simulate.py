@@ -31,7 +31,6 @@ block averages (Flyvbjerg & Petersen, J. Chem. Phys. 91, 461 (1989)).
 
 from __future__ import annotations
 
-import math
 import warnings
 from dataclasses import dataclass
 
