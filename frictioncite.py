@@ -130,6 +130,31 @@ REFERENCES: dict[str, str] = {
     "10.1093/biomet/30.1-2.81": "M. G. Kendall, A new measure of rank correlation, Biometrika 30, 81 (1938).",
     "10.1109/TSMC.1979.4310076": "N. Otsu, A threshold selection method from gray-level histograms, IEEE Trans. "
     "Syst. Man Cybern. 9, 62 (1979).",
+    "10.4271/741106": "I. A. Dijks, A multifactor examination of wet skid resistance of car tires, SAE Technical "
+    "Paper 741106 (1974).",
+    "leu-henry:trr-666-1978": "M. C. Leu, J. J. Henry, Prediction of skid resistance as a function of speed from "
+    "pavement texture measurements, Transportation Research Record 666, 7 (1978).",
+    "latorre-domenichini:vtri-2001": "F. La Torre, L. Domenichini, Friction prediction models, 2nd International "
+    "Colloquium on Vehicle Tyre Road Interaction, Florence, paper 01.08B, 133 (2001).",
+    "10.1098/rstl.1825.0026": "B. Gompertz, On the nature of the function expressive of the law of human mortality, "
+    "Phil. Trans. R. Soc. Lond. 115, 513 (1825).",
+    "stribeck:zvdi-46-1902": "R. Stribeck, Die wesentlichen Eigenschaften der Gleit- und Rollenlager, Z. Ver. Dtsch. "
+    "Ing. 46, 1341, 1432, 1463 (1902).",
+    "lampaert-swevers-albender:kuleuven-2002": "V. Lampaert, J. Swevers, F. Al-Bender, Experimental comparison of "
+    "different friction models for accurate low-velocity tracking, KU Leuven, Department of Mechanical Engineering "
+    "(2002).",
+    "moore:friction-pneumatic-tyres-1975": "D. F. Moore, The Friction of Pneumatic Tyres, Elsevier, Amsterdam (1975).",
+    "nasa:tn-d-2056": "W. B. Horne, R. C. Dreher, Phenomena of pneumatic tire hydroplaning, NASA Technical Note "
+    "D-2056 (1963).",
+    "10.1109/TAC.1974.1100705": "H. Akaike, A new look at the statistical model identification, IEEE Trans. Autom. "
+    "Control 19, 716 (1974).",
+    "10.1093/biomet/76.2.297": "C. M. Hurvich, C.-L. Tsai, Regression and time series model selection in small "
+    "samples, Biometrika 76, 297 (1989).",
+    "10.1214/aos/1176344136": "G. Schwarz, Estimating the dimension of a model, Ann. Stat. 6, 461 (1978).",
+    "10.1137/0710036": "G. H. Golub, V. Pereyra, The differentiation of pseudo-inverses and nonlinear least squares "
+    "problems whose variables separate, SIAM J. Numer. Anal. 10, 413 (1973).",
+    "en:13036-4": "EN 13036-4, Road and airfield surface characteristics - Test methods - Part 4: Method for "
+    "measurement of slip/skid resistance of a surface: the pendulum test.",
 }
 
 

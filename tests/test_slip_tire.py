@@ -176,7 +176,7 @@ def test_speed_law_bad_input():
     V = np.linspace(1, 10, 10)
     mu = tire.piarc(V, 0.8, 20.0)
     with pytest.raises(InputError, match="law"):
-        tire.fit_speed_law("stribeck", V, mu)
+        tire.fit_speed_law("coulomb", V, mu)
     with pytest.raises(InputError, match="speed"):
         tire.fit_piarc(V - 5, mu)
     with pytest.raises(InputError, match="mu"):

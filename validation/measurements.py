@@ -7,6 +7,11 @@ repeats), ``wet`` (0/1, also true/false/yes/no), ``series`` (a free label, e.g. 
 optional. ``speed_m_s`` is the rolling reference speed V; the sliding speed is ``slip * V``; ``slip = 1`` is
 pure sliding. Other columns are ignored.
 
+Road and tyre columns, optional, for the friction-speed laws of wet roads (:func:`persson.slip.fit_speed_laws`,
+:mod:`persson.slip.texture_laws`): ``water_depth_m`` (water film, m), ``tread_depth_m`` (tyre tread depth, m; 0 for a
+blank tyre), ``bpn`` (British Pendulum Number of the surface), ``mpd_m`` (mean profile depth, m) and ``device`` (a
+label of the measuring device).
+
 Checks (each failure raises :class:`~validation.InputError` naming the file, the line, the data row and the
 column; values that merely look odd give a :class:`~validation.UnitWarning`):
 
@@ -20,6 +25,9 @@ column; values that merely look odd give a :class:`~validation.UnitWarning`):
   contact pressures are 1e4-1e7 Pa); a pressure below 1e4 Pa or above 1e8 Pa is warned about;
 * ``mu < 0``; ``mu`` above 5 is warned about;
 * ``mu_std <= 0`` or given on some rows and empty on others; ``wet`` not 0/1; ``position_m`` not a finite number;
+* ``water_depth_m``, ``tread_depth_m`` < 0, ``mpd_m`` <= 0, any of them above 0.03 m (refused as "looks like mm": a
+  water depth of 2 is 2 mm, not 2 m); ``bpn`` outside (0, 150], or all <= 1.5 (refused as "looks like BPN/100");
+  these four given on some rows and empty on others;
 * rows of a file that repeat another row exactly (same slip, speed, temperature, pressure, wet and mu) are
   warned about (:class:`DuplicateRowsWarning`, naming the lines): a copy-pasted block counts twice in every fit.
 """
@@ -40,7 +48,10 @@ __all__ = ["Measurements", "read_measurements", "REQUIRED_COLUMNS", "OPTIONAL_CO
 #: Columns every measurement file must have.
 REQUIRED_COLUMNS = ("slip", "speed_m_s", "T_C", "pressure_Pa", "mu")
 #: Columns a measurement file may have.
-OPTIONAL_COLUMNS = ("mu_std", "wet", "series", "position_m")
+OPTIONAL_COLUMNS = ("mu_std", "wet", "series", "position_m", "water_depth_m", "tread_depth_m", "bpn", "mpd_m",
+                    "device")
+#: Optional numeric road and tyre columns -> attribute (water and tread depth, MPD in m; BPN).
+ROAD_COLUMNS = {"water_depth_m": "water_depth", "tread_depth_m": "tread_depth", "bpn": "bpn", "mpd_m": "mpd"}
 
 _TRUE = {"1", "1.0", "true", "yes", "y", "wet"}
 
@@ -82,6 +93,12 @@ class Measurements:
     position : ndarray or None
         Road position of each row, m (None when the file has no ``position_m`` column): rows reduced from a
         friction trailer's channels (:mod:`validation.rigs`).
+    water_depth, tread_depth, mpd : ndarray or None
+        Water depth, tyre tread depth (0: blank tyre) and mean profile depth per row, m (None without the column).
+    bpn : ndarray or None
+        British Pendulum Number per row.
+    device : tuple of str
+        Measuring device per row ("" without the column).
     """
 
     slip: np.ndarray
@@ -97,21 +114,28 @@ class Measurements:
     contact: object = None
     position: np.ndarray | None = None
     _checked: bool = field(default=False, repr=False, compare=False)
+    water_depth: np.ndarray | None = None
+    tread_depth: np.ndarray | None = None
+    bpn: np.ndarray | None = None
+    mpd: np.ndarray | None = None
+    device: tuple = ()
 
     def __post_init__(self):
         if self._checked:
             return
         checked = _check_arrays(
             {"slip": self.slip, "speed_m_s": self.speed, "T_C": self.temperature, "pressure_Pa": self.pressure,
-             "mu": self.mu, "mu_std": self.mu_std, "wet": self.wet, "position_m": self.position}, self.series,
-            self.source, self.lines)
+             "mu": self.mu, "mu_std": self.mu_std, "wet": self.wet, "position_m": self.position,
+             **{c: getattr(self, a) for c, a in ROAD_COLUMNS.items()}, "device": self.device},
+            self.series, self.source, self.lines)
         for k, v in checked.items():
             object.__setattr__(self, k, v)
 
     # ------------------------------------------------------------------------------------------------------
     @classmethod
     def from_arrays(cls, *, slip, speed, temperature, pressure, mu, mu_std=None, wet=None, series=None,
-                    source: str = "<arrays>", contact=None, position=None) -> "Measurements":
+                    source: str = "<arrays>", contact=None, position=None, water_depth=None, tread_depth=None,
+                    bpn=None, mpd=None, device=None) -> "Measurements":
         """Measurements from arrays (scalars broadcast), with the same checks as :func:`read_measurements`."""
         names = ("slip", "speed", "temperature", "pressure", "mu")
         arrays = [_float_argument(a, name, source) for a, name in zip((slip, speed, temperature, pressure, mu), names)]
@@ -134,8 +158,11 @@ class Measurements:
         w = None if wet is None else per_row(np.asarray(wet), "wet")
         ser = () if series is None else tuple(str(s) for s in per_row(np.asarray(series, dtype=object), "series"))
         pos = None if position is None else per_row(_float_argument(position, "position_m", source), "position_m")
+        road = {a: None if v is None else per_row(_float_argument(v, c, source), c)
+                for (c, a), v in zip(ROAD_COLUMNS.items(), (water_depth, tread_depth, bpn, mpd))}
+        dev = () if device is None else tuple(str(d) for d in per_row(np.asarray(device, dtype=object), "device"))
         return cls(slip=arrays[0], speed=arrays[1], temperature=arrays[2], pressure=arrays[3], mu=arrays[4],
-                   mu_std=std, wet=w, series=ser, source=source, contact=contact, position=pos)
+                   mu_std=std, wet=w, series=ser, source=source, contact=contact, position=pos, **road, device=dev)
 
     @property
     def n(self) -> int:
@@ -180,7 +207,9 @@ class Measurements:
             pressure=self.pressure[idx], mu=self.mu[idx],
             mu_std=None if self.mu_std is None else self.mu_std[idx], wet=self.wet[idx],
             series=tuple(self.series[i] for i in idx), source=self.source, lines=self.lines[idx],
-            contact=self.contact, position=None if self.position is None else self.position[idx], _checked=True)
+            contact=self.contact, position=None if self.position is None else self.position[idx], _checked=True,
+            **{a: None if getattr(self, a) is None else getattr(self, a)[idx] for a in ROAD_COLUMNS.values()},
+            device=tuple(self.device[i] for i in idx) if self.device else ())
 
     def with_contact(self, contact) -> "Measurements":
         """A copy that carries ``contact`` (the brush model of the test wheel)."""
@@ -193,7 +222,8 @@ class Measurements:
         return Measurements(slip=self.slip, speed=self.speed, temperature=self.temperature,
                             pressure=self.pressure, mu=np.asarray(mu, dtype=float), mu_std=mu_std, wet=self.wet,
                             series=self.series, source=self.source if source is None else source,
-                            contact=self.contact, position=self.position)
+                            contact=self.contact, position=self.position,
+                            **{a: getattr(self, a) for a in ROAD_COLUMNS.values()}, device=self.device)
 
     def as_table(self) -> dict[str, np.ndarray]:
         """Columns in the file format (``wet`` as 0/1; ``mu_std``, ``series`` and ``position_m`` only when present)."""
@@ -206,6 +236,11 @@ class Measurements:
             cols["series"] = np.asarray(self.series, dtype=object)
         if self.position is not None:
             cols["position_m"] = self.position
+        for c, a in ROAD_COLUMNS.items():
+            if getattr(self, a) is not None:
+                cols[c] = getattr(self, a)
+        if any(self.device):
+            cols["device"] = np.asarray(self.device, dtype=object)
         return cols
 
     def to_csv(self, path, comments: tuple[str, ...] = ()) -> Path:
@@ -223,7 +258,7 @@ class Measurements:
                 cells = []
                 for k in names:
                     v = cols[k][i]
-                    if k == "series":
+                    if k in ("series", "device"):
                         cells.append(_csv_text(str(v)))
                     elif k == "wet":
                         cells.append(str(int(v)))
@@ -317,14 +352,14 @@ def read_measurements(path) -> Measurements:
     n = len(rows)
     lines = np.array([ln for ln, _ in rows], dtype=int)
     values: dict[str, np.ndarray] = {}
-    for name in REQUIRED_COLUMNS + ("mu_std", "position_m"):
+    for name in REQUIRED_COLUMNS + ("mu_std", "position_m") + tuple(ROAD_COLUMNS):
         if name not in col:
             continue
         j = col[name]
         out = np.empty(n)
         for i, (lineno, cells) in enumerate(rows):
             cell = cells[j] if j < len(cells) else ""
-            if cell == "" and name == "mu_std":
+            if cell == "" and name not in REQUIRED_COLUMNS:
                 out[i] = np.nan
                 continue
             try:
@@ -348,9 +383,14 @@ def read_measurements(path) -> Measurements:
     if "series" in col:
         j = col["series"]
         series = tuple((cells[j] if j < len(cells) else "") for _, cells in rows)
+    device = ()
+    if "device" in col:
+        j = col["device"]
+        device = tuple((cells[j] if j < len(cells) else "") for _, cells in rows)
     meas = Measurements(slip=values["slip"], speed=values["speed_m_s"], temperature=values["T_C"],
                         pressure=values["pressure_Pa"], mu=values["mu"], mu_std=values.get("mu_std"), wet=wet,
-                        series=series, source=str(path), lines=lines, position=values.get("position_m"))
+                        series=series, source=str(path), lines=lines, position=values.get("position_m"),
+                        **{a: values.get(c) for c, a in ROAD_COLUMNS.items()}, device=device)
     _warn_duplicates(meas)
     return meas
 
@@ -522,9 +562,60 @@ def _check_arrays(cols: dict, series, source: str, lines) -> dict:
         raise InputError(f"{source}: column 'series' has {len(ser)} values, expected {n}")
     out["series"] = ser or ("",) * n
     out["lines"] = lines if lines is not None else np.zeros(n, dtype=int)
-    for k in ("slip", "speed", "temperature", "pressure", "mu", "mu_std", "wet", "lines", "position"):
+    out.update(_check_road_columns(cols, source, lines, n))
+    for k in ("slip", "speed", "temperature", "pressure", "mu", "mu_std", "wet", "lines", "position",
+              *ROAD_COLUMNS.values()):
         if out.get(k) is not None:
             out[k].setflags(write=False)
+    return out
+
+
+def _check_road_columns(cols: dict, source: str, lines, n: int) -> dict:
+    """The optional road and tyre columns: depths in m (above 0.03 m looks like mm), BPN in (0, 150]."""
+    out = {}
+    for col, attr in ROAD_COLUMNS.items():
+        a = cols.get(col)
+        if a is None:
+            out[attr] = None
+            continue
+        a = np.array(a, dtype=float).ravel()
+        if a.size != n:
+            raise InputError(f"{source}: column {col!r} has {a.size} values, expected {n}")
+        nan = np.isnan(a)
+        if np.all(nan):
+            out[attr] = None
+            continue
+        if np.any(~np.isfinite(a)):
+            i = int(np.argmax(~np.isfinite(a)))
+            what = "empty" if nan[i] else f"{a[i]!r}"
+            raise InputError(f"{_where(source, lines, i, col)}: {what}; give {col} on every row (a finite number) "
+                             "or on none")
+        if col == "bpn":
+            bad = (a <= 0) | (a > 150)
+            if np.any(bad):
+                i = int(np.argmax(bad))
+                raise InputError(f"{_where(source, lines, i, col)}: expected a British Pendulum Number in (0, 150], "
+                                 f"got {a[i]:g}")
+            if np.all(a <= 1.5):
+                raise InputError(f"{_where(source, lines, 0, col)}: every value is <= 1.5: the column looks like "
+                                 "BPN/100 or a friction coefficient; give the pendulum reading (e.g. 65)")
+        else:
+            bad = (a <= 0) if col == "mpd_m" else (a < 0)
+            if np.any(bad):
+                i = int(np.argmax(bad))
+                raise InputError(f"{_where(source, lines, i, col)}: expected a depth {'>' if col == 'mpd_m' else '>='}"
+                                 f" 0 m, got {a[i]:g}")
+            if np.any(a > 0.03):
+                i = int(np.argmax(a > 0.03))
+                raise InputError(f"{_where(source, lines, i, col)}: {a[i]:g} m is more than 30 mm, deeper than any "
+                                 f"road texture, tread or wet-road water film: the column looks like millimetres; "
+                                 f"give metres ({a[i]:g} mm = {a[i] * 1e-3:g} m)")
+        out[attr] = a
+    dev = cols.get("device")
+    dev = tuple(str(d) for d in dev) if dev is not None and len(dev) else ()
+    if dev and len(dev) != n:
+        raise InputError(f"{source}: column 'device' has {len(dev)} values, expected {n}")
+    out["device"] = dev
     return out
 
 

@@ -3,7 +3,9 @@
 from __future__ import annotations
 
 __all__ = ["PACEJKA_BOOK", "SAKAI_1981", "CANUDAS_2003", "MAGIC_FORMULA", "PIARC_1995", "DO_2004", "RADO_1994",
-           "CARSLAW_JAEGER", "JAEGER_1942", "BLOK_1937", "PERSSON_TREAD_2026"]
+           "CARSLAW_JAEGER", "JAEGER_1942", "BLOK_1937", "PERSSON_TREAD_2026", "DIJKS_1974", "LEU_HENRY_1978",
+           "LA_TORRE_2001", "GOMPERTZ_1825", "STRIBECK_1902", "LAMPAERT_2002", "MOORE_1975", "HORNE_DREHER_1963",
+           "AKAIKE_1974", "HURVICH_TSAI_1989", "SCHWARZ_1978", "GOLUB_PEREYRA_1973", "EN_13036_4"]
 
 
 #: H. B. Pacejka, Tire and Vehicle Dynamics (3rd ed., 2012), brush model: chapter 3.
@@ -56,3 +58,67 @@ BLOK_1937 = "blok:imeche-lubrication-1937"
 #: B. N. J. Persson, N. Miyashita, Tire tread block dynamics, arXiv:2602.22078 (2026): background and flash
 #: temperature.
 PERSSON_TREAD_2026 = "arxiv:2602.22078"
+
+
+#: I. A. Dijks, A multifactor examination of wet skid resistance of car tires, SAE Technical Paper 741106 (1974).
+DIJKS_1974 = "10.4271/741106"
+
+
+#: M. C. Leu, J. J. Henry, Prediction of skid resistance as a function of speed from pavement texture measurements,
+#: Transportation Research Record 666, 7-13 (1978): the exponential law behind the PIARC model.
+LEU_HENRY_1978 = "leu-henry:trr-666-1978"
+
+
+#: F. La Torre, L. Domenichini, Friction prediction models, 2nd International Colloquium on Vehicle Tyre Road
+#: Interaction, Florence, paper 01.08B, 133-147 (2001).
+LA_TORRE_2001 = "latorre-domenichini:vtri-2001"
+
+
+#: B. Gompertz, On the nature of the function expressive of the law of human mortality, Phil. Trans. R. Soc. Lond.
+#: 115, 513-583 (1825): the Gompertz function (used for friction against speed by M. E. van den Bol, cited by Do et
+#: al. 2004).
+GOMPERTZ_1825 = "10.1098/rstl.1825.0026"
+
+
+#: R. Stribeck, Die wesentlichen Eigenschaften der Gleit- und Rollenlager, Z. Ver. Dtsch. Ing. 46, 1341-1348,
+#: 1432-1438, 1463-1470 (1902): friction against eta V / p, the Stribeck curve.
+STRIBECK_1902 = "stribeck:zvdi-46-1902"
+
+
+#: V. Lampaert, J. Swevers, F. Al-Bender, Experimental comparison of different friction models for accurate
+#: low-velocity tracking, KU Leuven, Department of Mechanical Engineering (2002): the static Stribeck law
+#: mu_c + (mu_s - mu_c) exp(-(V/V_s)^alpha) + beta V.
+LAMPAERT_2002 = "lampaert-swevers-albender:kuleuven-2002"
+
+
+#: D. F. Moore, The Friction of Pneumatic Tyres, Elsevier, Amsterdam (1975): the three zones of a tyre on a wet road
+#: (squeeze film, transition, dry contact) and the squeeze-film time of the transition zone.
+MOORE_1975 = "moore:friction-pneumatic-tyres-1975"
+
+
+#: W. B. Horne, R. C. Dreher, Phenomena of pneumatic tire hydroplaning, NASA Technical Note D-2056 (1963): the
+#: fluid inertia pressure rho V^2 / 2 that lifts the front of the footprint.
+HORNE_DREHER_1963 = "nasa:tn-d-2056"
+
+
+#: H. Akaike, A new look at the statistical model identification, IEEE Trans. Autom. Control 19, 716-723 (1974).
+AKAIKE_1974 = "10.1109/TAC.1974.1100705"
+
+
+#: C. M. Hurvich, C.-L. Tsai, Regression and time series model selection in small samples, Biometrika 76, 297-307
+#: (1989): the small-sample correction AICc.
+HURVICH_TSAI_1989 = "10.1093/biomet/76.2.297"
+
+
+#: G. Schwarz, Estimating the dimension of a model, Ann. Stat. 6, 461-464 (1978): the Bayesian information criterion.
+SCHWARZ_1978 = "10.1214/aos/1176344136"
+
+
+#: G. H. Golub, V. Pereyra, The differentiation of pseudo-inverses and nonlinear least squares problems whose
+#: variables separate, SIAM J. Numer. Anal. 10, 413-432 (1973): variable projection.
+GOLUB_PEREYRA_1973 = "10.1137/0710036"
+
+
+#: EN 13036-4, Road and airfield surface characteristics - Test methods - Part 4: Method for measurement of
+#: slip/skid resistance of a surface: the pendulum test (British Pendulum Number, BPN).
+EN_13036_4 = "en:13036-4"
