@@ -155,6 +155,14 @@ REFERENCES: dict[str, str] = {
     "problems whose variables separate, SIAM J. Numer. Anal. 10, 413 (1973).",
     "en:13036-4": "EN 13036-4, Road and airfield surface characteristics - Test methods - Part 4: Method for "
     "measurement of slip/skid resistance of a surface: the pendulum test.",
+    "dealy-plazek:rheol-bull-78-16-2009": "J. M. Dealy, D. J. Plazek, Time-temperature superposition - a users "
+    "guide, Rheology Bulletin 78 (2), 16 (2009).",
+    "gent:engineering-with-rubber-2012": "A. N. Gent (ed.), Engineering with Rubber: How to Design Rubber "
+    "Components, 3rd ed., Hanser, Munich (2012), ch. 3.",
+    "timoshenko-gere:mechanics-of-materials-1972": "S. P. Timoshenko, J. M. Gere, Mechanics of Materials, Van "
+    "Nostrand Reinhold, New York (1972).",
+    "burckhardt:radschlupf-regelsysteme-1993": "M. Burckhardt, Fahrwerktechnik: Radschlupf-Regelsysteme, Vogel, "
+    "Wuerzburg (1993).",
 }
 
 

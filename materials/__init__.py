@@ -23,12 +23,13 @@ Typical use::
 
 from .errors import AccuracyWarning, ConvergenceWarning, DataWarning, InputError, MaterialsWarning, PhysicsWarning
 from .laws import (WLF, Arrhenius, TemperatureShift, WLFArrhenius, WLFFit, fit_arrhenius, fit_wlf,
-                   wlf_change_reference)
+                   wlf_activation_energy, wlf_change_reference)
 from .viscoelastic import ConstantModulus, Prony, Thermal
-from .examples import example_tread
+from .examples import example_tire_tread, example_tread
 from .dma import DMAData, read_dma, read_dma_long, read_eplexor, read_pyvisco
 from .tts import ShiftFactors, shift_isotherms
-from .shift import SingleTemperature, TabulatedShift, read_shift_factors
+from .shift import (SHIFT_RANGE_NOTE, SingleTemperature, TabulatedShift, extrapolated_shift_note,
+                    fitted_temperature_range, read_shift_factors, with_arrhenius_above)
 from .shiftfit import ShiftLawScore
 from .prony_fit import FitQuality, PronyFit, fit_prony
 from .curves import CausalityCheck, InterpolatedModulus, causality_check
@@ -50,11 +51,12 @@ def __getattr__(name):
 
 __all__ = [
     "InputError", "MaterialsWarning", "DataWarning", "AccuracyWarning", "ConvergenceWarning", "PhysicsWarning",
-    "WLF", "Thermal", "ConstantModulus", "Prony", "example_tread",
+    "WLF", "Thermal", "ConstantModulus", "Prony", "example_tread", "example_tire_tread",
     "DMAData", "read_dma", "read_dma_long", "read_pyvisco", "read_eplexor",
     "ShiftFactors", "shift_isotherms", "WLFFit", "fit_wlf", "Arrhenius", "fit_arrhenius", "TemperatureShift",
     "WLFArrhenius", "TabulatedShift", "SingleTemperature", "read_shift_factors", "ShiftLawScore",
-    "wlf_change_reference",
+    "wlf_change_reference", "wlf_activation_energy", "with_arrhenius_above", "fitted_temperature_range",
+    "extrapolated_shift_note", "SHIFT_RANGE_NOTE",
     "FitQuality", "PronyFit", "fit_prony", "InterpolatedModulus", "CausalityCheck", "causality_check",
     "MasterCurve", "ReducedData", "TabulatedModulus", "master_curve", "read_master_curve", "isotherm_misfit",
     "StrainSoftening", "StrainSoftened", "strain_softening_from_sweep",

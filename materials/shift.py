@@ -12,9 +12,15 @@ and every law of this package offers the same small interface:
 * ``kind`` (``"wlf"``, ``"arrhenius"``, ``"wlf+arrhenius"``, ``"tabulated"``, ``"single temperature"``) and
   ``describe()`` (one line).
 
-The laws: :class:`materials.WLF`, :class:`materials.Arrhenius`, :class:`materials.WLFArrhenius` (WLF above
-T_g, Arrhenius below), :class:`TabulatedShift` (measured shift factors interpolated) and
-:class:`SingleTemperature` (a master curve usable at its own temperature only).
+The laws: :class:`materials.WLF`, :class:`materials.Arrhenius`, :class:`materials.WLFArrhenius` (WLF between
+T_g and an upper hand-over, Arrhenius beyond), :class:`TabulatedShift` (measured shift factors interpolated,
+continued beyond the table the same way) and :class:`SingleTemperature` (a master curve usable at its own
+temperature only).
+
+For hot rubber (a flash or a heated contact patch takes it 100 K and more above the road), two helpers:
+:func:`with_arrhenius_above` gives a law, a master curve or a Prony material the Arrhenius hand-over above a
+stated temperature, and :func:`extrapolated_shift_note` states the rule by which a friction calculation says
+that its temperatures left the range where the shift law was fitted (:func:`fitted_temperature_range`).
 """
 
 from __future__ import annotations
@@ -31,11 +37,13 @@ from frictioncite import doi
 
 from ._tables import _column_index, _role_of, read_table
 from .errors import AccuracyWarning, InputError, PhysicsWarning, ignoring
-from .laws import UNDETERMINED_COVARIANCE, WLF, Arrhenius, TemperatureShift, WLFFit, as_shift_law, fit_wlf
+from .laws import (DEALY_PLAZEK_2009, UNDETERMINED_COVARIANCE, WLF, Arrhenius, TemperatureShift, WLFFit,
+                   _upper_temperature, as_shift_law, fit_wlf)
 from .units import check_temperatures, normalise_units, to_celsius, unit_factor
 
 __all__ = ["TabulatedShift", "SingleTemperature", "read_shift_factors", "as_shift_law", "SHIFT_LAW_TYPES",
-           "EXTRAPOLATED_SHIFT"]
+           "EXTRAPOLATED_SHIFT", "with_arrhenius_above", "fitted_temperature_range", "extrapolated_shift_note",
+           "SHIFT_RANGE_NOTE"]
 
 _K0 = 273.15
 
@@ -46,6 +54,10 @@ QUIET_MARGIN_K = 1.0
 #: Text of the warning given when a tabulated shift is continued outside its table (a regular expression, for
 #: filters that silence that warning and no other).
 EXTRAPOLATED_SHIFT = ".*temperatures outside the shift-factor table"
+
+#: Start of the note (and :class:`PhysicsWarning`) of a friction result whose rubber temperatures left the range
+#: where the shift law was fitted (:func:`extrapolated_shift_note`).
+SHIFT_RANGE_NOTE = "shift law used outside the temperatures it was fitted to"
 
 
 @doi("10.1137/0717021", "10.1021/ja01619a008")
@@ -61,7 +73,10 @@ class TabulatedShift:
 
     .. math:: \log_{10} a_T(T) = \log_{10} a_T(T_{end}) + L(T) - L(T_{end}),\qquad T \notin [T_1, T_n],
 
-    and a warning says that the shift is extrapolated (not within :data:`QUIET_MARGIN_K` of the table).
+    and a warning says that the shift is extrapolated (not within :data:`QUIET_MARGIN_K` of the table). With
+    ``T_upper`` the continuation hands over to an Arrhenius law above that temperature, continuous in value and
+    slope (:meth:`materials.TemperatureShift.with_upper`; Ferry 1980, ch. 11; Dealy & Plazek 2009), as the hot
+    rubber of a flash or a heated contact patch needs.
 
     Parameters
     ----------
@@ -76,6 +91,9 @@ class TabulatedShift:
         The law that continues the table (any object with ``log10_aT``). Default: the WLF fit of the table.
     source : str
         Where the table came from (in messages).
+    T_upper : float, optional
+        Hand-over of the continuation to an Arrhenius law, deg C (needs a WLF continuation: the default one, a
+        :class:`materials.WLF` or a :class:`materials.TemperatureShift` as ``outside``).
 
     Attributes
     ----------
@@ -89,10 +107,12 @@ class TabulatedShift:
     outside: object | None = None
     source: str = "<table>"
     outside_fit: WLFFit | None = field(default=None)
+    T_upper: float | None = None
 
     kind = "tabulated"
 
-    def __init__(self, T_C, log10_aT, T_ref: float | None = None, outside=None, source: str = "<table>"):
+    def __init__(self, T_C, log10_aT, T_ref: float | None = None, outside=None, source: str = "<table>",
+                 T_upper: float | None = None):
         from scipy import interpolate
         T = np.array(T_C, dtype=float).ravel()
         y = np.array(log10_aT, dtype=float).ravel()
@@ -118,6 +138,8 @@ class TabulatedShift:
         object.__setattr__(self, "_pchip", interpolate.PchipInterpolator(T, y, extrapolate=False))
         if outside is None:
             object.__setattr__(self, "outside_fit", _wlf_fit_of_table(T, y, source))
+        object.__setattr__(self, "T_upper", None if T_upper is None else float(T_upper))
+        object.__setattr__(self, "_continuation", self._continuation_law())
         T_ref = self._zero() if T_ref is None else float(T_ref)
         if not math.isfinite(T_ref):
             raise InputError(f"T_ref: expected a finite temperature in deg C, got {T_ref!r}")
@@ -133,7 +155,8 @@ class TabulatedShift:
 
     def __reduce__(self):
         # rebuilt from its defining data (the interpolant is derived)
-        return (_rebuild_tabulated, (self.T_C, self.log10_aT_nodes, self.T_ref_C, self.outside, self.source))
+        return (_rebuild_tabulated, (self.T_C, self.log10_aT_nodes, self.T_ref_C, self.outside, self.source,
+                                     self.T_upper))
 
     # ---------------------------------------------------------------- the law
     @property
@@ -145,6 +168,11 @@ class TabulatedShift:
     def T_range(self) -> tuple[float, float]:
         """Temperatures covered by the table, deg C."""
         return float(self.T_C[0]), float(self.T_C[-1])
+
+    @property
+    def fitted_range(self) -> tuple[float, float]:
+        """The temperatures the law rests on: the table's (see :func:`fitted_temperature_range`)."""
+        return self.T_range
 
     @property
     def wlf(self) -> WLF | None:
@@ -177,8 +205,25 @@ class TabulatedShift:
                     out[mask] = y_end + self._continue(T1[mask], T_end)
         return out.reshape(np.shape(T))
 
+    def _continuation_law(self):
+        """The law that continues the table (through its differences): ``outside`` or the WLF fit, with the
+        Arrhenius hand-over above ``T_upper`` when set; None without either."""
+        law = self.outside if self.outside is not None else (
+            None if self.outside_fit is None else self.outside_fit.wlf)
+        if self.T_upper is None or law is None:
+            if law is None and self.T_upper is not None:
+                raise InputError(f"{self.source}: T_upper needs a WLF continuation of the table (too few points for "
+                                 "a WLF fit); give outside=materials.WLF(...)")
+            return law
+        if isinstance(law, WLF):
+            law = TemperatureShift(law)
+        if not isinstance(law, TemperatureShift):
+            raise InputError(f"T_upper: the continuation of the table ({type(law).__name__}) has no WLF law to hand "
+                             "over from; give outside=materials.WLF(...) or a TemperatureShift")
+        return law.with_upper(self.T_upper)
+
     def _continue(self, T, T_end):
-        law = self.outside if self.outside is not None else self.outside_fit.wlf
+        law = self._continuation
         if law is None:
             raise InputError(f"{self.source}: cannot extrapolate the shift factors outside {self.T_range[0]:g} to "
                              f"{self.T_range[1]:g} C (no WLF fit of the table); give outside=<shift law>")
@@ -189,13 +234,17 @@ class TabulatedShift:
                              f"{self.T_range[1]:g} C) where its continuation fails: {exc}") from None
 
     def _outside_text(self) -> str:
+        up = "" if self.T_upper is None else (f"; Arrhenius above {self.T_upper:g} C "
+                                              f"(E_a = {self._continuation.upper.E_a / 1e3:.4g} kJ/mol)")
         if self.outside is not None:
             d = getattr(self.outside, "describe", None)
             # the continuation is used through its differences only: its own reference is beside the point
-            return re.sub(r"[;,] a_T = 1 at [^;]*", "", d()) if callable(d) else type(self.outside).__name__
+            text = re.sub(r"[;,] a_T = 1 at [^;]*", "", d()) if callable(d) else type(self.outside).__name__
+            return text + up
         if self.outside_fit is None:
             return "nothing (no WLF fit of the table)"
-        return f"the WLF fit of the table ({self.outside_fit.wlf.describe()}, rms {self.outside_fit.rms:.2g} decades)"
+        return (f"the WLF fit of the table ({self.outside_fit.wlf.describe()}, rms {self.outside_fit.rms:.2g} "
+                f"decades){up}")
 
     def _zero(self) -> float:
         """The temperature where the table is 0: a node, or the crossing of the interpolant."""
@@ -214,7 +263,7 @@ class TabulatedShift:
     def with_T_ref(self, T_ref: float) -> "TabulatedShift":
         """The same law with :math:`a_T(T_{ref}) = 1` at another temperature."""
         return TabulatedShift(self.T_C, self.log10_aT_nodes, T_ref=float(T_ref), outside=self.outside,
-                              source=self.source)
+                              source=self.source, T_upper=self.T_upper)
 
     def describe(self) -> str:
         """One line: the table and its continuation."""
@@ -268,7 +317,7 @@ SHIFT_LAW_TYPES = (WLF, Arrhenius, TemperatureShift, TabulatedShift, SingleTempe
 # ==================================================================================================== reader
 
 def read_shift_factors(path, *, columns=None, units=None, T_ref: float | None = None, outside=None,
-                       encoding: str | None = None) -> TabulatedShift:
+                       encoding: str | None = None, T_upper: float | None = None) -> TabulatedShift:
     r"""Read a table of shift factors (temperature and :math:`a_T` or :math:`\log_{10} a_T`) as a shift law.
 
     The file is a delimited table (comma, tab, semicolon or white space), with or without a names row and a
@@ -296,6 +345,9 @@ def read_shift_factors(path, *, columns=None, units=None, T_ref: float | None = 
     outside : shift law, optional
         Continuation outside the table (default: the WLF fit of the table).
     encoding : str, optional
+    T_upper : float, optional
+        Hand-over of the continuation to an Arrhenius law above this temperature, deg C (see
+        :class:`TabulatedShift`).
 
     Returns
     -------
@@ -350,13 +402,134 @@ def read_shift_factors(path, *, columns=None, units=None, T_ref: float | None = 
         pairs = ", ".join(f"{T[order][i]:g}->{T[order][i + 1]:g} C" for i in rises[:4])
         warnings.warn(f"{table.path}: log10 a_T increases with temperature between {pairs} (a_T normally "
                       "decreases as the temperature rises); check the table", PhysicsWarning, stacklevel=2)
-    return TabulatedShift(T, y, T_ref=T_ref, outside=outside, source=str(table.path))
+    return TabulatedShift(T, y, T_ref=T_ref, outside=outside, source=str(table.path), T_upper=T_upper)
+
+
+# ==================================================================================================== hot rubber
+
+@doi("isbn:978-0-471-04894-7", DEALY_PLAZEK_2009)
+def with_arrhenius_above(obj, T_upper: float | None = None, *, E_a: float | None = None):
+    r"""``obj`` with its shift law handing over to an Arrhenius law above ``T_upper`` (or where WLF's apparent
+    activation energy is ``E_a``), continuous in :math:`\log_{10} a_T` and its slope.
+
+    WLF describes the shifts from the glass transition to about T_g + 100 K; above, they follow an Arrhenius law
+    (Ferry 1980, ch. 11; Dealy & Plazek 2009). A flash temperature or a heated contact patch takes tread rubber
+    there. The activation energy of the upper branch is the WLF law's apparent one at the hand-over
+    (:func:`materials.wlf_activation_energy`).
+
+    Parameters
+    ----------
+    obj : shift law or material
+        A :class:`materials.WLF`, :class:`materials.TemperatureShift` (or :class:`materials.WLFArrhenius`),
+        :class:`TabulatedShift` (its continuation beyond the table hands over), or a material holding one of
+        these as ``shift`` (:class:`materials.MasterCurve`) or ``wlf`` (:class:`materials.Prony`).
+    T_upper : float, optional
+        Hand-over temperature, deg C.
+    E_a : float, optional
+        Activation energy above the hand-over, J/mol (instead of ``T_upper``).
+
+    Returns
+    -------
+    The same kind of object, with the hand-over.
+
+    Raises
+    ------
+    InputError
+        A law without a WLF part, both or neither of ``T_upper`` and ``E_a``, a hand-over the WLF law cannot
+        take (at or below its singularity or T_g; an ``E_a`` it never reaches).
+    """
+    import dataclasses
+
+    if isinstance(obj, WLF):
+        return TemperatureShift(obj).with_upper(T_upper, E_a=E_a)
+    if isinstance(obj, TemperatureShift):
+        return obj.with_upper(T_upper, E_a=E_a)
+    if isinstance(obj, TabulatedShift):
+        if (T_upper is None) == (E_a is None):
+            raise InputError("with_arrhenius_above: give T_upper or E_a")
+        if T_upper is None:
+            wlf = obj.wlf
+            if wlf is None:
+                raise InputError(f"{obj.source}: the continuation of the table has no WLF law; give T_upper")
+            T_upper = _upper_temperature(wlf, float(E_a))
+        return TabulatedShift(obj.T_C, obj.log10_aT_nodes, T_ref=obj.T_ref, outside=obj.outside, source=obj.source,
+                              T_upper=float(T_upper))
+    for attr in ("shift", "wlf"):
+        law = getattr(obj, attr, None)
+        if law is not None and dataclasses.is_dataclass(obj) and attr in {f.name for f in dataclasses.fields(obj)}:
+            return dataclasses.replace(obj, **{attr: with_arrhenius_above(law, T_upper, E_a=E_a)})
+    raise InputError(f"with_arrhenius_above: expected a WLF-based shift law or a material holding one, got "
+                     f"{type(obj).__name__}")
+
+
+def fitted_temperature_range(material) -> tuple[float, float] | None:
+    """The temperatures (deg C) where the shift law of ``material`` was fitted, or None when unknown.
+
+    The isotherms of a :class:`materials.MasterCurve` built from DMA data (``temperature_range``), the table of a
+    :class:`TabulatedShift`, or the ``fitted_range`` a :class:`materials.TemperatureShift` carries (set by
+    ``WLFFit.law`` and given by the user for constants from a data sheet). A law given by constants alone (a bare
+    :class:`materials.WLF`) has none.
+    """
+    rng = getattr(material, "temperature_range", None)
+    if rng is not None and not callable(rng):
+        return float(rng[0]), float(rng[1])
+    for law in (material, getattr(material, "shift", None), getattr(material, "wlf", None)):
+        rng = getattr(law, "fitted_range", None)
+        if rng is not None:
+            return float(rng[0]), float(rng[1])
+    return None
+
+
+def extrapolated_shift_note(material, T_min: float, T_max: float) -> str | None:
+    r"""The note a friction result carries when its rubber temperatures leave the range where the shift law was
+    fitted; None when they stay inside it (or the range is unknown).
+
+    The rule: the coldest and hottest temperatures at which the rubber's modulus was evaluated (the background
+    temperature, plus the flash temperature at every length scale and the heating along the contact patch where
+    those effects are on) are compared with :func:`fitted_temperature_range`; more than :data:`QUIET_MARGIN_K`
+    outside it, :math:`a_T` there comes from the law's continuation, which the note names. The text depends on the
+    material only (not on the temperatures reached, which the result carries), so that a fit that calls the
+    engine many times collects one note.
+
+    Parameters
+    ----------
+    material : material or shift law
+    T_min, T_max : float
+        Coldest and hottest rubber temperatures of the calculation, deg C.
+    """
+    rng = fitted_temperature_range(material)
+    if rng is None:
+        return None
+    lo, hi = rng
+    cold, hot = T_min < lo - QUIET_MARGIN_K, T_max > hi + QUIET_MARGIN_K
+    if not (cold or hot):
+        return None
+    side = "above and below" if cold and hot else ("above" if hot else "below")
+    return (f"{SHIFT_RANGE_NOTE} ({lo:g} to {hi:g} C): the rubber is evaluated {side} it (background, flash and "
+            f"patch temperatures); a_T there is {_continuation_text(material, hot)}")
+
+
+def _continuation_text(material, hot: bool) -> str:
+    """How a material's shift law continues beyond its fitted range (for :func:`extrapolated_shift_note`)."""
+    law = material
+    if not isinstance(material, SHIFT_LAW_TYPES):
+        law = getattr(material, "shift", None) or getattr(material, "wlf", None) or material
+    if isinstance(law, TabulatedShift):
+        return f"continued with {law._outside_text()}"
+    if isinstance(law, TemperatureShift) and hot:
+        if law.upper is not None:
+            return (f"WLF up to {law.upper.T_g:g} C, Arrhenius above (E_a = {law.upper.E_a / 1e3:.4g} kJ/mol, "
+                    "continuous in log a_T and slope)")
+        return ("the WLF law continued, beyond the about T_g + 100 K up to which WLF holds (Ferry 1980): "
+                "materials.with_arrhenius_above sets the Arrhenius hand-over")
+    d = getattr(law, "describe", None)
+    return f"the law's own continuation ({d() if callable(d) else type(law).__name__})"
 
 
 # ==================================================================================================== helpers
 
-def _rebuild_tabulated(T, y, T_ref, outside, source):
-    return TabulatedShift(T, y, T_ref=T_ref, outside=outside, source=source)
+def _rebuild_tabulated(T, y, T_ref, outside, source, T_upper=None):
+    return TabulatedShift(T, y, T_ref=T_ref, outside=outside, source=source, T_upper=T_upper)
 
 
 def _wlf_fit_of_table(T, y, source) -> WLFFit | None:

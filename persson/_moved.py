@@ -43,10 +43,15 @@ class _Alias(importlib.abc.MetaPathFinder, importlib.abc.Loader):
         return importlib.util.spec_from_loader(fullname, self)
 
     def create_module(self, spec):
-        return importlib.import_module(MOVED[spec.name])
+        module = importlib.import_module(MOVED[spec.name])
+        # the import system overwrites __spec__ with this alias spec; keep the real one to put back
+        spec.loader_state = module.__spec__
+        return module
 
     def exec_module(self, module):
-        """Nothing to run: the module was executed under its new name, and the import system binds the old one."""
+        """Nothing to run: the module was executed under its new name. Only its own ``__spec__`` is put back, so
+        that its relative imports keep resolving against its real package."""
+        module.__spec__ = module.__spec__.loader_state
 
 
 def install() -> None:

@@ -40,3 +40,11 @@ def test_old_paths_import_in_a_fresh_interpreter():
     code = "import persson.tire, persson.case_schema; from persson.solver import run_flash; print('ok')"
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "ok"
+
+
+@pytest.mark.parametrize("old", sorted(MOVED))
+def test_an_alias_leaves_the_module_its_own_spec(old):
+    # a module whose __spec__ named the alias would see __package__ != __spec__.parent on every relative import
+    module = importlib.import_module(old)
+    assert module.__spec__.name == MOVED[old]
+    assert module.__spec__.parent == module.__package__

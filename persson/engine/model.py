@@ -24,6 +24,7 @@ import numpy as np
 
 
 from frictioncite import citations_of, doi
+from materials.shift import extrapolated_shift_note
 
 from ..contact import corrections, separation
 from . import solver
@@ -186,6 +187,11 @@ class Model:
 
         notes = list(_surface_notes(surface)) + list(solved.notes)
         for msg in _physics_notes(self.surface, surface, solved, mu_total, self.effects):
+            notes.append(msg)
+            warnings.warn(msg, PhysicsWarning, stacklevel=2)
+        # rubber temperatures (background + flash) beyond where the shift law was fitted: one note per call
+        msg = extrapolated_shift_note(self.material, float(np.min(solved.T_q)), float(np.max(solved.T_q)))
+        if msg is not None:
             notes.append(msg)
             warnings.warn(msg, PhysicsWarning, stacklevel=2)
         if not solved.converged:

@@ -11,9 +11,12 @@ from __future__ import annotations
 
 import functools
 import math
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
+
+from materials.shift import EXTRAPOLATED_SHIFT
 
 from ..errors import InputError
 
@@ -111,7 +114,11 @@ def _relative(material, name: str, T: np.ndarray, T_table: float) -> np.ndarray:
     f = getattr(material, name, None)
     if f is None:
         return np.zeros(T.shape)
-    s = np.asarray(f(T), dtype=float) - float(np.asarray(f(T_table), dtype=float))
+    with warnings.catch_warnings():
+        # the table spans temperatures the rubber may never reach; the result judges the ones it does reach
+        # against the shift law's range (materials.extrapolated_shift_note), so a table's own notice is left out
+        warnings.filterwarnings("ignore", message=EXTRAPOLATED_SHIFT)
+        s = np.asarray(f(T), dtype=float) - float(np.asarray(f(T_table), dtype=float))
     s = np.broadcast_to(s, T.shape).astype(float)
     if not np.all(np.isfinite(s)):
         raise InputError(f"material: {name}(T) must be finite on [{T.min():g}, {T.max():g}] C")

@@ -9,6 +9,8 @@ The wing reads bottom-up:
 * :mod:`~persson.slip.heating` (with :mod:`~persson.slip.heating_tables` and the numba kernels of
   :mod:`~persson.slip.heating_kernels`): the :class:`PatchHeating` effect, temperature and pressure along the patch;
 * :mod:`~persson.slip.curve`: :func:`mu_slip` and :func:`predict_slip` from a :class:`persson.Model`;
+  :mod:`~persson.slip.road`: :func:`road_model`, the model with both kinds of frictional heating for road speeds,
+  and the published reference curves (Magic Formula, Burckhardt);
   :mod:`~persson.slip.fit`: :func:`fit_slip`, contact and effect parameters fitted to measured curves;
 * curve laws: :mod:`~persson.slip.magic` (Pacejka's Magic Formula, its fits and identifications),
   :mod:`~persson.slip.speedlaws` (friction against speed: PIARC, Do-Marsac-Mosset, Stribeck, Gompertz, La Torre,
@@ -25,7 +27,7 @@ Every public name is importable from ``persson.slip`` (and, as before, the curve
 
 from .brush import BrushCurve, BrushMap, brush_mu, two_coefficient_map, two_coefficient_mu
 from .brush_fit import BrushFit, fit_brush, stribeck_brush_mu
-from .contact import CONTACT_PARAMETERS, Contact
+from .contact import CONTACT_PARAMETERS, Contact, Tread
 from .curve import PatchProfile, SlipResult, mu_slip, predict_slip
 from .fit import SlipFit, fit_slip
 from .fitting import FitResult
@@ -34,10 +36,12 @@ from .kinematics import Kinematics, drft_from_angular, drft_kinematics, drft_spe
 from .magic import (MagicFormula, MagicFormulaFit, SimpleMagicFormula, fit_magic_formula, magic_formula,
                     magic_formula_from_peak, magic_formula_from_points, magic_formula_peak_B, magic_formula_simple)
 from .peaks import peak
-from .references import (AKAIKE_1974, BLOK_1937, CANUDAS_2003, CARSLAW_JAEGER, DIJKS_1974, DO_2004, GOMPERTZ_1825,
-                         HURVICH_TSAI_1989, JAEGER_1942, LA_TORRE_2001, LAMPAERT_2002, LEU_HENRY_1978, MAGIC_FORMULA,
-                         MOORE_1975, PACEJKA_BOOK, PERSSON_TREAD_2026, PIARC_1995, RADO_1994, SAKAI_1981, SCHWARZ_1978,
-                         STRIBECK_1902)
+from .references import (AKAIKE_1974, BLOK_1937, BURCKHARDT_1993, CANUDAS_2003, CARSLAW_JAEGER, DIJKS_1974, DO_2004,
+                         GENT_2012, GOMPERTZ_1825, HURVICH_TSAI_1989, JAEGER_1942, LA_TORRE_2001, LAMPAERT_2002,
+                         LEU_HENRY_1978, MAGIC_FORMULA, MOORE_1975, PACEJKA_BOOK, PERSSON_TREAD_2026, PIARC_1995,
+                         RADO_1994, SAKAI_1981, SCHWARZ_1978, STRIBECK_1902, TIMOSHENKO_GERE)
+from .road import (BURCKHARDT_DRY_ASPHALT, MF_DRY_TARMAC, RoadCase, burckhardt, example_road_case, road_model,
+                   with_road_heating)
 from .speedlaw_fit import (ACCEPTANCE_SSE, SPEED_LAW_NAMES, SpeedLawFit, SpeedLawTable, fit_speed_laws,
                            information_criteria, speed_laws_from_model)
 from .speedlaws import (SPEED_LAWS, do_marsac_mosset, fit_do_marsac_mosset, fit_gompertz, fit_la_torre, fit_piarc,
@@ -51,12 +55,13 @@ from .wetlaws import DIJKS_TERMS, SurfaceLawFit, dijks, fit_dijks, fit_wet_produ
 
 __all__ = [
     # kinematics, contact patch, brush model
-    "Contact", "CONTACT_PARAMETERS", "Kinematics", "drft_kinematics", "drft_from_angular", "drft_speeds",
+    "Contact", "CONTACT_PARAMETERS", "Tread", "Kinematics", "drft_kinematics", "drft_from_angular", "drft_speeds",
     "brush_mu", "BrushCurve", "two_coefficient_mu", "BrushMap", "two_coefficient_map",
     "stribeck_brush_mu", "fit_brush", "BrushFit",
     # friction against slip from the engine
     "SlipResult", "PatchProfile", "mu_slip", "predict_slip", "fit_slip", "SlipFit",
-    "PatchHeating", "PatchSolution", "patch_friction",
+    "PatchHeating", "PatchSolution", "patch_friction", "road_model", "with_road_heating",
+    "burckhardt", "BURCKHARDT_DRY_ASPHALT", "MF_DRY_TARMAC", "RoadCase", "example_road_case",
     # curve laws
     "magic_formula", "magic_formula_simple", "MagicFormula", "SimpleMagicFormula", "magic_formula_from_points",
     "magic_formula_from_peak", "magic_formula_peak_B", "FitResult", "MagicFormulaFit", "fit_magic_formula", "peak",
@@ -75,4 +80,5 @@ __all__ = [
     "CARSLAW_JAEGER", "JAEGER_1942", "BLOK_1937", "PERSSON_TREAD_2026", "DIJKS_1974", "LEU_HENRY_1978",
     "LA_TORRE_2001", "GOMPERTZ_1825", "STRIBECK_1902", "LAMPAERT_2002", "MOORE_1975", "AKAIKE_1974",
     "HURVICH_TSAI_1989", "SCHWARZ_1978",
+    "GENT_2012", "TIMOSHENKO_GERE", "BURCKHARDT_1993",
 ]

@@ -1,7 +1,9 @@
-"""The contact patch of a slipping wheel: length, width, pressure distribution and tread stiffness (:class:`Contact`)."""
+"""The contact patch of a slipping wheel: length, width, pressure distribution and tread stiffness (:class:`Contact`),
+and the tread geometry that gives the stiffness from the compound (:class:`Tread`)."""
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -10,9 +12,9 @@ from frictioncite import doi
 
 from .._checks import number, positive
 from ..errors import InputError
-from .references import PACEJKA_BOOK, SAKAI_1981
+from .references import GENT_2012, PACEJKA_BOOK, SAKAI_1981, TIMOSHENKO_GERE
 
-__all__ = ["Contact", "CONTACT_PARAMETERS"]
+__all__ = ["Contact", "CONTACT_PARAMETERS", "Tread"]
 
 
 # =========================================================================================================
@@ -97,6 +99,32 @@ class Contact:
 
     def __hash__(self):
         return hash((self.length, self.width, self.stiffness, repr(self.pressure_distribution), self.n_points))
+
+    @classmethod
+    def from_tread(cls, length: float, width: float, tread: "Tread", material, *, speed: float,
+                   temperature: float = 20.0, pressure_distribution="parabolic", n_points: int = 401) -> "Contact":
+        r"""The contact patch with the tread stiffness derived from the compound (:meth:`Tread.stiffness`).
+
+        Parameters
+        ----------
+        length, width : float
+            Contact length and width, m.
+        tread : Tread
+            Tread depth, block length and land ratio.
+        material : material
+            The tread compound (``E(omega, T)``, complex Young's modulus, Pa).
+        speed : float
+            Rolling speed V, m/s: the tread is loaded at the angular frequency :math:`\pi V / l`.
+        temperature : float
+            Temperature of the tread blocks, deg C (the background temperature T0).
+        pressure_distribution, n_points
+            As for :class:`Contact`.
+        """
+        if not isinstance(tread, Tread):
+            raise InputError(f"tread: expected a persson.slip.Tread, got {tread!r}")
+        k = tread.stiffness(material, speed=speed, temperature=temperature, contact_length=length)
+        return cls(length=length, width=width, stiffness=k, pressure_distribution=pressure_distribution,
+                   n_points=n_points)
 
     # ------------------------------------------------------------------------------------------------------
     @property
@@ -189,6 +217,98 @@ class Contact:
             values = dict(values)
             values["pressure_distribution"] = {"sakai_n": number(values.pop("sakai_n"), "contact.sakai_n")}
         return dataclasses.replace(self, **values)
+
+
+# =========================================================================================================
+# Tread geometry: the brush stiffness from the compound
+# =========================================================================================================
+@doi(PACEJKA_BOOK, GENT_2012, TIMOSHENKO_GERE)
+@dataclass(frozen=True)
+class Tread:
+    r"""Tread geometry that sets the shear stiffness of the brush from the compound's modulus.
+
+    A tread block of height h (the tread depth) and length b in the rolling direction, bonded to the belt and held
+    flat on the road by the contact pressure, sheared by the stress :math:`\tau` on its face, deflects in shear
+    and in bending. As a beam with both ends kept parallel (Timoshenko & Gere, *Mechanics of Materials*:
+    bending deflection :math:`F h^3 / (12 E I)` added to the shear deflection :math:`F h / (G A)`; for rubber
+    :math:`E = 3G` and :math:`I = A b^2/12`, the bonded rubber block in shear of Gent, *Engineering with Rubber*,
+    ch. 3), its stiffness per unit area per unit displacement is
+
+    .. math:: k = \lambda\,\frac{G(\omega, T_0)}{h}\,\frac{1}{1 + h^2/(3 b^2)},
+        \qquad G = \frac{|E^*(\omega, T_0)|}{2(1 + \nu)},\qquad \omega = \frac{\pi V}{l},
+
+    the brush stiffness :math:`k = G/h` of Pacejka (*Tire and Vehicle Dynamics*, ch. 3) with the bending of the
+    block and the land ratio :math:`\lambda` (the share of the nominal contact area that is rubber: the grooves
+    carry no shear). The modulus is taken at the tread's own temperature T0 (the frictional heat stays in a thin
+    surface layer) and at the frequency of one loading per passage through the patch: a block is sheared from the
+    leading to the trailing edge in the time :math:`l/V`, half a period of :math:`\omega = \pi V / l`.
+
+    What it leaves out: the belt of a tire, whose deformation along the patch makes a tire's measured slip
+    stiffness (15-30 times the load) several times lower than its tread's; for a tire the slip at the peak
+    predicted from the tread alone is a lower bound. (A uniform deflection of the carcass does not change the
+    steady-state curve.) Give the :class:`Contact` a measured ``stiffness`` where that matters.
+
+    Parameters
+    ----------
+    depth : float
+        Tread depth h (block height), m (> 0; a new passenger-car tread about 8 mm).
+    block_length : float
+        Block length b in the rolling direction, m (> 0; passenger-car blocks 20-40 mm).
+    land_ratio : float
+        Rubber share of the nominal contact area, 0 < lambda <= 1 (default 1; a passenger-car tread about 0.7).
+    nu : float
+        Poisson ratio of the compound (default 0.5).
+
+    Examples
+    --------
+    >>> import materials
+    >>> tread = Tread(depth=8e-3, block_length=25e-3)
+    >>> k = tread.stiffness(materials.example_tread(), speed=20.0, temperature=20.0, contact_length=0.12)
+    >>> print(f"{k:.3g} Pa/m")
+    2.05e+08 Pa/m
+    """
+
+    depth: float
+    block_length: float
+    land_ratio: float = 1.0
+    nu: float = 0.5
+
+    def __post_init__(self):
+        for name in ("depth", "block_length"):
+            object.__setattr__(self, name, positive(getattr(self, name), f"tread.{name}"))
+        lam = number(self.land_ratio, "tread.land_ratio")
+        if not 0.0 < lam <= 1.0:
+            raise InputError(f"tread.land_ratio: expected a rubber share in (0, 1], got {lam:g}")
+        object.__setattr__(self, "land_ratio", lam)
+        nu = number(self.nu, "tread.nu")
+        if not 0.0 <= nu <= 0.5:
+            raise InputError(f"tread.nu: expected a Poisson ratio in [0, 0.5], got {nu:g}")
+        object.__setattr__(self, "nu", nu)
+
+    @property
+    def bending_factor(self) -> float:
+        r""":math:`1/(1 + h^2/(3 b^2))`, the share of the pure-shear stiffness left by the bending of the block."""
+        return 1.0 / (1.0 + self.depth ** 2 / (3.0 * self.block_length ** 2))
+
+    def frequency(self, speed: float, contact_length: float) -> float:
+        r"""Angular frequency of the loading, :math:`\pi V / l`, rad/s."""
+        return math.pi * positive(speed, "speed") / positive(contact_length, "contact_length")
+
+    def shear_modulus(self, material, *, speed: float, temperature: float, contact_length: float) -> float:
+        r""":math:`|G^*| = |E^*(\pi V / l, T_0)| / (2(1 + \nu))`, Pa."""
+        if not hasattr(material, "E"):
+            raise InputError(f"material: expected an object with E(omega, T), got {material!r}")
+        w = self.frequency(speed, contact_length)
+        E = complex(np.asarray(material.E(np.array([w]), number(temperature, "temperature")), dtype=complex)[0])
+        if not (math.isfinite(E.real) and math.isfinite(E.imag) and abs(E) > 0):
+            raise InputError(f"material: E(omega={w:.4g} rad/s, T={temperature:g} C) = {E!r}; expected a finite, "
+                             "nonzero modulus")
+        return abs(E) / (2.0 * (1.0 + self.nu))
+
+    def stiffness(self, material, *, speed: float, temperature: float, contact_length: float) -> float:
+        """Brush stiffness k per unit area per unit displacement, Pa/m (the formula of the class)."""
+        G = self.shear_modulus(material, speed=speed, temperature=temperature, contact_length=contact_length)
+        return self.land_ratio * G / self.depth * self.bending_factor
 
 
 def _contact_parameters():

@@ -2,20 +2,27 @@
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
 
 from frictioncite import citations_of, doi
 
+from materials.shift import SHIFT_RANGE_NOTE
+
 from .._checks import finite_array, number, positive
-from ..errors import InputError
+from ..errors import InputError, PhysicsWarning
 from ._arrays import _broadcast, _slip_array, _speed_array
 from .brush import _a_of, _brush
 from .contact import Contact
 from .references import PACEJKA_BOOK
 
-__all__ = ["SlipResult", "PatchProfile", "mu_slip", "predict_slip"]
+__all__ = ["SlipResult", "PatchProfile", "mu_slip", "predict_slip", "ROAD_SPEED"]
+
+#: Rolling speeds from which :func:`mu_slip` notes a model without frictional heating, m/s (18 km/h: a sliding
+#: tread heats by tens of kelvin there).
+ROAD_SPEED = 5.0
 
 
 # =========================================================================================================
@@ -184,6 +191,16 @@ def mu_slip(model, slip, speed, *, temperature: float = 20.0, pressure: float = 
         at the distinct sliding speeds s V (with patch heating: once on a table over speed, pressure and
         temperature, plus once at T0 to bound the heating; see :func:`persson.slip.patch_friction`).
 
+    Notes
+    -----
+    The model is used as given. At road speeds (V >= :data:`ROAD_SPEED`) a
+    :class:`persson.Model` without :class:`~persson.effects.PatchHeating` and
+    :class:`~persson.effects.FlashTemperature` leaves out the frictional heating that shapes a measured curve
+    (the fall behind the peak, the hot locked wheel): the result notes it, and :func:`persson.slip.road_model`
+    or :func:`persson.slip.with_road_heating` give the model with both, the documented choice at road speeds.
+    Rubber temperatures beyond the range where the shift law was fitted are warned once per call
+    (:class:`PhysicsWarning`, see :func:`materials.extrapolated_shift_note`) and noted.
+
     Raises
     ------
     InputError
@@ -208,6 +225,7 @@ def mu_slip(model, slip, speed, *, temperature: float = 20.0, pressure: float = 
     heating = _heating_of(model)
     if heating is not None:
         return _mu_slip_patch(model, heating, s_f, V_f, T0, sigma0, contact, shape, profiles)
+    road_note = _road_speed_note(model, V_f)
     v_unique, inverse = _distinct(vs)
     mu_u, fr = _local_friction(model, v_unique, T0, sigma0)
     mu_loc = mu_u[inverse]
@@ -219,7 +237,7 @@ def mu_slip(model, slip, speed, *, temperature: float = 20.0, pressure: float = 
         x = np.asarray(x, dtype=float).reshape(shape)
         return float(x) if scalar else x
 
-    notes = tuple(getattr(fr, "notes", ()) or ())
+    notes = tuple(getattr(fr, "notes", ()) or ()) + road_note
     converged = bool(getattr(fr, "converged", True))
     return SlipResult(
         slip=out(s_f), speed=out(V_f), sliding_speed=out(vs), mu=out(mu), mu_local=out(mu_loc),
@@ -235,6 +253,35 @@ def _heating_of(model):
     if "patch_heating" in names:
         return model.effect("patch_heating")
     return None
+
+
+def _road_speed_note(model, V: np.ndarray) -> tuple[str, ...]:
+    """A note when a Model without frictional heating is asked for road speeds (see :func:`mu_slip`)."""
+    names = getattr(model, "effect_names", None)
+    if names is None or float(np.max(V)) < ROAD_SPEED:
+        return ()
+    missing = [n for n in ("flash_temperature", "patch_heating") if n not in names]
+    if not missing:
+        return ()
+    return (f"slip curve at road speeds (V >= {ROAD_SPEED:g} m/s) without {' and '.join(missing)}: the flash "
+            "temperature and the heating along the patch shape the fall behind the peak and the locked wheel; "
+            "persson.slip.road_model (or with_road_heating) has both",)
+
+
+def _warn_shift_range(notes) -> tuple[str, ...]:
+    """Warn once for the notes that say the rubber left the shift law's fitted range (the friction tables collect
+    them from their engine calls without raising them); the notes, with those in their plain form, once."""
+    out, said = [], None
+    for n in notes:
+        i = n.find(SHIFT_RANGE_NOTE)
+        if i > 0 and n[:i].rstrip().endswith(":"):         # "PhysicsWarning: <note>" as the tables record it
+            n = n[i:]
+        if n.startswith(SHIFT_RANGE_NOTE) and said is None:
+            said = n
+        out.append(n)
+    if said is not None:
+        warnings.warn(said, PhysicsWarning, stacklevel=4)
+    return tuple(dict.fromkeys(out))
 
 
 def _mu_slip_patch(model, heating, s_f, V_f, T0, sigma0, contact, shape, profiles) -> SlipResult:
@@ -260,7 +307,7 @@ def _mu_slip_patch(model, heating, s_f, V_f, T0, sigma0, contact, shape, profile
         slip=out(s_f), speed=out(V_f), sliding_speed=out(vs), mu=out(sol.mu), mu_local=out(sol.mu_local),
         stick_length=out(sol.stick_fraction * contact.length), stick_fraction=out(sol.stick_fraction),
         force=out(sol.mu * load), load=load, temperature=T0, pressure=sigma0, contact=contact, friction=None,
-        converged=sol.converged, notes=sol.notes,
+        converged=sol.converged, notes=_warn_shift_range(sol.notes + _road_speed_note(model, V_f)),
         citations=citations_of(mu_slip, contact.citations, type(heating), model), patch=prof,
     )
 

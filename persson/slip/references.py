@@ -5,7 +5,8 @@ from __future__ import annotations
 __all__ = ["PACEJKA_BOOK", "SAKAI_1981", "CANUDAS_2003", "MAGIC_FORMULA", "PIARC_1995", "DO_2004", "RADO_1994",
            "CARSLAW_JAEGER", "JAEGER_1942", "BLOK_1937", "PERSSON_TREAD_2026", "DIJKS_1974", "LEU_HENRY_1978",
            "LA_TORRE_2001", "GOMPERTZ_1825", "STRIBECK_1902", "LAMPAERT_2002", "MOORE_1975", "HORNE_DREHER_1963",
-           "AKAIKE_1974", "HURVICH_TSAI_1989", "SCHWARZ_1978", "GOLUB_PEREYRA_1973", "EN_13036_4"]
+           "AKAIKE_1974", "HURVICH_TSAI_1989", "SCHWARZ_1978", "GOLUB_PEREYRA_1973", "EN_13036_4",
+           "GENT_2012", "TIMOSHENKO_GERE", "BURCKHARDT_1993"]
 
 
 #: H. B. Pacejka, Tire and Vehicle Dynamics (3rd ed., 2012), brush model: chapter 3.
@@ -122,3 +123,16 @@ GOLUB_PEREYRA_1973 = "10.1137/0710036"
 #: EN 13036-4, Road and airfield surface characteristics - Test methods - Part 4: Method for measurement of
 #: slip/skid resistance of a surface: the pendulum test (British Pendulum Number, BPN).
 EN_13036_4 = "en:13036-4"
+#: A. N. Gent (ed.), Engineering with Rubber: How to Design Rubber Components, 3rd ed., Hanser, Munich (2012),
+#: ch. 3: a bonded rubber block in shear, its stiffness lowered by bending.
+GENT_2012 = "gent:engineering-with-rubber-2012"
+
+
+#: S. P. Timoshenko, J. M. Gere, Mechanics of Materials, Van Nostrand Reinhold (1972): deflection of a beam in
+#: bending and shear.
+TIMOSHENKO_GERE = "timoshenko-gere:mechanics-of-materials-1972"
+
+
+#: M. Burckhardt, Fahrwerktechnik: Radschlupf-Regelsysteme, Vogel, Wuerzburg (1993): mu(s) = c1 (1 - exp(-c2 s))
+#: - c3 s with constants per road surface (dry asphalt c1 = 1.2801, c2 = 23.99, c3 = 0.52).
+BURCKHARDT_1993 = "burckhardt:radschlupf-regelsysteme-1993"
