@@ -17,6 +17,7 @@ Typical use::
     aT = materials.read_shift_factors("shift_factors.csv")          # a TabulatedShift
     m2 = materials.read_master_curve("master_curve.csv", shift=aT)  # the table used as measured
     sf = materials.strain_factors(materials.read_strain_sweep("sweeps.csv"))
+    sf = materials.read_strain_factors("factors.txt")  # a table of strain, f, g exported by another program
     f, g = sf.factors(strain, T)
     tread = materials.example_tread()                   # synthetic, documented
 """
@@ -37,6 +38,7 @@ from .mastercurve import MasterCurve, ReducedData, TabulatedModulus, isotherm_mi
 from .master import master_curve, read_master_curve
 from .strain import (StrainFactors, StrainSoftened, StrainSoftening, StrainSweep, read_strain_sweep,
                      strain_factors, strain_softening_from_sweep)
+from .strain_table import read_strain_factors
 
 _LAZY_PLOTS = ("plot_master_curve", "plot_shift_factors")
 
@@ -60,6 +62,6 @@ __all__ = [
     "FitQuality", "PronyFit", "fit_prony", "InterpolatedModulus", "CausalityCheck", "causality_check",
     "MasterCurve", "ReducedData", "TabulatedModulus", "master_curve", "read_master_curve", "isotherm_misfit",
     "StrainSoftening", "StrainSoftened", "strain_softening_from_sweep",
-    "StrainSweep", "StrainFactors", "read_strain_sweep", "strain_factors",
+    "StrainSweep", "StrainFactors", "read_strain_sweep", "strain_factors", "read_strain_factors",
     "plot_master_curve", "plot_shift_factors",
 ]

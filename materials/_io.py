@@ -18,13 +18,19 @@ from .errors import InputError
 __all__ = ["write_csv_atomic", "read_csv_columns", "decode_text", "parse_rows", "column_of", "is_numeric_row"]
 
 
-def write_csv_atomic(path, columns: Mapping[str, np.ndarray], comments: Sequence[str] = ()) -> Path:
-    """Write a CSV (``#`` comment lines, a header row, data rows) completely or not at all.
+def write_csv_atomic(path, columns: Mapping[str, np.ndarray], comments: Sequence[str] = (), *,
+                     overwrite: bool = False) -> Path:
+    """Write a CSV (``#`` comment lines, a header row, data rows) completely or not at all; an existing file only
+    with ``overwrite=True`` (the rule of every writer of the project).
 
     The text goes to a temporary file in the destination folder, which is then renamed over ``path``
     (``os.replace`` is atomic on POSIX and Windows), so a reader never sees a half-written file.
     """
     path = Path(path)
+    if path.is_dir():
+        raise InputError(f"{path}: is a folder; expected a file name")
+    if path.exists() and not overwrite:
+        raise InputError(f"{path}: the file exists; pass overwrite=True to replace it (or choose another name)")
     names = list(columns)
     data = np.column_stack([np.asarray(columns[k], dtype=float).ravel() for k in names])
     if not np.all(np.isfinite(data)):

@@ -156,8 +156,8 @@ def pick_columns(table: RawTable, *, required: Sequence[str], optional: Sequence
     columns : sequence or mapping, optional
         The user's naming of the columns: a sequence names the file's columns in order (``"f_Hz"``,
         ``"E_storage_MPa"``, ``"T_C"``, ``"strain_pct"``, ``"omega"``...; ``None`` or ``"-"`` skips a column);
-        a mapping gives for each role the file's column name or 0-based index. A unit suffix given here is
-        the user's word, like ``units=``.
+        a mapping gives for each role the file's column name or 0-based index. A unit suffix given here sets the
+        unit; unlike ``units=`` it does not exempt the values from the range checks (unit slips).
     units : mapping, optional
         {role: unit}, already normalised (:func:`materials.units.normalise_units`).
     defaults : sequence of str, optional
@@ -178,7 +178,9 @@ def pick_columns(table: RawTable, *, required: Sequence[str], optional: Sequence
         if role in units:
             unit, origin, trusted = units[role], "units option", True
         elif from_option and name_unit is not None:
-            unit, origin, trusted = name_unit, "columns option", True
+            # a name such as E_storage_Pa labels a column (often copied from the docs), it does not vouch for the
+            # values the way units= does: the range checks still apply
+            unit, origin, trusted = name_unit, "columns option", False
         elif table.units[j] is not None:
             unit, origin, trusted = table.units[j], "file's units", False
         elif name_unit is not None:
@@ -262,8 +264,9 @@ def _assign(table, required, optional, columns, defaults):
                 found[family] = (j, name_role, name_unit, False)
     else:
         if defaults is None or len(defaults) > table.n_columns:
+            example = [_EXAMPLE_NAME[r] for r in wanted if r in _EXAMPLE_NAME]  # the columns this reader needs
             raise InputError(f"{table.path}: the table has no header row; name its columns with "
-                             f"columns=[...] (e.g. ['f_Hz', 'E_storage_Pa', 'E_loss_Pa'])")
+                             f"columns=[...] (e.g. {example})")
         for j, name in enumerate(defaults):
             name_role, name_unit = _role_of(name)
             found[_ROLE_FAMILY[name_role]] = (j, name_role, name_unit, False)
@@ -274,6 +277,8 @@ def _assign(table, required, optional, columns, defaults):
                          "name the columns with columns=[...] or columns={role: name}")
     return {r: found[r] for r in wanted if r in found}
 
+
+_EXAMPLE_NAME = {"strain": "strain_pct", "f": "f_Hz", "E_storage": "E_storage_Pa", "E_loss": "E_loss_Pa", "T": "T_C"}
 
 _ROLE_TEXT = {"f": "the frequency (f_Hz, f or omega)",
               "E_storage": "the storage modulus (E_storage_Pa, E_storage, E_stor, E' or G')",

@@ -288,13 +288,14 @@ class DMAData:
                 source=self.source, line=self.line[mask], notes=self.notes)
         return replace(out, shear_converted=self.shear_converted, poisson=self.poisson)
 
-    def to_csv(self, path) -> Path:
-        """Write the long DMA table ``T_C, f_Hz, E_storage_Pa, E_loss_Pa[, strain]`` atomically (docs/materials.md)."""
+    def to_csv(self, path, *, overwrite: bool = False) -> Path:
+        """Write the long DMA table ``T_C, f_Hz, E_storage_Pa, E_loss_Pa[, strain]`` atomically (docs/materials.md);
+        an existing file only with ``overwrite=True``."""
         cols = {"T_C": self.T_C, "f_Hz": self.f_Hz, "E_storage_Pa": self.E_storage, "E_loss_Pa": self.E_loss}
         if self.strain is not None:
             cols["strain"] = self.strain
         comments = [f"DMA data from {self.source}"] + list(self.notes)
-        return write_csv_atomic(path, cols, comments=comments)
+        return write_csv_atomic(path, cols, comments=comments, overwrite=overwrite)
 
 
 # ==================================================================================================== readers

@@ -263,7 +263,7 @@ class MasterCurve:
                               1.0 if loss_factor is None else loss_factor)
 
     # ---------------------------------------------------------------- files
-    def to_table(self, path, f_Hz=None, *, per_decade: int = 10) -> Path:
+    def to_table(self, path, f_Hz=None, *, per_decade: int = 10, overwrite: bool = False) -> Path:
         """Write the master-curve table ``f_Hz, E_storage_Pa, E_loss_Pa`` at T_ref, atomically.
 
         Parameters
@@ -273,6 +273,8 @@ class MasterCurve:
         f_Hz : array_like, optional
             Frequencies (Hz, > 0). Default: an interpolated curve's own nodes (so that reading the table back
             gives the same material); otherwise log-spaced over the data window, ``per_decade`` per decade.
+        overwrite : bool
+            Replace an existing file (default: refused).
 
         Returns
         -------
@@ -298,7 +300,7 @@ class MasterCurve:
         comments.append(str(self.quality))
         comments.extend(self.notes)
         return write_csv_atomic(path, {"f_Hz": f_Hz, "E_storage_Pa": E.real, "E_loss_Pa": E.imag},
-                                comments=comments)
+                                comments=comments, overwrite=overwrite)
 
     @classmethod
     def from_table(cls, path_or_table, wlf=None, *, shift=None, fit: str = "table", T_ref: float | None = None,

@@ -77,6 +77,10 @@ class ConstantModulus:
     thermal: Thermal = field(default_factory=Thermal)
 
     def __post_init__(self):
+        for name in ("E_storage", "E_loss"):
+            v = getattr(self, name)
+            if isinstance(v, bool) or not isinstance(v, (int, float, np.integer, np.floating)):
+                raise InputError(f"{name}: expected a modulus in Pa (a number), got {v!r} ({type(v).__name__})")
         if not (math.isfinite(self.E_storage) and self.E_storage > 0):
             raise InputError(f"E_storage: expected a positive modulus in Pa, got {self.E_storage!r}")
         if not (math.isfinite(self.E_loss) and self.E_loss >= 0):

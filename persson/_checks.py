@@ -9,8 +9,9 @@ import numpy as np
 
 from .errors import InputError, UnitWarning
 
-__all__ = ["number", "positive", "finite_array", "plausible_pressure", "plausible_temperature", "UnitWarning",
-           "PRESSURE_RANGE_PA", "KELVIN_LOOKING_C"]
+__all__ = ["number", "positive", "finite_array", "plausible_pressure", "plausible_temperature", "plausible_speed",
+           "plausible_modulus", "unit_slip_notes", "UnitWarning", "PRESSURE_RANGE_PA", "KELVIN_LOOKING_C",
+           "SPEED_OF_SOUND_M_S", "FAST_SPEED_M_S", "MODULUS_RANGE_PA"]
 
 
 def number(value, name: str) -> float:
@@ -120,6 +121,121 @@ def plausible_temperature(value, name: str, *, strict: bool = False, stacklevel:
         _complain(f"{name}: {bad:g} C looks like kelvin ({bad:g} K = {bad + ABSOLUTE_ZERO_C:.4g} C); give degrees "
                   "Celsius", strict, stacklevel)
     return T
+
+
+#: Speed of sound in air at 20 C, m/s: no tire, tester or rubber block slides faster; above it a speed is an error.
+SPEED_OF_SOUND_M_S = 343.0
+#: Above this sliding speed (360 km/h) a speed is warned about: it looks like km/h or mm/s typed as m/s.
+FAST_SPEED_M_S = 100.0
+#: Effective moduli E* = E/(1 - nu^2) of anything the contact mechanics is used for: soft gels (10 kPa) to glassy
+#: polymers and metals (100 GPa); outside, E* is a unit slip (4 is 4 MPa typed as Pa).
+MODULUS_RANGE_PA = (1.0e4, 1.0e12)
+#: Surfaces whose wavelengths reach from 1 cm (macrotexture) down to 1 mm (microtexture) are roads (or road-like
+#: textures): their rms roughness is 0.05-5 mm, never below a micrometre. A band of a road (a sweep's surface of its
+#: own) is not a road: its wavelengths do not span both.
+_ROAD_WAVELENGTHS_M = (0.01, 1.0e-3)
+_ROAD_MIN_HRMS_M = 1.0e-6
+
+
+def plausible_speed(value, name: str, *, stacklevel: int = 3) -> np.ndarray:
+    """Check sliding speed(s) in m/s: above the speed of sound (343 m/s) an error, above 100 m/s a UnitWarning.
+
+    The same rule holds in the API, the case file and on the command line: no rubber friction is measured or
+    computed above the speed of sound, and speeds of 100-343 m/s are far beyond any tire or tester (they are what
+    km/h or mm/s typed as m/s look like).
+
+    Parameters
+    ----------
+    value : float or array_like
+        Speed(s), m/s.
+    name : str
+        The argument, flag or case key, named in the message.
+
+    Returns
+    -------
+    ndarray
+        The speeds as floats (shape kept).
+    """
+    v = finite_array(value, name)
+    flat = v.ravel()
+    if np.any(flat > SPEED_OF_SOUND_M_S):
+        bad = float(flat[np.argmax(flat > SPEED_OF_SOUND_M_S)])
+        raise InputError(f"{name}: {bad:g} m/s is above the speed of sound ({SPEED_OF_SOUND_M_S:g} m/s); give "
+                         f"sliding speeds in m/s ({bad:g} mm/s = {bad * 1e-3:g} m/s, {bad:g} km/h = "
+                         f"{bad / 3.6:.4g} m/s)")
+    if np.any(flat > FAST_SPEED_M_S):
+        bad = float(flat[np.argmax(flat > FAST_SPEED_M_S)])
+        _complain(f"{name}: {bad:g} m/s ({bad * 3.6:.4g} km/h) is faster than any tire or friction tester; it "
+                  f"looks like km/h ({bad:g} km/h = {bad / 3.6:.4g} m/s) or mm/s typed as m/s", False, stacklevel)
+    return v
+
+
+def plausible_modulus(value, name: str, *, strict: bool = False, stacklevel: int = 3) -> float:
+    """Check an effective modulus E* = E/(1 - nu^2) in Pa: > 0 always; outside 10 kPa-1 TPa an error (``strict``)
+    or a UnitWarning (E* = 4 is 4 MPa typed as Pa and gives full contact).
+
+    Parameters
+    ----------
+    value : float
+        E*, Pa.
+    name : str
+        The argument, flag or case key, named in the message.
+    strict : bool
+        Raise InputError instead of warning on an implausible value.
+    """
+    E = number(value, name)
+    if E <= 0:
+        raise InputError(f"{name}: expected an effective modulus E* > 0 Pa, got {E:g}")
+    lo, hi = MODULUS_RANGE_PA
+    if E < lo:
+        _complain(f"{name}: E* = {E:g} Pa is softer than any solid in rubber friction (10 kPa-1 TPa; a tread is "
+                  f"1-100 MPa); it looks like MPa ({E:g} MPa = {E * 1e6:g} Pa) or kPa ({E * 1e3:g} Pa)",
+                  strict, stacklevel)
+    elif E > hi:
+        _complain(f"{name}: E* = {E:g} Pa is stiffer than diamond (about 1e12 Pa); give the modulus in Pa",
+                  strict, stacklevel)
+    return E
+
+
+def unit_slip_notes(surface, mu, contact_area) -> list[str]:
+    """Results that signal a unit slip on a road-scale surface (wavelengths from >= 1 cm to <= 1 mm), as messages.
+
+    On a road the rms roughness is 0.05-5 mm, the real contact a few per cent of the nominal one and the friction
+    of rubber 0.1-2. Full contact (A/A0 = 1), mu below 1e-3 or a roughness below 1 um there come from a profile in
+    mm read as um, a modulus in MPa typed as Pa or a pressure typed in the wrong unit, not from physics. Each message
+    names the value and the likely cause; the caller warns with :class:`UnitWarning` and adds them to the notes.
+
+    Parameters
+    ----------
+    surface : object
+        The PSD (``q_range``, and ``hrms()`` when it has one).
+    mu, contact_area : float or ndarray
+        Friction coefficient and A/A0 per speed (or pressure).
+    """
+    try:
+        q_lo, q_hi = (float(x) for x in surface.q_range)
+    except (AttributeError, TypeError, ValueError, IndexError):
+        return []
+    longest, shortest = _ROAD_WAVELENGTHS_M
+    if not (q_lo > 0 and 2.0 * math.pi / q_lo >= longest and 2.0 * math.pi / q_hi <= shortest):
+        return []
+    out = []
+    hrms = getattr(surface, "hrms", None)
+    h = float(hrms()) if callable(hrms) else None
+    road = f"a road-scale surface (wavelengths up to {2.0 * math.pi / q_lo * 100:.3g} cm)"
+    if h is not None and 0 < h < _ROAD_MIN_HRMS_M:
+        out.append(f"{road} with an rms roughness of {h * 1e6:.3g} um: road textures are 0.05-5 mm rms; check the "
+                   "height unit of the profiles (mm read as um?) or of the PSD (C in m^4)")
+    area = np.atleast_1d(np.asarray(contact_area, dtype=float))
+    if area.size and np.nanmax(area) >= 0.999:
+        out.append(f"full contact (A/A0 = {np.nanmax(area):.4g}) on {road}: real contact on a road is a few per "
+                   "cent; check the units of the modulus (MPa typed as Pa?), the pressure and the profile heights")
+    m = np.atleast_1d(np.asarray(mu, dtype=float))
+    m = m[m > 0]  # exactly 0 is a lossless material, not a unit slip
+    if m.size and np.min(m) < 1.0e-3:
+        out.append(f"friction coefficient {np.min(m):.3g} (< 1e-3) on {road}: rubber on a road gives 0.1-2; "
+                   "check the units of the modulus, the pressure and the profile heights")
+    return out
 
 
 def _pressure_slip(p: float) -> str:

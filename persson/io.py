@@ -9,6 +9,10 @@ Rules (see ``docs/conventions.md``, "Output files"):
 * an interrupted run (an exception or Ctrl-C) leaves the previous outputs untouched and puts what it had
   finished beside them as ``<name>.partial<suffix>``, and says so.
 
+The Python writers (``write_csv``, the ``to_csv`` methods of results, ``validation.write_report``, figure
+savers) follow the first three through :func:`check_overwrite`: a file that one of the objects being written was
+read from is refused, and an existing file is replaced only with ``overwrite=True``.
+
 :class:`Outputs` implements the last four for a command: its outputs are written into a hidden staging folder
 beside their destination and moved into place together when the command succeeds.
 """
@@ -26,8 +30,8 @@ import numpy as np
 
 from .errors import InputError
 
-__all__ = ["atomic_write", "write_csv", "Outputs", "check_output", "check_writable", "partial_path",
-           "free_path"]
+__all__ = ["atomic_write", "write_csv", "Outputs", "check_output", "check_overwrite", "source_files",
+           "check_writable", "partial_path", "free_path"]
 
 
 @contextlib.contextmanager
@@ -51,8 +55,14 @@ def atomic_write(path, mode: str = "w", **kwargs):
         raise
 
 
-def write_csv(path, columns: dict, comments: tuple[str, ...] = ()) -> Path:
-    """Write equal-length ``columns`` (name -> 1D array or list) as a CSV with a header row, atomically."""
+def write_csv(path, columns: dict, comments: tuple[str, ...] = (), *, overwrite: bool = False,
+              inputs=()) -> Path:
+    """Write equal-length ``columns`` (name -> 1D array or list) as a CSV with a header row, atomically.
+
+    ``path`` may not be one of ``inputs`` (files the data were read from) and may exist only with
+    ``overwrite=True`` (:func:`check_overwrite`).
+    """
+    check_overwrite(path, overwrite=overwrite, inputs=inputs)
     names = list(columns)
     cols = [np.asarray(columns[n]) for n in names]
     n = {c.shape[0] for c in cols}
@@ -116,6 +126,74 @@ def check_output(path, *, inputs=(), force: bool = False, what: str = "output") 
         raise InputError(f"{what} {path}: the file exists; pass --force to overwrite it (or choose another name)")
     check_writable(path.parent, what)
     return path
+
+
+def check_overwrite(path, *, overwrite: bool = False, inputs=(), what: str = "path") -> Path:
+    """The rule of every Python writer: never write over an input, nor over an existing file unasked.
+
+    Parameters
+    ----------
+    path : path-like
+        The file about to be written.
+    overwrite : bool
+        Allow replacing an existing file (never one of ``inputs``).
+    inputs : iterable of path-like
+        Files the written objects were read from (see :func:`source_files`): refused even with ``overwrite``.
+    what : str
+        The argument named in messages.
+
+    Raises
+    ------
+    InputError
+        ``path`` is one of ``inputs``, a folder, or an existing file without ``overwrite=True``.
+    """
+    path = Path(path)
+    for inp in inputs:
+        if _same_file(path, Path(inp)):
+            raise InputError(f"{what} {path}: this file is an input of what is being written ({Path(inp)}); "
+                             "choose another file name (inputs are never overwritten)")
+    if path.is_dir():
+        raise InputError(f"{what} {path}: is a folder; expected a file name")
+    if path.exists() and not overwrite:
+        raise InputError(f"{what} {path}: the file exists; pass overwrite=True to replace it (or choose another "
+                         "name)")
+    return path
+
+
+def source_files(*objects) -> tuple[Path, ...]:
+    """The existing files that ``objects`` were read from: their ``inputs`` (a case), ``source`` (a table read from
+    a file), and those of their ``spec``, ``case``, ``measurements``, ``model``, ``surface`` and ``material``, one
+    level deep. Lists, tuples and sets are searched too. For :func:`check_overwrite`'s ``inputs``."""
+    out: list[Path] = []
+
+    def add(value):
+        if isinstance(value, (str, Path)):
+            try:
+                p = Path(value)
+                if p.is_file():
+                    out.append(p)
+            except (OSError, ValueError):
+                pass
+
+    def visit(obj, depth):
+        if obj is None or isinstance(obj, (str, bytes, int, float)):
+            return
+        if isinstance(obj, (list, tuple, set, frozenset)):
+            for o in obj:
+                visit(o, depth)
+            return
+        inputs = _attribute(obj, "inputs")
+        if isinstance(inputs, (list, tuple)):
+            for p in inputs:
+                add(p)
+        add(_attribute(obj, "source"))
+        add(_attribute(obj, "path"))
+        if depth < 2:
+            for attr in ("spec", "case", "measurements", "model", "surface", "material", "steps"):
+                visit(_attribute(obj, attr), depth + 1)
+
+    visit(objects, 0)
+    return tuple(dict.fromkeys(out))
 
 
 def check_writable(folder, what: str = "output") -> Path:
@@ -290,6 +368,13 @@ class Outputs:
         self._staging.clear()
         self._files.clear()
         self._folders.clear()
+
+
+def _attribute(obj, name: str):
+    try:
+        return getattr(obj, name, None)
+    except Exception:  # noqa: BLE001 - a property that cannot be computed names no file
+        return None
 
 
 def _same_file(a: Path, b: Path) -> bool:

@@ -53,9 +53,11 @@ def plot_scales(result, index: int = 0):
     return fig
 
 
-def save_figure(fig, path, dpi: int = 120) -> Path:
-    """Save ``fig`` as PNG atomically and close it."""
-    path = Path(path)
+def save_figure(fig, path, dpi: int = 120, *, overwrite: bool = False) -> Path:
+    """Save ``fig`` as PNG atomically and close it; an existing file only with ``overwrite=True``."""
+    from .io import check_overwrite
+
+    path = check_overwrite(path, overwrite=overwrite)
     with atomic_write(path, "wb") as fh:
         fig.savefig(fh, format="png", dpi=dpi)
     plt.close(fig)

@@ -170,9 +170,11 @@ def plot_sweep(table, x: str, y="mu", *, by: str | None = None, speed: float | N
     return fig
 
 
-def save_figure(fig, path, dpi: int = 120) -> Path:
-    """Save ``fig`` as PNG, atomically (complete or not at all)."""
-    path = Path(path)
+def save_figure(fig, path, dpi: int = 120, *, overwrite: bool = False) -> Path:
+    """Save ``fig`` as PNG, atomically (complete or not at all); an existing file only with ``overwrite=True``."""
+    from .io import check_overwrite
+
+    path = check_overwrite(path, overwrite=overwrite)
     with atomic_write(path, "wb") as fh:
         fig.savefig(fh, format="png", dpi=dpi)
     return path

@@ -20,7 +20,7 @@ This package knows nothing of rubber.
 """
 
 from .cutoffs import RolloffFit, SelfAffineFit, fit_rolloff, fit_self_affine, reliability_limit
-from .errors import AccuracyWarning, DataWarning, InputError, SurfacesWarning
+from .errors import AccuracyWarning, DataWarning, InputError, SurfacesWarning, UnitWarning
 from .io import profiles_from_array, read_captif, read_height_map, read_profiles, read_profiles_csv
 from .maps import HeightMap
 from .profiles import Profile, ProfileSet
@@ -30,7 +30,7 @@ from .synthetic import example_road, synthesize_map, synthesize_profiles
 from .texture import HDC, HDCFit, MPDResult, etd, fit_hdc, hdc, mpd, rms_slope, rq
 
 __all__ = [
-    "InputError", "SurfacesWarning", "DataWarning", "AccuracyWarning",
+    "InputError", "SurfacesWarning", "DataWarning", "AccuracyWarning", "UnitWarning",
     # PSD objects
     "PSD", "SelfAffine", "PSD1D", "Cutoffs", "read_psd", "abel_forward", "gamma_factor",
     # data

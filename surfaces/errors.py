@@ -7,9 +7,10 @@ always have.
 
 from __future__ import annotations
 
-__all__ = ["InputError", "SurfacesWarning", "DataWarning", "AccuracyWarning"]
+__all__ = ["InputError", "SurfacesWarning", "DataWarning", "AccuracyWarning", "UnitWarning"]
 
 import frictionerrors
+from frictionerrors import UnitWarning  # the one category of unit slips, shared by every package
 
 
 class InputError(frictionerrors.InputError):

@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from ._util import positive, unit_factor
-from .errors import InputError
+from .errors import InputError, UnitWarning
 from .maps import HeightMap
 from .profiles import Profile, ProfileSet
 
@@ -48,6 +48,8 @@ def read_profiles(path, format: str = "auto", **options) -> ProfileSet:
     """
     if isinstance(path, (list, tuple)):
         return ProfileSet.concatenate([read_profiles(p, format=format, **options) for p in path])
+    if not isinstance(path, (str, Path)):
+        raise InputError(f"path: expected a profile file name (or a list of them), got {path!r}")
     path = Path(path)
     if not path.is_file():
         raise InputError(f"{path}: file not found")
@@ -77,7 +79,7 @@ def read_profiles_csv(path, delimiter: str = ",") -> ProfileSet:
         strictly increasing, a profile with no valid sample. The message names file, column and line.
     """
     path = Path(path)
-    with open(path, encoding="utf-8", errors="replace") as fh:
+    with open(path, encoding="utf-8-sig", errors="replace") as fh:  # -sig: a byte-order mark is no column name
         header, header_line = _csv_header(fh, path, delimiter)
         x_cols, z_cols = [], []
         for j, name in enumerate(header):
@@ -108,6 +110,7 @@ def read_profiles_csv(path, delimiter: str = ",") -> ProfileSet:
     profiles = []
     for k, (j, name, fz) in enumerate(z_cols, start=1):
         z = data[:, k] * fz
+        _check_road_heights(x, z, f"{path}, column {name}", m_unit=name.split("_", 1)[1])
         profiles.append(Profile(x, z, name=name, source=str(path)))
     return ProfileSet(tuple(profiles), source=str(path))
 
@@ -287,6 +290,27 @@ def read_height_map(path, *, dx: float, dy: float | None = None, unit: str | Non
 
 
 # ---------------------------------------------------------------------- helpers
+
+
+#: A profile this long (m) is a road or pavement scan, whose rms height is 0.05-5 mm; below 1 um (or above 5 cm) the
+#: heights are in another unit than the column says.
+_ROAD_SPAN_M = 0.05
+_ROAD_HRMS_M = (1.0e-6, 0.05)
+
+
+def _check_road_heights(x, z, where: str, m_unit: str) -> None:
+    """UnitWarning when a road-length profile has heights no road has (mm read as um, um read as mm)."""
+    ok = np.isfinite(z)
+    if ok.sum() < 3 or x[-1] - x[0] < _ROAD_SPAN_M:
+        return
+    h = float(np.std(z[ok]))
+    lo, hi = _ROAD_HRMS_M
+    if 0 < h < lo or h > hi:
+        what = "below a micrometre" if h < lo else "above 5 cm"
+        warnings.warn(f"{where}: a profile {x[-1] - x[0]:.3g} m long with an rms height of {h:.3g} m "
+                      f"({what}); road and pavement textures are 0.05-5 mm rms: are the heights really in "
+                      f"{m_unit}? Name the column with the unit they are in (z_m, z_mm or z_um)",
+                      UnitWarning, stacklevel=4)
 
 
 def _looks_like_captif(path: Path) -> bool:

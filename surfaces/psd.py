@@ -197,9 +197,9 @@ class SelfAffine:
             raise InputError(f"hurst: a SelfAffine extends with its own H = {self.hurst:g}, got {hurst!r}")
         return self.with_cutoff(q1=q1)
 
-    def to_csv(self, path, n_per_decade: int = 64) -> "Path":
+    def to_csv(self, path, n_per_decade: int = 64, *, overwrite: bool = False) -> "Path":
         """Write the tabulated model as a PSD table (see :meth:`PSD.to_csv`)."""
-        return self.tabulate(n_per_decade).to_csv(path)
+        return self.tabulate(n_per_decade).to_csv(path, overwrite=overwrite)
 
     def tabulate(self, n_per_decade: int = 64) -> "PSD":
         """Tabulated copy on a log grid over the support (the power-law part exactly interpolated)."""
@@ -349,6 +349,20 @@ class PSD:
         return PSD(q, self.C(q), q_r=self.q_r, extrapolated=still_extrapolated, source=self.source,
                    qL=self.qL, q_rolloff=self.q_rolloff, hurst=self.hurst)
 
+    def with_rolloff(self, q_rolloff: float | None) -> "PSD":
+        """The same table with the roll-off wavevector ``q_rolloff`` (rad/m, inside the table) declared, or none.
+
+        The roll-off sets the macro-asperity scale of the flash temperature (``persson.effects.FlashTemperature``);
+        :func:`surfaces.fit_rolloff` estimates it from a table that shows the plateau.
+        """
+        if q_rolloff is not None:
+            q_rolloff = positive(q_rolloff, "q_rolloff")
+            if not self.q0 * (1 - 1e-9) <= q_rolloff <= self.q1 * (1 + 1e-9):
+                raise InputError(f"q_rolloff: {q_rolloff:g} rad/m lies outside the PSD's q range [{self.q0:g}, "
+                                 f"{self.q1:g}] rad/m; expected the wavevector below which the PSD is flat")
+        return PSD(self.q, self.C_values, q_r=self.q_r, extrapolated=self.extrapolated, source=self.source,
+                   qL=self.qL, q_rolloff=q_rolloff, hurst=self.hurst)
+
     @doi("10.1088/0953-8984/17/1/R01")
     def extrapolate(self, q1: float, hurst: float | None = None, fit_band: tuple[float, float] | None = None,
                     n_per_decade: int = 32) -> "PSD":
@@ -393,8 +407,11 @@ class PSD:
         return PSD(np.concatenate([measured.q, q_tail]), np.concatenate([measured.C_values, C_tail]), q_r=q_s,
                    extrapolated=True, source=self.source, qL=self.qL, q_rolloff=self.q_rolloff, hurst=H)
 
-    def to_csv(self, path) -> Path:
+    def to_csv(self, path, *, overwrite: bool = False) -> Path:
         """Write the PSD table of ``docs/conventions.md`` (``q,C`` with ``#`` metadata comments), atomically.
+
+        Never over the file the table was read from (its ``source``); over another existing file only with
+        ``overwrite=True``.
 
         The comments record ``source``, ``q_r``, ``extrapolated``, ``qL``, ``q_rolloff`` and ``hurst``;
         :func:`read_psd` reads them back.
@@ -410,6 +427,7 @@ class PSD:
         lines += [f"# {k}: {v}" for k, v in meta.items() if v is not None and v != ""]
         lines.append("q,C")
         lines += [f"{a:.17g},{b:.17g}" for a, b in zip(self.q, self.C_values)]
+        _check_overwrite(path, overwrite, self.source)
         return atomic_write_text(path, "\n".join(lines) + "\n")
 
 
@@ -434,13 +452,15 @@ def read_psd(path) -> PSD:
         Missing file, no header, missing column ``q`` or ``C``, a non-numeric or non-positive value,
         q not strictly increasing: the message names the file, column and line.
     """
+    if not isinstance(path, (str, Path)):
+        raise InputError(f"path: expected the PSD table's file name, got {path!r}")
     path = Path(path)
     if not path.is_file():
         raise InputError(f"{path}: PSD table not found")
     meta: dict[str, str] = {}
     header: list[str] | None = None
     rows: list[tuple[int, list[str]]] = []
-    with open(path, encoding="utf-8", errors="replace") as fh:
+    with open(path, encoding="utf-8-sig", errors="replace") as fh:  # -sig: a byte-order mark is not a column name
         for lineno, line in enumerate(fh, start=1):
             text = line.strip()
             if not text:
@@ -454,6 +474,9 @@ def read_psd(path) -> PSD:
             if header is None:
                 header = fields
             else:
+                if len(fields) > len(header) and any(fields[len(header):]):
+                    raise InputError(f"{path}, line {lineno}: {len(fields)} fields, but the header has "
+                                     f"{len(header)} columns ({', '.join(header)}); expected one value per column")
                 rows.append((lineno, fields))
     if header is None:
         raise InputError(f"{path}: empty PSD table (no header row; expected columns q, C)")
@@ -494,6 +517,20 @@ def read_psd(path) -> PSD:
     return PSD(values["q"], values["C"], q_r=num("q_r"), extrapolated=extrapolated,
                source=meta.get("source") or str(path), qL=num("qL"), q_rolloff=num("q_rolloff"),
                hurst=num("hurst"))
+
+
+def _check_overwrite(path, overwrite: bool, source: str) -> None:
+    """The writers' rule (as ``persson.io.check_overwrite``): never over the source file, over another existing
+    file only when asked."""
+    path = Path(path)
+    src = Path(source) if source else None
+    if src is not None and src.is_file() and path.exists() and path.resolve() == src.resolve():
+        raise InputError(f"{path}: this is the file the PSD was read from; choose another file name (inputs are "
+                         "never overwritten)")
+    if path.is_dir():
+        raise InputError(f"{path}: is a folder; expected a file name")
+    if path.exists() and not overwrite:
+        raise InputError(f"{path}: the file exists; pass overwrite=True to replace it (or choose another name)")
 
 
 def _moment_selfaffine(C0: float, H: float, q0: float, q1: float, qL: float | None, n: int) -> float:

@@ -217,7 +217,7 @@ def test_failed_report_leaves_no_partial_file(example_loop, tmp_path, monkeypatc
     target.write_text("old report")
     calls["n"] = 0
     with pytest.raises(RuntimeError):
-        validation.write_report([case, cmp, imp], target)
+        validation.write_report([case, cmp, imp], target, overwrite=True)
     assert target.read_text() == "old report" and [p.name for p in tmp_path.iterdir()] == ["report.html"]
 
 

@@ -153,9 +153,12 @@ class Comparison:
                 "tables": {f: [g.as_dict() for g in t] for f, t in self.tables.items()},
                 "notes": list(self.notes)}
 
-    def to_json(self, path=None) -> str:
-        """The :meth:`as_dict` summary as JSON text; written atomically to ``path`` when given."""
-        return json_text(self.as_dict(), path)
+    def to_json(self, path=None, *, overwrite: bool = False) -> str:
+        """The :meth:`as_dict` summary as JSON text; written atomically to ``path`` when given (never over the
+        measurements' file, over another existing file only with ``overwrite=True``)."""
+        from persson.io import source_files
+
+        return json_text(self.as_dict(), path, overwrite=overwrite, inputs=source_files(self.measurements))
 
     def rows_table(self) -> dict[str, np.ndarray]:
         """Per-row columns: the measurement columns plus ``mu_predicted`` and ``residual``."""
@@ -165,16 +168,18 @@ class Comparison:
         cols["residual"] = self.residual
         return cols
 
-    def to_csv(self, path, comments: tuple[str, ...] = ()):
-        """Write :meth:`rows_table` as a CSV, atomically."""
-        from persson.io import write_csv
+    def to_csv(self, path, comments: tuple[str, ...] = (), *, overwrite: bool = False):
+        """Write :meth:`rows_table` as a CSV, atomically; never over the measurements' file, over another existing
+        file only with ``overwrite=True``."""
+        from persson.io import source_files, write_csv
 
         cols = self.rows_table()
         if "series" in cols:
             cols["series"] = np.asarray([str(s).replace(",", ";") for s in cols["series"]], dtype=object)
         head = (f"comparison: {self.name}", f"effects: {', '.join(self.effects) or 'none'}",
                 f"RMSE {self.rmse:.6g}, bias {self.bias:.6g}", "residual = measured - predicted")
-        return write_csv(path, cols, comments=head + tuple(comments))
+        return write_csv(path, cols, comments=head + tuple(comments), overwrite=overwrite,
+                         inputs=source_files(self.measurements))
 
     def figures(self) -> dict:
         """Matplotlib figures (Agg): ``mu_speed``, ``mu_slip`` (when slip rows exist), ``residuals``."""
@@ -186,14 +191,16 @@ class Comparison:
         figs["residuals"] = plots.plot_residuals(self)
         return figs
 
-    def save_plots(self, folder, prefix: str = "") -> list:
-        """Write the :meth:`figures` as PNGs into ``folder``; returns the paths."""
+    def save_plots(self, folder, prefix: str = "", *, overwrite: bool = False) -> list:
+        """Write the :meth:`figures` as PNGs into ``folder``; returns the paths (existing files are replaced only
+        with ``overwrite=True``)."""
         from pathlib import Path
 
         from persson.plots import save_figure
 
         folder = Path(folder)
-        return [save_figure(fig, folder / f"{prefix}{name}.png") for name, fig in self.figures().items()]
+        return [save_figure(fig, folder / f"{prefix}{name}.png", overwrite=overwrite)
+                for name, fig in self.figures().items()]
 
     @property
     def predictor(self) -> Predictor:
@@ -331,12 +338,14 @@ def _p10(d: int) -> str:
     return f"{10.0 ** d:g}"
 
 
-def json_text(data: dict, path=None) -> str:
-    """``data`` as indented JSON text (non-finite floats as null); written atomically to ``path`` when given."""
+def json_text(data: dict, path=None, *, overwrite: bool = False, inputs=()) -> str:
+    """``data`` as indented JSON text (non-finite floats as null); written atomically to ``path`` when given (never
+    over one of ``inputs``, over an existing file only with ``overwrite=True``)."""
     text = json.dumps(_clean(data), indent=2)
     if path is not None:
-        from persson.io import atomic_write
+        from persson.io import atomic_write, check_overwrite
 
+        check_overwrite(path, overwrite=overwrite, inputs=inputs)
         with atomic_write(path, "w") as fh:
             fh.write(text + "\n")
     return text

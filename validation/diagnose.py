@@ -162,9 +162,10 @@ class Diagnosis:
         """Alias of :meth:`as_dict` (the ``--json`` layout)."""
         return self.as_dict()
 
-    def to_json(self, path=None) -> str:
-        """JSON text of :meth:`as_dict`; written atomically to ``path`` when given."""
-        return json_text(self.as_dict(), path)
+    def to_json(self, path=None, *, overwrite: bool = False) -> str:
+        """JSON text of :meth:`as_dict`; written atomically to ``path`` when given (an existing file only with
+        ``overwrite=True``)."""
+        return json_text(self.as_dict(), path, overwrite=overwrite)
 
     def table_text(self) -> str:
         """The verdict line, then the ranking as aligned plain text."""

@@ -154,8 +154,10 @@ class Improvement:
         """Alias of :meth:`as_dict`."""
         return self.as_dict()
 
-    def to_json(self, path=None) -> str:
-        return json_text(self.as_dict(), path)
+    def to_json(self, path=None, *, overwrite: bool = False) -> str:
+        """JSON text of :meth:`as_dict`; written atomically to ``path`` when given (an existing file only with
+        ``overwrite=True``)."""
+        return json_text(self.as_dict(), path, overwrite=overwrite)
 
     def figures(self) -> dict:
         from . import plots

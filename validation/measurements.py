@@ -243,10 +243,12 @@ class Measurements:
             cols["device"] = np.asarray(self.device, dtype=object)
         return cols
 
-    def to_csv(self, path, comments: tuple[str, ...] = ()) -> Path:
-        """Write the rows in the measurement format, atomically (complete or not at all)."""
-        from persson.io import atomic_write
+    def to_csv(self, path, comments: tuple[str, ...] = (), *, overwrite: bool = False) -> Path:
+        """Write the rows in the measurement format, atomically (complete or not at all); an existing file (the
+        one they were read from included) only with ``overwrite=True``."""
+        from persson.io import atomic_write, check_overwrite
 
+        check_overwrite(path, overwrite=overwrite)
         cols = self.as_table()
         names = list(cols)
         with atomic_write(path, "w", newline="") as fh:
@@ -307,6 +309,8 @@ def read_measurements(path) -> Measurements:
     UnitWarning
         Values that look like another unit but are not impossible.
     """
+    if not isinstance(path, (str, Path)):
+        raise InputError(f"path: expected the measurements file's name, got {path!r}")
     path = Path(path)
     if not path.is_file():
         raise InputError(f"measurements file {path} does not exist")
@@ -328,6 +332,10 @@ def read_measurements(path) -> Measurements:
             header = cells
             header_line = lineno
         else:
+            if len(cells) > len(header) and any(cells[len(header):]):
+                raise InputError(f"{path}, line {lineno} (data row {len(rows) + 1}): {len(cells)} fields, but the "
+                                 f"header (line {header_line}) has {len(header)} columns; a comma inside a value "
+                                 "(e.g. a series name) must be quoted: \"sliding, 5 C\"")
             rows.append((lineno, cells))
     if header is None:
         raise InputError(f"{path}: no header row; expected columns {', '.join(REQUIRED_COLUMNS)}")

@@ -33,8 +33,11 @@ border-left:4px solid #4a7;padding:0.6em 1em}
 """
 
 
-def write_report(items, path, title: str | None = None) -> Path:
+def write_report(items, path, title: str | None = None, *, overwrite: bool = False) -> Path:
     """Write one self-contained HTML report of ``items``, atomically.
+
+    The file is never one of the inputs of the items (the case file, the measurements, the PSD...: refused even
+    with ``overwrite``), and an existing file is replaced only with ``overwrite=True``, as on the command line.
 
     Parameters
     ----------
@@ -46,15 +49,17 @@ def write_report(items, path, title: str | None = None) -> Path:
         The HTML file. Written to a temporary file and renamed: on any error no (partial) file is left and an
         existing file is untouched.
     title : str, optional
+    overwrite : bool
+        Replace an existing file (never an input).
 
     Returns
     -------
     Path
     """
-    text = render_report(items, title=title)
-    from persson.io import atomic_write
+    from persson.io import atomic_write, check_overwrite, source_files
 
-    path = Path(path)
+    path = check_overwrite(path, overwrite=overwrite, inputs=source_files(items), what="write_report")
+    text = render_report(items, title=title)
     with atomic_write(path, "w", encoding="utf-8") as fh:
         fh.write(text)
     return path

@@ -21,7 +21,7 @@ from typing import Any, Callable
 
 import numpy as np
 
-from .._checks import plausible_pressure, plausible_temperature
+from .._checks import plausible_pressure, plausible_speed, plausible_temperature
 from .schema import check_case, suggest
 from ..errors import InputError
 from ..engine.model import Model
@@ -166,7 +166,8 @@ def read_case(path, *, progress: Callable | None = None) -> CaseSpec:
     nu = float(mat_tab.get("poisson", 0.5))
     model_tab = raw.get("model", {})
     gamma = float(model_tab.get("gamma", 0.5))
-    effects = _effects(model_tab, path)
+    effects = _effects(model_tab, path, strain=strain, base=base)
+    notes += _assumption_notes(raw, path)
     kwargs: dict[str, Any] = {}
     if "grid" in model_tab:
         from ..engine.grid import GridSettings
@@ -202,14 +203,18 @@ def parse_case(path) -> CaseFile:
     CaseFile
     """
     path = resolve_case(path)
+    if path.suffix.lower() in _TABLE_SUFFIXES:
+        raise InputError(f"{path}: expected a case file (case.toml) or its folder, got a {path.suffix} table; a "
+                         "case file names its inputs, e.g. [surface] psd = \"surface_psd.csv\" (see "
+                         "docs/conventions.md, \"The case file\")")
     try:
-        text = path.read_text(encoding="utf-8")
+        text = path.read_text(encoding="utf-8-sig")  # -sig: a byte-order mark (Windows editors) is not TOML
     except UnicodeDecodeError as exc:
         raise InputError(f"{path}: not a UTF-8 text file ({exc})") from None
     try:
         parsed = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
-        raise InputError(f"{path}: not a valid TOML file ({exc})") from None
+        raise InputError(f"{path}: not a valid TOML file ({exc}){_looks_like_a_table(text)}") from None
     raw = check_case(parsed, str(path))
     for section in ("surface", "material"):
         if section not in raw:
@@ -221,6 +226,8 @@ def parse_case(path) -> CaseFile:
 
 def resolve_case(path) -> Path:
     """The ``case.toml`` of a path, a folder, or the name of a shipped case (InputError when none)."""
+    if not isinstance(path, (str, Path)):
+        raise InputError(f"case: expected a case file, its folder or a shipped case's name, got {path!r}")
     p = Path(path)
     if p.is_dir():
         p = p / "case.toml"
@@ -286,6 +293,9 @@ def build_surface(tab: dict, base: Path, path: Path):
             p1 = ps.psd(**tab.get("psd_options", {}))
         with _key(path, "surface", "isotropic_options"):
             s = p1.to_isotropic(**tab.get("isotropic_options", {}))
+    if "q_rolloff" in tab:
+        with _key(path, "surface", "q_rolloff"):
+            s = s.with_rolloff(float(tab["q_rolloff"]))
     if "q0" in tab or "q1" in tab:
         q0 = tab.get("q0")
         q1 = tab.get("q1")
@@ -401,7 +411,7 @@ def _strain_factors(tab: dict, base: Path, path: Path):
         return None
     import materials
 
-    files = [_file(base, f, path, "material", "strain_sweeps") for f in tab["strain_sweeps"]]
+    files = _sweep_files(tab["strain_sweeps"], base, path)
     opts = dict(tab.get("strain_options", {}))
     read = _function(materials, "read_strain_sweep", path, "strain_sweeps")
     factors = _function(materials, "strain_factors", path, "strain_sweeps")
@@ -409,6 +419,23 @@ def _strain_factors(tab: dict, base: Path, path: Path):
     fit_opts = {k: v for k, v in opts.items() if k not in read_opts}
     sweeps = [_call(read, path, "strain_sweeps", f, **read_opts) for f in files]
     return _call(factors, path, "strain_options", sweeps, **fit_opts)
+
+
+def _sweep_files(names: list, base: Path, path: Path) -> list[Path]:
+    """The strain-sweep files of ``[material] strain_sweeps``: files, or folders of ``*.csv``, ``*.txt``, ``*.dat``
+    files (one sweep or one temperature each, as DMA software exports them)."""
+    out: list[Path] = []
+    for name in names:
+        p = base / name
+        if p.is_dir():
+            found = sorted(f for f in p.iterdir() if f.is_file() and f.suffix.lower() in (".csv", ".txt", ".dat"))
+            if not found:
+                raise InputError(f"{path}: [material] strain_sweeps: folder {p} holds no *.csv, *.txt or *.dat "
+                                 "strain-sweep files")
+            out += found
+        else:
+            out.append(_file(base, name, path, "material", "strain_sweeps"))
+    return out
 
 
 def _shift_table(tab: dict, base: Path, path: Path):
@@ -461,22 +488,126 @@ def _with_thermal(material, thermal):
     raise InputError(f"material {type(material).__name__} does not carry thermal properties")
 
 
-def _effects(model_tab: dict, path: Path) -> tuple:
+def _effects(model_tab: dict, path: Path, *, strain=None, base: Path | None = None) -> tuple:
     from .. import effects as fx
 
+    names = model_tab.get("effects", [])
+    if strain is not None and "strain_softening" not in names:
+        raise InputError(f"{path}: [material] strain_sweeps are used only by the strain_softening effect, which is "
+                         "not switched on: add \"strain_softening\" to [model] effects (or remove strain_sweeps)")
     out = []
-    for n in model_tab.get("effects", []):
-        params = model_tab.get(n, {})
+    for n in names:
+        params = dict(model_tab.get(n, {}))
+        if n == "strain_softening":
+            params = _strain_softening(params, strain, base if base is not None else path.parent, path)
         with _key(path, f"model.{n}", None):
             out.append(fx.get(n, **params))
     return tuple(out)
 
 
+#: The values of [model.strain_softening] factors that are not file names.
+_FACTOR_SOURCES = ("sweeps", "constant")
+
+
+def _strain_softening(params: dict, strain, base: Path, path: Path) -> dict:
+    """The StrainSoftening arguments of ``[model.strain_softening]``: measured factors from ``[material]
+    strain_sweeps`` unless ``factors`` says otherwise (``"constant"``, or a factor table ``"file"``); keys that the
+    chosen factors would not use are refused."""
+    where = f"{path}: [model.strain_softening]"
+    given = params.pop("factors", None)
+    if given is None:
+        source = "sweeps" if strain is not None else "constant"
+    elif isinstance(given, str) and given.strip():
+        source = given if given in _FACTOR_SOURCES else "file"
+    else:
+        raise InputError(f"{where} factors: expected \"sweeps\" (the strain sweeps of [material]), \"constant\" "
+                         f"(storage_factor, loss_factor) or a factor table file name in quotes, got {given!r}")
+    if source == "sweeps":
+        if strain is None:
+            raise InputError(f"{where} factors = \"sweeps\" needs strain sweeps: [material] strain_sweeps = "
+                             "[\"sweep.csv\", ...]")
+        params["factors"] = strain
+    elif strain is not None:
+        instead = "the constant factors" if source == "constant" else f"the factor table {given!r}"
+        raise InputError(f"{where} factors = {given!r}: {instead} would replace the strain sweeps of [material] "
+                         "strain_sweeps, which would not be used: remove one of the two")
+    elif source == "file":
+        params["factors"] = _factor_table(base, given, path, "factors")
+    measured = source != "constant"
+    unused = [k for k in (("storage_factor", "loss_factor") if measured else ("strain_per_slope", "extrapolation"))
+              if k in params]
+    if unused:
+        why = ("a constant factor is not used with measured factors (strain sweeps or a factor table)" if measured
+               else "it is used only with measured factors ([material] strain_sweeps or factors = \"file\")")
+        raise InputError(f"{where} {unused[0]}: {why}; remove it")
+    ext = params.get("extrapolation")
+    if isinstance(ext, str) and ext not in _strain_rules():
+        params["extrapolation"] = _factor_table(base, ext, path, "extrapolation")
+    return params
+
+
+def _strain_rules() -> tuple:
+    from ..effects.strain import RULES
+
+    return RULES
+
+
+def _factor_table(base: Path, name: str, path: Path, key: str):
+    import materials
+
+    f = _file(base, name, path, "model.strain_softening", key)
+    with _key(path, "model.strain_softening", key):
+        return materials.read_strain_factors(f)
+
+
+def _assumption_notes(raw: dict, path: Path) -> list[str]:
+    """What the case leaves to defaults or switches off without saying so, as notes (and warnings)."""
+    import warnings
+
+    from ..errors import PhysicsWarning
+
+    notes = []
+    effects = raw.get("model", {}).get("effects", [])
+    mat = raw["material"]
+    if "flash_temperature" in effects and "thermal" not in mat and "example" not in mat:
+        import materials
+
+        t = materials.Thermal()
+        notes.append(f"{path.name}: [material] has no thermal table; the flash temperature uses the defaults "
+                     f"density = {t.density:g} kg/m^3, specific_heat = {t.specific_heat:g} J/(kg K), conductivity "
+                     f"= {t.conductivity:g} W/(m K): give the compound's in [material] thermal = {{ ... }}")
+    if "wet" in effects and "adhesion" in effects:
+        msg = (f"{path}: [model] effects: wet removes adhesion (no adhesive friction on a wet road), so "
+               "mu_adhesion = 0 in every computation of this case (persson friction, sweep); compare and "
+               "diagnose use the wet effect for the rows marked wet only")
+        notes.append(msg)
+        warnings.warn(msg, PhysicsWarning, stacklevel=3)
+    return notes
+
+
 def _speeds(cond: dict, path: Path) -> np.ndarray:
     if "speeds_m_s" in cond:
-        return np.asarray(cond["speeds_m_s"], dtype=float).ravel()
-    lo, hi, n = cond.get("speed_range_m_s", _DEFAULT_SPEEDS)
-    return np.geomspace(float(lo), float(hi), int(n))
+        v = np.asarray(cond["speeds_m_s"], dtype=float).ravel()
+        key = "speeds_m_s"
+    else:
+        lo, hi, n = cond.get("speed_range_m_s", _DEFAULT_SPEEDS)
+        v = np.geomspace(float(lo), float(hi), int(n))
+        key = "speed_range_m_s"
+    plausible_speed(v, f"{path}: [conditions] {key}", stacklevel=3)
+    return v
+
+
+#: Suffixes of tables (PSD, profiles, DMA, measurements) that are not case files.
+_TABLE_SUFFIXES = (".csv", ".txt", ".dat", ".tsv")
+
+
+def _looks_like_a_table(text: str) -> str:
+    """A hint when a file that is not TOML looks like a CSV table (a PSD or profile given instead of a case)."""
+    first = next((ln.strip() for ln in text.splitlines() if ln.strip() and not ln.strip().startswith("#")), "")
+    if "," in first and "=" not in first and "[" not in first:
+        return ("; it looks like a CSV table (first row " + repr(first[:40]) + "): expected a case file (case.toml) "
+                "that names its tables, e.g. [surface] psd = \"surface_psd.csv\"")
+    return ""
 
 
 # ---------------------------------------------------------------------------------------------------------
@@ -485,7 +616,7 @@ _ONE_OF = {"surface": ("psd", "profiles", "example"), "material": ("master_curve
 #: Keys that only make sense beside one of the alternatives above.
 _ONLY_WITH = {
     ("surface", "read_options"): ("profiles",), ("surface", "psd_options"): ("profiles",),
-    ("surface", "isotropic_options"): ("profiles",),
+    ("surface", "isotropic_options"): ("profiles",), ("surface", "q_rolloff"): ("psd", "profiles"),
     ("material", "dma_options"): ("dma",), ("material", "shift_law"): ("dma",), ("material", "Tg_C"): ("dma",),
     ("material", "wlf_range_C"): ("dma",), ("material", "shift_options"): ("dma",),
     ("material", "T_ref_C"): ("dma",), ("material", "master_curve_options"): ("master_curve",),
@@ -529,8 +660,12 @@ def _input_files(raw: dict, path: Path) -> list[Path]:
         out += _expand_dma(_dma_source(mat["dma"], base, path))
     if "shift_factors" in mat:
         out.append(_file(base, mat["shift_factors"], path, "material", "shift_factors"))
-    for f in mat.get("strain_sweeps", []):
-        out.append(_file(base, f, path, "material", "strain_sweeps"))
+    out += _sweep_files(mat.get("strain_sweeps", []), base, path)
+    soft = raw.get("model", {}).get("strain_softening", {})
+    for key in ("factors", "extrapolation"):
+        value = soft.get(key)
+        if isinstance(value, str) and value not in _FACTOR_SOURCES + _strain_rules():
+            out.append(_file(base, value, path, "model.strain_softening", key))
     if "file" in raw.get("measurements", {}):
         out.append(_file(base, raw["measurements"]["file"], path, "measurements", "file"))
     elif "measurements" in raw:

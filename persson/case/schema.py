@@ -172,6 +172,14 @@ def _pressure_distribution(value, where: str):
     return value
 
 
+def _length(value, where: str) -> float:
+    x = _positive(value, where)
+    if x > 1.0:
+        raise InputError(f"{where}: {x:g} m is longer than any contact patch of a wheel or tire (0.01-0.3 m); "
+                         f"expected metres ({x:g} mm = {x * 1e-3:g} m)")
+    return x
+
+
 def _range(lo: float, hi: float) -> Kind:
     def check(value, where):
         x = _number(value, where)
@@ -259,6 +267,7 @@ def _wlf(value, where: str) -> dict:
 
 NUMBER = Kind("number", _number)
 POSITIVE = Kind("number > 0", _positive)
+LENGTH = Kind("number in (0, 1]", _length)
 TEXT = Kind("text", _text)
 FILE = Kind("file", _file)
 FILES = Kind("file or list of files", _files)
@@ -393,6 +402,9 @@ KEYS: tuple[Key, ...] = (
         "the PSD's first q"),
     Key("surface", "q1", POSITIVE, "Short-distance cut-off, rad/m: the integrals end here (not past the PSD's "
         "last q; the `microtexture` effect extends the tail).", "the PSD's last q"),
+    Key("surface", "q_rolloff", POSITIVE, "Roll-off wavevector, rad/m: the PSD is flat below it. Sets the "
+        "macro-asperity scale of the flash temperature; without it a PSD table's roll-off is fitted "
+        "(`surfaces.fit_rolloff`) and the result says so.", "the PSD file's `# q_rolloff`, else fitted"),
     Key("surface", "read_options", _READ_OPTIONS, "Options of the profile readers, e.g. "
         "`{ delimiter = \";\" }` (CSV) or `{ trim_plates = false }` (CAPTIF), `format`."),
     Key("surface", "psd_options", _options_of("surfaces:ProfileSet.psd"),
@@ -428,7 +440,10 @@ KEYS: tuple[Key, ...] = (
         "Options of the automated time-temperature superposition, e.g. `{ smoothing = 0.3 }`."),
     Key("material", "fit", _choice("auto", "table", "prony"), "How the master curve is represented: the "
         "shifted data as a table, a Prony series, or the better of the two.", '"auto"'),
-    Key("material", "strain_sweeps", FILES, "Strain-sweep files (modulus vs strain amplitude) of the compound."),
+    Key("material", "strain_sweeps", FILES, "Strain-sweep files or folders of them (modulus vs strain amplitude, "
+        "e.g. one file per temperature) of the compound: "
+        "the per-scale factors of the `strain_softening` effect (which must be switched on; see "
+        "`[model.strain_softening]`)."),
     Key("material", "strain_options", _options_of("materials:read_strain_sweep", "materials:strain_factors"),
         "Options of the strain-sweep reader and of the softening factors."),
     Key("material", "poisson", _range(0.0, 0.5), "Poisson ratio nu; the effective modulus is E/(1 - nu^2).",
@@ -436,8 +451,9 @@ KEYS: tuple[Key, ...] = (
     Key("material", "thermal", _fields_of("materials:Thermal"), "Thermal properties for the flash "
         "temperature: density (kg/m^3), specific_heat (J/(kg K)), conductivity (W/(m K))."),
     # --- contact
-    Key("contact", "length_m", POSITIVE, "Contact length in the rolling direction, m."),
-    Key("contact", "width_m", POSITIVE, "Contact width, m."),
+    Key("contact", "length_m", LENGTH, "Contact length in the rolling direction, m (at most 1 m: a tire's is "
+        "0.1-0.2 m)."),
+    Key("contact", "width_m", LENGTH, "Contact width, m (at most 1 m)."),
     Key("contact", "stiffness_Pa_per_m", POSITIVE, "Shear stiffness of the tread per unit area per unit "
         "displacement, Pa/m (about G/h for a layer of shear modulus G and thickness h)."),
     Key("contact", "pressure_distribution", PRESSURE_DISTRIBUTION, "Pressure along the contact: "
@@ -670,7 +686,7 @@ def markdown() -> str:
 def write_docs(path) -> bool:
     """Rewrite the generated section of ``path`` (between the markers); returns True when it changed."""
     path = Path(path)
-    text = path.read_text(encoding="utf-8")
+    text = path.read_text(encoding="utf-8-sig")
     if BEGIN not in text or END not in text:
         raise InputError(f"{path}: markers {BEGIN!r} ... {END!r} not found")
     head, rest = text.split(BEGIN, 1)

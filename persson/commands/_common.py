@@ -14,9 +14,11 @@ from ..errors import InputError
 from ..progress import StatusLine
 
 __all__ = ["add_force", "add_effects", "add_quiet", "load_effect_scripts", "status_line", "print_notes",
-           "condition_flags", "effect_scripts", "CASE_HELP"]
+           "condition_flags", "effect_scripts", "positive_values", "CASE_HELP", "VALUES_HELP"]
 
 CASE_HELP = "case.toml, its folder, or the name of a shipped case such as 'example'"
+#: The value syntax of --speeds and --pressures (as ``persson sweep --param``, ranges log-spaced by default).
+VALUES_HELP = "v, v1,v2,... or min:max:n (log-spaced; min:max:n:lin for linear)"
 
 
 def add_force(p) -> None:
@@ -72,6 +74,52 @@ def print_notes(notes, stream=None) -> None:
     """Notes of building a case (cache hits and the like), on stderr."""
     for n in notes:
         print(f"note: {n}", file=stream or sys.stderr)
+
+
+def positive_values(text: str, flag: str, unit: str):
+    """Values > 0 of a flag such as ``--speeds`` or ``--pressures``: ``v``, ``v1,v2,...``, ``min:max:n``
+    (log-spaced) or ``min:max:n:lin`` / ``min:max:n:log``; an InputError says what is wrong and what was expected.
+
+    Parameters
+    ----------
+    text : str
+        The flag's value.
+    flag : str
+        The flag, named in messages.
+    unit : str
+        The unit of the values (``"m/s"``, ``"Pa"``), named in messages.
+    """
+    import numpy as np
+
+    from ..sweeps import parse_values
+
+    where = f"{flag} {text!r}"
+    t = str(text).strip()
+    parts = [p.strip() for p in t.split(":")]
+    if ":" in t:
+        if len(parts) not in (3, 4) or (len(parts) == 4 and parts[3].lower() not in ("log", "lin", "linear",
+                                                                                      "geom")):
+            raise InputError(f"{where}: expected {VALUES_HELP}, in {unit}")
+        if parts[2].lstrip("+-").isdigit() and int(parts[2]) < 1:
+            raise InputError(f"{where}: n = {parts[2]} values; a range min:max:n needs n >= 1")
+        if len(parts) == 3:
+            t += ":log"
+        log = t.lower().endswith((":log", ":geom"))
+        try:
+            lo, hi = float(parts[0]), float(parts[1])
+        except ValueError:
+            raise InputError(f"{where}: expected {VALUES_HELP}, in {unit}; {parts[0]!r} or {parts[1]!r} is not a "
+                             "number") from None
+        if log and (lo <= 0 or hi <= 0):
+            raise InputError(f"{where}: expected values > 0 {unit}, got {min(lo, hi):g}; a range min:max:n is "
+                             "log-spaced from min to max, so both must be > 0")
+    try:
+        v = parse_values(t, where)
+    except InputError:
+        raise InputError(f"{where}: expected {VALUES_HELP}, in {unit}") from None
+    if np.any(v <= 0):
+        raise InputError(f"{where}: expected values > 0 {unit}, got {float(v[np.argmax(v <= 0)]):g}")
+    return v
 
 
 def condition_flags(args) -> tuple[float | None, float | None]:

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ._common import CASE_HELP, add_force, add_quiet, print_notes, status_line
+from ._common import CASE_HELP, VALUES_HELP, add_force, add_quiet, positive_values, print_notes, status_line
 
 NAME = "contact"
 HELP = ("contact mechanics vs nominal pressure for a case or a PSD table: A/A0, mean separation, elastic energy, "
@@ -30,8 +30,7 @@ def add_arguments(p):
     p.formatter_class = argparse.RawDescriptionHelpFormatter
     p.epilog = _EPILOG
     p.add_argument("source", metavar="CASE_OR_PSD", help=f"a PSD table (.csv) or a case: {CASE_HELP}")
-    p.add_argument("--pressures", required=True,
-                   help="nominal pressures, Pa: p, p1,p2,... or min:max:n (log-spaced)")
+    p.add_argument("--pressures", required=True, help=f"nominal pressures, Pa: {VALUES_HELP}")
     p.add_argument("--estar", type=float, default=None,
                    help="effective modulus E* = E/(1-nu^2), Pa: elastic contact (required for a PSD table)")
     p.add_argument("--speed", type=float, default=None,
@@ -57,7 +56,18 @@ def run(args) -> int:
     from ..errors import InputError
     from ..io import Outputs, write_csv
 
+    from .._checks import plausible_modulus, plausible_speed, plausible_temperature
+
     pressures = parse_pressures(args.pressures)
+    # the unit checks of `persson friction`: a slip here gives full contact or none, silently
+    if args.estar is not None:
+        plausible_modulus(args.estar, "--estar (Pa)", strict=True)
+    if args.temperature is not None:
+        plausible_temperature(args.temperature, "--temperature (deg C)", strict=True)
+    if args.speed is not None:
+        if not args.speed > 0:
+            raise InputError(f"--speed: expected a sliding speed > 0 m/s, got {args.speed:g}")
+        plausible_speed(args.speed, "--speed (m/s)")
     src = Path(args.source)
     is_table = src.suffix.lower() == ".csv"
     if is_table:
@@ -122,21 +132,12 @@ def run(args) -> int:
 
 
 def parse_pressures(text: str) -> np.ndarray:
-    """``p``, ``p1,p2,...`` or ``min:max:n`` (log-spaced) as pressures in Pa (> 0), or InputError."""
-    from ..errors import InputError
+    """``p``, ``p1,p2,...`` or ``min:max:n`` (log-spaced) as pressures in Pa (> 0, checked for unit slips: 0.3 is
+    0.3 MPa typed as Pa), or InputError."""
+    from .._checks import plausible_pressure
 
-    try:
-        if ":" in text:
-            lo, hi, n = text.split(":")
-            if int(n) < 1:
-                raise ValueError
-            p = np.geomspace(float(lo), float(hi), int(n))
-        else:
-            p = np.array([float(x) for x in text.split(",")])
-    except ValueError:
-        raise InputError(f"--pressures: expected p, p1,p2,... or min:max:n in Pa, got {text!r}") from None
-    if p.size == 0 or not np.all(np.isfinite(p)) or np.any(p <= 0):
-        raise InputError(f"--pressures: expected pressures > 0 Pa, got {text!r}")
+    p = positive_values(text, "--pressures", "Pa")
+    plausible_pressure(p, f"--pressures {text!r} (Pa)", strict=True)
     return p
 
 

@@ -4,10 +4,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
-import numpy as np
-
-from ._common import (CASE_HELP, add_effects, add_force, add_quiet, condition_flags, effect_scripts, print_notes,
-                      status_line)
+from ._common import (CASE_HELP, VALUES_HELP, add_effects, add_force, add_quiet, condition_flags, effect_scripts,
+                      positive_values, print_notes, status_line)
 
 NAME = "friction"
 HELP = "compute mu(v), A/A0(v) for a case; writes CSV (and PNG with --plot)"
@@ -18,7 +16,7 @@ def add_arguments(p):
     p.add_argument("-o", "--output", default=None, help="output CSV (default: <case name>_friction.csv here)")
     p.add_argument("--temperature", type=float, default=None, help="background temperature, deg C")
     p.add_argument("--pressure", type=float, default=None, help="nominal pressure, Pa")
-    p.add_argument("--speeds", default=None, help="min:max:n log-spaced sliding speeds, m/s")
+    p.add_argument("--speeds", default=None, help=f"sliding speed(s), m/s: {VALUES_HELP}")
     p.add_argument("--plot", action="store_true", help="also write a PNG plot beside the CSV")
     add_force(p)
     add_effects(p)
@@ -26,21 +24,16 @@ def add_arguments(p):
 
 
 def run(args) -> int:
+    from .._checks import plausible_speed
     from ..case.loader import parse_case, read_case
-    from ..errors import InputError
     from ..io import Outputs, write_csv
 
     scripts = effect_scripts(args)
     T_flag, p_flag = condition_flags(args)
     speeds = None
-    if args.speeds:
-        try:
-            lo, hi, n = args.speeds.split(":")
-            speeds = np.geomspace(float(lo), float(hi), int(n))
-        except ValueError:
-            raise InputError(f"--speeds: expected min:max:n, got {args.speeds!r}") from None
-        if not (np.all(np.isfinite(speeds)) and np.all(speeds > 0)):
-            raise InputError(f"--speeds: expected speeds > 0 m/s, got {args.speeds!r}")
+    if args.speeds is not None:
+        speeds = positive_values(args.speeds, "--speeds", "m/s")
+        plausible_speed(speeds, f"--speeds {args.speeds!r} (m/s)")
     case = parse_case(args.case)
     out = Path(args.output) if args.output else Path(f"{case.name}_friction.csv")
     status = status_line(args, NAME)
@@ -56,7 +49,7 @@ def run(args) -> int:
         with status.phase(f"friction at {speeds.size} speeds"):
             r = spec.model.friction(speeds, temperature=T, pressure=p)
         comments = (f"case {spec.path}", f"temperature_C={T}", f"pressure_Pa={p}",
-                    f"effects={','.join(r.effects) or 'none'}", *r.notes)
+                    f"effects={','.join(r.effects) or 'none'}", *spec.notes, *r.notes)
         write_csv(csv, r.as_table(), comments=comments)
         if png is not None:
             from ..plots import plot_friction, save_figure

@@ -64,7 +64,7 @@ def add_arguments(p):
 
 
 def run(args) -> int:
-    from .._checks import plausible_pressure, plausible_temperature
+    from .._checks import plausible_pressure, plausible_speed, plausible_temperature
     from ..case.loader import parse_case, read_case
     from ..errors import InputError
     from ..io import Outputs, check_output
@@ -81,6 +81,8 @@ def run(args) -> int:
             plausible_pressure(values, f"--param {spec!r} (Pa)", strict=True)
         elif name == "temperature":
             plausible_temperature(values, f"--param {spec!r} (deg C)", strict=True)
+        elif name == "speed":
+            plausible_speed(values, f"--param {spec!r} (m/s)")
         params[name] = values
     speeds = None if args.speeds is None else _speeds(args.speeds)
     bands = None
@@ -122,7 +124,7 @@ def run(args) -> int:
             print(f"persson {NAME}: stopped after {exc.done} of {exc.total} tasks ({len(exc.table)} rows)",
                   file=sys.stderr)
             raise
-        table = table.with_comments(f"case {spec.path}", *table.comments)
+        table = table.with_comments(f"case {spec.path}", *spec.notes, *table.comments)
         table.to_csv(csv)
         if png is not None:
             from ..views import plot_bands, plot_sweep, save_figure
@@ -142,16 +144,9 @@ def run(args) -> int:
 
 
 def _speeds(text: str):
-    import numpy as np
+    from .._checks import plausible_speed
+    from ._common import positive_values
 
-    from ..errors import InputError
-    from ..sweeps import parse_values
-
-    t = text.strip()
-    parts = t.split(":")
-    if len(parts) == 3:  # min:max:n is log-spaced for speeds
-        t = t + ":log"
-    v = parse_values(t, f"--speeds {text!r}")
-    if np.any(v <= 0):
-        raise InputError(f"--speeds {text!r}: expected speeds > 0 m/s")
+    v = positive_values(text, "--speeds", "m/s")  # min:max:n is log-spaced for speeds
+    plausible_speed(v, f"--speeds {text!r} (m/s)")
     return v

@@ -30,6 +30,7 @@ viscoelastic one).
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -37,7 +38,8 @@ import numpy as np
 from frictioncite import citations_of, doi
 
 from . import corrections, separation
-from .._checks import finite_array, number
+from .._checks import (UnitWarning, finite_array, number, plausible_modulus, plausible_pressure, plausible_speed,
+                       plausible_temperature, unit_slip_notes)
 from ..errors import InputError
 
 __all__ = ["contact", "ContactResult"]
@@ -100,6 +102,7 @@ def contact(surface, material_or_Estar, pressure, *, speed=None, temperature: fl
         raise InputError(f"n_sigma: expected a number of standard deviations > 0, got {n_sigma:g}")
     p, scalar = _pressures(pressure)
     _check_surface(surface)
+    plausible_pressure(p, "pressure", stacklevel=3)  # the unit checks of Model.friction: MPa typed as Pa warns
     if isinstance(material_or_Estar, (int, float, np.integer, np.floating)) and not isinstance(material_or_Estar,
                                                                                                 bool):
         if speed is not None:
@@ -108,6 +111,7 @@ def contact(surface, material_or_Estar, pressure, *, speed=None, temperature: fl
         Es = number(material_or_Estar, "material_or_Estar")
         if Es <= 0:
             raise InputError(f"material_or_Estar: expected an effective modulus E* > 0 Pa, got {Es:g}")
+        plausible_modulus(Es, "material_or_Estar (E*)", stacklevel=3)
         core = _elastic(surface, Es, p, gamma, correction, q_per_decade)
     elif hasattr(material_or_Estar, "E"):
         if speed is None:
@@ -116,12 +120,17 @@ def contact(surface, material_or_Estar, pressure, *, speed=None, temperature: fl
         v = number(speed, "speed")
         if v <= 0:
             raise InputError(f"speed: expected a sliding speed > 0 m/s, got {v:g}")
+        plausible_speed(v, "speed", stacklevel=3)
+        plausible_temperature(number(temperature, "temperature"), "temperature", stacklevel=3)
         core = _viscoelastic(surface, material_or_Estar, p, v, number(temperature, "temperature"), nu, gamma,
                              correction, grid)
     else:
         raise InputError(f"material_or_Estar: expected E* in Pa (a number) or a material with E(omega, T), "
                          f"got {material_or_Estar!r}")
 
+    for msg in unit_slip_notes(surface, (), core["P"][:, -1]):  # full contact on a road: a unit slip
+        core["notes"] = list(core["notes"]) + [msg]
+        warnings.warn(msg, UnitWarning, stacklevel=2)
     depths = {name: separation.penetration_depth(core["u_bar"], core["hrms"], definition=name, n_sigma=n_sigma)
               for name in separation.PENETRATION_DEFINITIONS}
     cites = citations_of(contact, corrections.citations(correction), separation.mean_separation,

@@ -128,14 +128,23 @@ class Effect:
 
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
-        if cls.__dict__.get("name"):
-            _REGISTRY[cls.__dict__["name"]] = cls
+        name = cls.__dict__.get("name")
+        if name:
+            taken = _REGISTRY.get(name)
+            if taken is not None and _is_builtin(taken) and not _same_class(taken, cls):
+                raise InputError(f"effect {cls.__qualname__}: the name {name!r} is taken by the built-in effect "
+                                 f"{taken.__module__}.{taken.__qualname__}; give your effect another name (e.g. "
+                                 f"name = \"my_{name}\"), or subclass {taken.__qualname__} to change it")
+            _REGISTRY[name] = cls
 
     def __post_init__(self):
         for p in self.parameters:
             v = getattr(self, p.name)
+            if isinstance(v, np.ndarray) and v.ndim == 0:
+                v = v[()]
             if isinstance(v, bool) or not isinstance(v, (int, float, np.integer, np.floating)):
-                continue
+                raise InputError(f"{self.name}.{p.name}: expected a number in {p.unit} (e.g. {p.default:g}), got "
+                                 f"{v!r} ({type(v).__name__})")
             if not math.isfinite(v):
                 raise InputError(f"{self.name}.{p.name}: expected a finite number, got {v!r}")
             lo, hi = p.bounds
@@ -209,5 +218,29 @@ def effect_class(name: str) -> type:
 
 
 def get(name: str, **parameters) -> Effect:
-    """An instance of the effect ``name`` with the given parameters (others at their defaults)."""
-    return effect_class(name)(**parameters)
+    """An instance of the effect ``name`` with the given parameters (others at their defaults).
+
+    Raises
+    ------
+    InputError
+        An unknown effect, or a parameter the effect does not have (with the closest name).
+    """
+    cls = effect_class(name)
+    known = [f.name for f in dataclasses.fields(cls) if f.init and not f.name.startswith("_")]
+    for key in parameters:
+        if key not in known:
+            import difflib
+
+            close = difflib.get_close_matches(key, known, n=1, cutoff=0.6)
+            hint = f"; did you mean {close[0]!r}?" if close else ""
+            raise InputError(f"{name}: unknown parameter {key!r}{hint}; known: {', '.join(known) or 'none'}")
+    return cls(**parameters)
+
+
+def _is_builtin(cls) -> bool:
+    return cls.__module__.startswith("persson.")
+
+
+def _same_class(a, b) -> bool:
+    # a module imported again (a reloaded package, a script run twice) defines the same class anew
+    return (a.__module__, a.__qualname__) == (b.__module__, b.__qualname__)

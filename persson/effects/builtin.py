@@ -16,6 +16,7 @@ from frictioncite import doi
 
 from ..errors import InputError
 from ..engine.conditions import Conditions, SolverState
+from . import strain as _strain
 from .base import Effect, Parameter
 
 __all__ = ["FlashTemperature", "Adhesion", "Microtexture", "StrainSoftening", "Wet"]
@@ -91,12 +92,10 @@ class FlashTemperature(Effect):
                              "the flash temperature would not change the friction")
         q = prep.q
         q_roll = _rolloff(prep.surface)
-        notes = ()
+        notes = _default_thermal_note(thermal)
         if q_roll is None or not q[0] <= q_roll < q[-1]:
-            q_roll = q[0]
-            notes = (f"flash temperature: the PSD declares no roll-off; the macro-asperity scale q_m is "
-                     f"{self.macro_scale_ratio:g} x its first q ({q[0]:.4g} rad/m): give the PSD's q_rolloff or "
-                     "FlashTemperature(contact_diameter=...)",)
+            q_roll, note = _fitted_rolloff(prep.surface, q, self.macro_scale_ratio)
+            notes += (note,)
         q_m = min(self.macro_scale_ratio * q_roll, q[-1])
         d = self.contact_diameter if self.contact_diameter > 0 else math.pi / q_m
         D = thermal.diffusivity
@@ -104,6 +103,58 @@ class FlashTemperature(Effect):
                                   heat_factor=prep.pressure / thermal.heat_capacity, tol=self.tol,
                                   max_iter=int(self.max_iter))
         return dataclasses.replace(solved, notes=solved.notes + notes) if notes else solved
+
+
+def _fitted_rolloff(surface, q, ratio: float) -> tuple[float, str]:
+    """The roll-off of a PSD table that declares none, fitted (:func:`surfaces.fit_rolloff`: flat below q0,
+    self-affine above), with a note; where no plateau can be fitted, the first q, with a note and a PhysicsWarning."""
+    import warnings
+
+    from ..engine.solver import _per_surface
+    from ..errors import PhysicsWarning
+
+    table = _table_of(surface)
+    fitted = None if table is None else _per_surface(table, ("fitted_rolloff",), lambda: (_fit_rolloff(table),))[0]
+    if fitted is not None and q[0] <= fitted < q[-1]:
+        return fitted, (f"flash temperature: the PSD declares no roll-off; the roll-off fitted to it "
+                        f"(surfaces.fit_rolloff), {fitted:.4g} rad/m, sets the macro-asperity scale q_m = "
+                        f"{ratio:g} x {fitted:.4g} rad/m: give [surface] q_rolloff (PSD.with_rolloff) to choose it")
+    msg = (f"flash temperature: the PSD declares no roll-off and none can be fitted (no plateau at its long "
+           f"wavelengths); the macro-asperity scale q_m is {ratio:g} x its first q ({q[0]:.4g} rad/m), which makes "
+           "the hot spots as large as the scan: give [surface] q_rolloff (PSD.with_rolloff) or "
+           "FlashTemperature(contact_diameter=...)")
+    warnings.warn(msg, PhysicsWarning, stacklevel=5)
+    return float(q[0]), msg
+
+
+def _table_of(surface):
+    """The tabulated PSD (with ``q`` and ``C_values``) inside wrappers (``base``, ``surface``), or None."""
+    for _ in range(8):
+        if surface is None:
+            return None
+        if hasattr(surface, "C_values") and hasattr(surface, "q"):
+            return surface
+        surface = getattr(surface, "base", None) or getattr(surface, "surface", None)
+    return None
+
+
+def _fit_rolloff(table):
+    from surfaces.psdfit import with_estimated_rolloff
+
+    return with_estimated_rolloff(table.with_rolloff(None) if table.q_rolloff is not None else table).q_rolloff
+
+
+def _default_thermal_note(thermal) -> tuple:
+    """A note when the thermal properties are the materials package's defaults (likely not the compound's)."""
+    try:
+        default = type(thermal)()
+    except TypeError:
+        return ()
+    if thermal != default:
+        return ()
+    return (f"flash temperature: the thermal properties are the defaults of {type(thermal).__name__} (density "
+            f"{thermal.density:g} kg/m^3, specific heat {thermal.specific_heat:g} J/(kg K), conductivity "
+            f"{thermal.conductivity:g} W/(m K)), not the compound's unless they were given",)
 
 
 def _rolloff(surface):
@@ -261,6 +312,12 @@ class StrainSoftening(Effect):
     (2015)); :math:`\kappa` = ``strain_per_slope`` is a parameter (kappa = 1 takes the strain equal to the slope).
     Payne, J. Appl. Polym. Sci. 6, 57 (1962) for the effect itself.
 
+    Beyond the largest measured strain the factors follow ``extrapolation`` (:mod:`persson.effects.strain`):
+    ``"hold"`` keeps their values there, ``"log_trend"`` continues the measured trend linearly in
+    :math:`\ln\varepsilon`, a table of factors (:func:`materials.read_strain_factors`) gives them. The result
+    reports the share of :math:`\mu_{hys}` that comes from those scales (``strain_extrapolated_share``, a note,
+    and a PhysicsWarning above one half); :func:`persson.effects.strain_extrapolation_spread` compares the rules.
+
     Parameters
     ----------
     storage_factor : float
@@ -271,6 +328,8 @@ class StrainSoftening(Effect):
         Measured f(strain, T), g(strain, T): switches on the per-scale modulus.
     strain_per_slope : float
         kappa of the local strain kappa xi(q) (default 0.5).
+    extrapolation : {"hold", "log_trend"} or materials.StrainFactors
+        The factors beyond the largest measured strain (default ``"hold"``); used with ``factors`` only.
     """
 
     name = "strain_softening"
@@ -288,12 +347,17 @@ class StrainSoftening(Effect):
     loss_factor: float = 0.7
     factors: object = None
     strain_per_slope: float = 0.5
+    extrapolation: object = "hold"
 
     def __post_init__(self):
         super().__post_init__()
         if self.factors is not None and not callable(getattr(self.factors, "factors", None)):
             raise InputError("strain_softening.factors: expected materials.StrainFactors (with factors(strain, T)), "
                              f"got {type(self.factors).__name__}")
+        rule = _strain.check_rule(self.extrapolation)
+        if rule != "hold" and self.factors is not None and not hasattr(self.factors, "strain_range"):
+            raise InputError(f"strain_softening.extrapolation = {_strain.rule_name(rule)!r} needs the largest measured "
+                             f"strain of the factors (strain_range), which {type(self.factors).__name__} lacks")
 
     def transform_material(self, material, conditions):
         if self.factors is not None:
@@ -305,9 +369,15 @@ class StrainSoftening(Effect):
     def modulus_factors(self, slope, temperature):
         if self.factors is None:
             return None
-        f, g = self.factors.factors(self.strain_per_slope * np.asarray(slope, dtype=float),
-                                    np.asarray(temperature, dtype=float))
+        f, g = _strain.extrapolated_factors(self.factors, self.strain_per_slope * np.asarray(slope, dtype=float),
+                                            np.asarray(temperature, dtype=float), self.extrapolation)
         return np.asarray(f, dtype=float), np.asarray(g, dtype=float)
+
+    def strain_report(self, result, slope):
+        """``result`` with the share of mu_hysteresis from scales beyond the measured strains
+        (``strain_extrapolated_share``, a note, a PhysicsWarning above one half); ``slope`` is the rms slope
+        xi(q) at ``result.q``. Called by the model; unchanged without measured factors."""
+        return _strain.report(self, result, slope)
 
 
 @doi("10.1088/0953-8984/17/1/R01")
@@ -393,6 +463,12 @@ class Wet(Effect):
         if self.seal_fraction <= 0:
             return surface
         return _Sealed(surface, self.seal_fraction, self.seal_q)
+
+    def transform_result(self, result):
+        if "adhesion" not in result.effects:
+            return result
+        return result.replace(notes=result.notes + ("wet: wet removes adhesion (no adhesive friction on a wet "
+                                                    "road): the adhesion effect contributes mu_adhesion = 0",))
 
 
 @dataclass(frozen=True, eq=False)

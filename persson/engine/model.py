@@ -28,7 +28,7 @@ from materials.shift import extrapolated_shift_note
 
 from ..contact import corrections, separation
 from . import solver
-from .._checks import number, plausible_pressure, plausible_temperature
+from .._checks import UnitWarning, number, plausible_pressure, plausible_speed, plausible_temperature, unit_slip_notes
 from .conditions import Conditions, SolverState
 from ..effects.base import Effect
 from ..errors import AccuracyWarning, ConvergenceWarning, InputError, PhysicsWarning
@@ -99,6 +99,9 @@ class Model:
             raise InputError(f"surface: expected 0 < q0 < q1, got q_range = ({q_lo:g}, {q_hi:g}) rad/m")
         if not hasattr(self.material, "E"):
             raise InputError("material: expected an object with E(omega, T) (e.g. materials.ConstantModulus)")
+        if isinstance(self.effects, Effect) or not hasattr(self.effects, "__iter__"):
+            raise InputError(f"effects: expected a list of effects, e.g. effects=[{self.effects!r}], got "
+                             f"{type(self.effects).__name__}")
         effects = tuple(self.effects)
         names = [getattr(e, "name", None) for e in effects]
         for e, n in zip(effects, names):
@@ -152,6 +155,7 @@ class Model:
         # unit slips (MPa typed as Pa, kelvin as deg C) warn; below absolute zero is an error
         plausible_pressure(sigma0, "pressure", stacklevel=3)
         plausible_temperature(T0, "temperature", stacklevel=3)
+        plausible_speed(v, "speed", stacklevel=3)
         # Conditions keep scalars for scalar arguments (effects written for one temperature keep working)
         T_c = T0 if np.ndim(temperature) else float(T0[0])
         p_c = sigma0 if np.ndim(pressure) else float(sigma0[0])
@@ -194,6 +198,9 @@ class Model:
         if msg is not None:
             notes.append(msg)
             warnings.warn(msg, PhysicsWarning, stacklevel=2)
+        for msg in unit_slip_notes(surface, mu_total, solved.P[:, -1]):
+            notes.append(msg)
+            warnings.warn(msg, UnitWarning, stacklevel=2)
         if not solved.converged:
             bad = np.flatnonzero(~solved.converged_each)
             msg = (f"flash temperature did not converge at {bad.size} of {v.size} speeds "
@@ -237,6 +244,8 @@ class Model:
                                    *(type(e) for e in self.effects), corrections.citations(self.correction)),
             scalar=scalar,
         )
+        if modulus is not None and hasattr(modulus, "strain_report"):  # share of mu from unmeasured strains
+            result = modulus.strain_report(result, np.sqrt(solver.cumulative_moment(surface, solved.q, 3)))
         for e in self.effects:
             result = e.transform_result(result)
         return result

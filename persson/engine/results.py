@@ -59,6 +59,10 @@ class FrictionResult:
         by a further 16 where that is larger, which catches a coarse and a fine result that agree by accident
         (the first term alone with the flash temperature; see ``benchmarks/accuracy.py``). Results whose estimate exceeds
         ``GridSettings.tolerance`` warn and say so in ``notes``.
+    strain_extrapolated_share : float or ndarray or None
+        With measured strain factors (``StrainSoftening(factors=...)``): the share of ``mu_hysteresis`` that comes
+        from length scales whose local strain exceeds the largest measured strain, where the factors are
+        extrapolated (see :mod:`persson.effects.strain`); None otherwise.
     effects : tuple of str
         Names of the effects switched on.
     converged : bool
@@ -91,6 +95,7 @@ class FrictionResult:
     penetration_depth: np.ndarray | None = None
     excited_layer_thickness: np.ndarray | None = None
     max_flash_temperature: np.ndarray | float = 0.0
+    strain_extrapolated_share: np.ndarray | float | None = None
     effects: tuple = ()
     converged: bool = True
     iterations: np.ndarray | None = None
@@ -131,4 +136,6 @@ class FrictionResult:
             cols["mean_separation_m"] = np.atleast_1d(self.mean_separation)
         if self.penetration_depth is not None:
             cols["penetration_depth_m"] = np.atleast_1d(self.penetration_depth)
+        if self.strain_extrapolated_share is not None:
+            cols["strain_extrapolated_share"] = np.atleast_1d(self.strain_extrapolated_share)
         return cols

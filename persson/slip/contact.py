@@ -75,6 +75,9 @@ class Contact:
             v = number(getattr(self, name), f"contact.{name}")
             if v <= 0:
                 raise InputError(f"contact.{name}: expected a value > 0, got {v:g}")
+            if name in ("length", "width") and v > 1.0:  # no wheel's contact patch is a metre long
+                raise InputError(f"contact.{name}: {v:g} m is larger than any contact patch of a wheel or tire "
+                                 f"(0.01-0.3 m); expected metres ({v:g} mm = {v * 1e-3:g} m)")
             object.__setattr__(self, name, v)
         n = self.n_points
         if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 11:

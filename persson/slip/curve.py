@@ -113,14 +113,16 @@ class SlipResult:
             cols["max_temperature_rise_K"] = self.patch.max_rise
         return {k: np.atleast_1d(np.asarray(v, dtype=float)).ravel() for k, v in cols.items()}
 
-    def to_csv(self, path, comments: tuple[str, ...] = ()):
-        """Write :meth:`as_table` as a CSV (atomically), with the conditions and contact as comment lines."""
+    def to_csv(self, path, comments: tuple[str, ...] = (), *, overwrite: bool = False):
+        """Write :meth:`as_table` as a CSV (atomically), with the conditions and contact as comment lines; an
+        existing file only with ``overwrite=True``."""
         from ..io import write_csv
 
         c = self.contact
         head = (f"brush model: T0 = {self.temperature:g} C, sigma0 = {self.pressure:g} Pa, l = {c.length:g} m, "
                 f"w = {c.width:g} m, k = {c.stiffness:g} Pa/m, pressure = {c.pressure_distribution!r}",)
-        return write_csv(path, self.as_table(), comments=head + tuple(comments) + tuple(self.notes))
+        return write_csv(path, self.as_table(), comments=head + tuple(comments) + tuple(self.notes),
+                         overwrite=overwrite)
 
 
 @dataclass(frozen=True, eq=False)

@@ -9,7 +9,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .._checks import finite_array, number
-from ..errors import InputError
+from ..errors import AccuracyWarning, InputError
 
 __all__ = ["FitResult"]
 
@@ -170,7 +170,7 @@ def _fit(law, func, names, bounds, x, y, sigma, fixed, starts, citations, *, tol
     if not np.all(np.isfinite(cov)):
         msg = f"{law}: the parameter covariance could not be estimated (parameters not all determined by the data)"
         notes.append(msg)
-        warnings.warn(msg, RuntimeWarning, stacklevel=3)
+        warnings.warn(msg, AccuracyWarning, stacklevel=3)
         cov = np.where(np.isfinite(cov), cov, np.inf)
     C[np.ix_(idx, idx)] = cov
     stderr = np.sqrt(np.clip(np.diag(C), 0.0, None))

@@ -411,13 +411,13 @@ class _Checkpoint:
     def write(self, table: Table):
         if self.path is None or len(table) == 0:
             return None
-        return table.to_csv(self.path)
+        return table.to_csv(self.path, overwrite=True)  # the checkpoint is rewritten as the sweep runs
 
 
 def _write_partial(path, table: Table) -> None:
     """The finished rows of a sweep that stopped early (nothing when no row finished)."""
     if path is not None and len(table):
-        table.to_csv(path)
+        table.to_csv(path, overwrite=True)
 
 
 def _describe(task: _Task) -> str:

@@ -5,7 +5,8 @@ Parameter names
 ``speed``, ``temperature``, ``pressure``
     Operating conditions (m/s, deg C, Pa); columns ``speed_m_s``, ``temperature_C``, ``pressure_Pa``.
 ``nu``, ``gamma``, ``grid.<field>``
-    Model fields (``grid.q_per_decade`` etc. take integers).
+    Model fields (``grid.q_per_decade`` etc. take integers); the numerical settings the engine uses (not
+    ``grid.n_phi``, kept for old scripts but unused).
 ``surface.<name>``
     The surface, rebuilt. :class:`surfaces.SelfAffine`: ``hurst`` (at constant rms height), ``hrms``
     (at constant H and cut-offs), ``q0``, ``q1``, ``qL`` (at constant C0: the same power law over another
@@ -15,7 +16,11 @@ Parameter names
     the same point, so the requested rms height holds over the final support.
 ``material.<name>[.<name>...]``
     A numeric field of the material, nested through dataclasses: ``material.E_loss``, ``material.wlf.C1``,
-    ``material.thermal.conductivity``.
+    ``material.thermal.conductivity``. Statistics of a fit (``quality``, ``causality``, ``scores``) describe the
+    material, they do not enter its modulus: they are not sweepable.
+
+Only these physical parameters (and the engine's numerical settings) are sweepable: any other name is an error that
+suggests the closest sweepable one.
 ``<effect>.<parameter>`` (or ``effects.<effect>.<parameter>``)
     A parameter of an effect switched on in the model, e.g. ``adhesion.tau_f0``.
 """
@@ -145,6 +150,8 @@ def set_parameter(model, name: str, value):
     if name in CONDITIONS:
         raise InputError(f"params: {name!r} is an operating condition, not a model parameter")
     head, _, rest = name.partition(".")
+    if head in ("grid", "material") and name not in sweepable(model):
+        raise _unknown(model, name)
     if name in ("nu", "gamma"):
         return model.replace(**{name: value})
     if head == "grid" and rest:
@@ -160,8 +167,12 @@ def set_parameter(model, name: str, value):
         e = model.effect(head)
         fields = {f.name for f in dataclasses.fields(e)}
         if rest not in fields:
+            import difflib
+
             known = [p.name for p in e.parameters] or sorted(fields)
-            raise InputError(f"params: unknown parameter {name!r}: effect {head!r} has parameters {known}")
+            close = difflib.get_close_matches(rest, known, n=1, cutoff=0.6)
+            hint = f"; did you mean '{head}.{close[0]}'?" if close else ""
+            raise InputError(f"params: unknown parameter {name!r}{hint}: effect {head!r} has parameters {known}")
         current = getattr(e, rest)
         new = e.with_parameters(**{rest: _like(current, value, name)})
         return model.replace(effects=tuple(new if x.name == head else x for x in model.effects))
@@ -171,7 +182,8 @@ def set_parameter(model, name: str, value):
 def sweepable(model) -> list[str]:
     """Names of the parameters of ``model`` a sweep can vary (for messages and ``--help``)."""
     out = list(CONDITIONS) + ["nu", "gamma"]
-    out += [f"grid.{f.name}" for f in dataclasses.fields(model.grid)]
+    out += [f"grid.{f.name}" for f in dataclasses.fields(model.grid)
+            if f.name not in _UNUSED_GRID and _is_number(getattr(model.grid, f.name))]
     out += [f"surface.{n}" for n in _surface_names(model.surface)]
     out += [f"material.{n}" for n in _numeric_paths(model.material)]
     for e in model.effects:
@@ -185,7 +197,24 @@ def sweepable(model) -> list[str]:
 
 # ---------------------------------------------------------------------------------------------------------
 def _unknown(model, name: str) -> InputError:
-    return InputError(f"params: unknown parameter name {name!r}; this model can sweep {sweepable(model)}")
+    import difflib
+
+    known = sweepable(model)
+    close = difflib.get_close_matches(name, known, n=1, cutoff=0.6)
+    hint = f"; did you mean {close[0]!r}?" if close else ""
+    why = ""
+    if name.split(".")[0] == "grid" and name.split(".")[-1] in _UNUSED_GRID:
+        why = " (the engine does not use it: sweeping it changes nothing)"
+    elif set(name.split(".")) & _NOT_PHYSICAL:
+        why = " (a statistic of the material's fit, not a property that enters the modulus)"
+    return InputError(f"params: unknown parameter name {name!r}{why}{hint}; this model can sweep "
+                      f"{', '.join(known)}")
+
+
+#: GridSettings fields the engine no longer reads.
+_UNUSED_GRID = ("n_phi",)
+#: Dataclass fields that describe how a material was fitted (statistics), not what it is.
+_NOT_PHYSICAL = {"quality", "causality", "scores", "misfit", "misfit_loo"}
 
 
 def _is_number(v) -> bool:
@@ -229,6 +258,8 @@ def _numeric_paths(obj, prefix: str = "", depth: int = 0) -> list[str]:
         return []
     out = []
     for f in dataclasses.fields(obj):
+        if f.name in _NOT_PHYSICAL:
+            continue
         v = getattr(obj, f.name, None)
         if _is_number(v):
             out.append(prefix + f.name)

@@ -113,8 +113,9 @@ class Table:
                 return False
         return True
 
-    def to_csv(self, path, comments: tuple[str, ...] | None = None) -> Path:
-        """Write the table as CSV (header row, ``#`` comments), atomically: complete or not at all.
+    def to_csv(self, path, comments: tuple[str, ...] | None = None, *, overwrite: bool = False) -> Path:
+        """Write the table as CSV (header row, ``#`` comments), atomically: complete or not at all; an existing
+        file only with ``overwrite=True``.
 
         Floats are written with ``repr`` (they read back bit for bit with :func:`read_table`).
 
@@ -122,7 +123,8 @@ class Table:
         -------
         pathlib.Path
         """
-        return write_csv(path, self.columns, comments=self.comments if comments is None else tuple(comments))
+        return write_csv(path, self.columns, comments=self.comments if comments is None else tuple(comments),
+                         overwrite=overwrite)
 
     def to_pandas(self):
         """A :class:`pandas.DataFrame` of the table (pandas is optional: ImportError when absent)."""

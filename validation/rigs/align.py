@@ -153,12 +153,13 @@ class TrailerRows:
             cols["n_samples"] = self.n_samples
         return cols
 
-    def to_csv(self, path, comments: tuple[str, ...] = ()):
+    def to_csv(self, path, comments: tuple[str, ...] = (), *, overwrite: bool = False):
         """Write :meth:`as_table` as a CSV with the notes as comments, atomically (complete or not at all)."""
         from persson.io import write_csv
 
         head = (f"reduced from {self.source}", "aligned to road positions" if self.aligned else "not aligned")
-        return write_csv(path, self.as_table(), comments=head + tuple(comments) + tuple(self.notes))
+        return write_csv(path, self.as_table(), comments=head + tuple(comments) + tuple(self.notes),
+                         overwrite=overwrite)  # an existing file only if asked
 
     def to_measurements(self, *, temperature, pressure, wet=False, series: str | None = None, contact=None):
         """The rows as :class:`~validation.Measurements` (with ``position_m``), for compare, diagnose and reports.

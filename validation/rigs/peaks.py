@@ -138,13 +138,14 @@ class RoadProfile:
             cols[f"n_{j + 1}"] = self.n_samples[:, j]
         return cols
 
-    def to_csv(self, path, comments: tuple[str, ...] = ()):
+    def to_csv(self, path, comments: tuple[str, ...] = (), *, overwrite: bool = False):
         """Write :meth:`as_table` (NaN where not identified) with the notes as comments, atomically."""
         from persson.io import write_csv
 
         head = ((f"peak and locked mu along the road from {self.source}, bins of {self.step_m:g} m, "
                  f"{'aligned' if self.aligned else 'not aligned'}"),)
-        return write_csv(path, self.as_table(), comments=head + tuple(comments) + tuple(self.notes))
+        return write_csv(path, self.as_table(), comments=head + tuple(comments) + tuple(self.notes),
+                         overwrite=overwrite)  # an existing file only if asked
 
 
 @doi(TRAILER_2023, MAGIC_FORMULA, _PACEJKA_BOOK, _GUM)
