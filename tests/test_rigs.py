@@ -420,3 +420,29 @@ def test_fixed_slips_columns_and_citations(dry_run):
     refs = frictioncite.references(rigs.reduce, rigs.peak_lock_along_road, rigs.check_balance)
     assert any("Lubricants 11(7), 277 (2023)" in r for r in refs)
     assert any("Magic Formula" in r for r in refs) and any("uncertainty in measurement" in r for r in refs)
+
+
+def test_a_rig_table_in_a_case_file_is_checked_and_built_by_load_case(tmp_path):
+    import shutil
+    from pathlib import Path
+
+    from validation.rigs import Rig
+
+    src = Path(validation.__file__).parent / "cases" / "example"
+    case = tmp_path / "example"
+    shutil.copytree(src, case)
+    tires = "".join(f"""
+[[rig.tires]]
+wheel_radius_m = 0.30
+offset_m = {off}
+l_left_m = 0.12
+l_right_m = 0.10
+l_span_m = 0.45
+mass_kg = 20.0
+""" for off in (0.0, 0.78))
+    (case / "case.toml").write_text((case / "case.toml").read_text() + tires)
+    loaded = validation.load_case(case / "case.toml")
+    assert isinstance(loaded.rig, Rig) and loaded.rig.n_tires == 2
+    (case / "case.toml").write_text((case / "case.toml").read_text().replace("mass_kg = 20.0", "mas_kg = 20.0", 1))
+    with pytest.raises(validation.InputError, match=r"rig.*tires\[0\].*mas_kg.*mass_kg"):
+        validation.load_case(case / "case.toml")

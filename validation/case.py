@@ -42,6 +42,8 @@ class Case:
         Baseline parameters to fit (``[model] fit``).
     spec : persson.case.CaseSpec
         The parsed case file (``spec.raw`` is the whole TOML).
+    rig : validation.rigs.Rig or None
+        The friction trailer of the ``[rig]`` table (None without one), for :func:`validation.rigs.reduce`.
     """
 
     name: str
@@ -51,6 +53,7 @@ class Case:
     contact: object = None
     fit: tuple = ()
     spec: object = field(default=None, repr=False)
+    rig: object = None
 
     def __repr__(self) -> str:
         return (f"Case({self.name!r}, path={str(self.path)!r}, effects={list(self.model.effect_names)}, "
@@ -111,7 +114,13 @@ def load_case(path, *, progress=None) -> Case:
     if contact is not None:
         meas = meas.with_contact(contact)
     fit = parse_fit_names(spec.raw.get("model", {}).get("fit", []), spec.model, str(p))
-    return Case(name=spec.name, path=p, model=spec.model, measurements=meas, contact=contact, fit=fit, spec=spec)
+    rig = None
+    if "rig" in spec.raw:
+        from .rigs import rig_from_dict
+
+        rig = rig_from_dict(spec.raw["rig"], source=f"{p}: [rig]")
+    return Case(name=spec.name, path=p, model=spec.model, measurements=meas, contact=contact, fit=fit, spec=spec,
+                rig=rig)
 
 
 def parse_fit_names(names, model, where: str = "fit") -> tuple[str, ...]:

@@ -320,6 +320,8 @@ SECTIONS: dict[str, str] = {
     "tire": "The tyre on the road, used by `persson tread` (the tread-element tool, `persson.tread`): the tyre, "
             "its pattern, the water and the map's slips and speeds. The road is `[surface] profiles` (or synthetic "
             "profiles of `psd` / `example`); the temperature is `[conditions] temperature_C`.",
+    "rig": "The friction trailer whose raw channels `validation.rigs` reduces: one `[[rig.tires]]` table per "
+           "measuring tire, in the order of the channel file's tires (docs/rigs.md).",
 }
 
 _READ_OPTIONS = _options_of("surfaces:read_profiles_csv", "surfaces:read_captif", extra=("format",))
@@ -389,6 +391,27 @@ _IMAGE = _subtable("image file and pixel size", ("file", "pixel_m"), file=FILE, 
 _WATER = _subtable("water depth", ("thickness_m",), thickness_m=POSITIVE, viscosity_Pa_s=POSITIVE,
                    density_kg_m3=POSITIVE, alpha=_range(0.0, 1.0e4), beta=_range(0.0, 1.0e4), outlet_gap_m=POSITIVE)
 
+
+# --- [rig]: a friction trailer's measuring tires (validation.rigs builds the rig; the keys are checked here)
+_RIG_TIRE = _subtable("the tire's rolling radius, offset, lever arms and mass",
+                      ("wheel_radius_m", "offset_m", "l_left_m", "l_right_m", "l_span_m", "mass_kg"),
+                      wheel_radius_m=POSITIVE, offset_m=NUMBER, l_left_m=NUMBER, l_right_m=NUMBER,
+                      l_span_m=POSITIVE, mass_kg=NUMBER, l_chain_m=POSITIVE, slip=_range(0.0, 1.0))
+
+
+def _rig_tires(value, where: str) -> list:
+    if not isinstance(value, list) or not value:
+        raise _expected(where, "one [[rig.tires]] table per measuring tire", value)
+    return [_RIG_TIRE.check(t, f"{where}[{i}]") for i, t in enumerate(value)]
+
+
+_RIG_KEYS = (
+    Key("rig", "name", TEXT, "Name of the rig, used in messages."),
+    Key("rig", "tires", Kind("[[rig.tires]] tables", _rig_tires, _RIG_TIRE.subkeys),
+        "One table per measuring tire: `wheel_radius_m`, `offset_m` (fore/aft position of its contact behind "
+        "the first tire's), `l_left_m`, `l_right_m`, `l_span_m` (lever arms of the load cells), `mass_kg` (below "
+        "the cells), optional `l_chain_m` and `slip` (a fixed slip when the file has no wheel speed)."),
+)
 
 #: Every key, one declaration each (in the order of the docs).
 KEYS: tuple[Key, ...] = (
@@ -474,8 +497,9 @@ KEYS: tuple[Key, ...] = (
     Key("conditions", "pressure_Pa", POSITIVE, "Nominal contact pressure, Pa (1 kPa to 100 MPa).", "3e5"),
     # --- measurements
     Key("measurements", "file", FILE, "Measured friction CSV: `slip, speed_m_s, T_C, pressure_Pa, mu` "
-        "(optional `mu_std, wet, series`)."),
+        "(optional `mu_std, wet, series, position_m, water_depth_m, tread_depth_m, bpn, mpd_m, device`)."),
     *_TIRE_KEYS,
+    *_RIG_KEYS,
 )
 
 
