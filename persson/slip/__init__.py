@@ -6,6 +6,7 @@ The wing reads bottom-up:
   stiffness) and :mod:`~persson.slip.kinematics`: DRFT-style kinematics (slip ratio, sliding speed);
 * :mod:`~persson.slip.brush`: the steady-state brush model (Pacejka) and the two-coefficient brush with Sakai's
   pressure; :mod:`~persson.slip.brush_fit`: the Stribeck brush fitted to a measured curve alone;
+  :mod:`~persson.slip.brush_identify`: the two-coefficient brush identified from a Magic Formula;
 * :mod:`~persson.slip.heating` (with :mod:`~persson.slip.heating_tables` and the numba kernels of
   :mod:`~persson.slip.heating_kernels`): the :class:`PatchHeating` effect, temperature and pressure along the patch;
 * :mod:`~persson.slip.curve`: :func:`mu_slip` and :func:`predict_slip` from a :class:`persson.Model`;
@@ -26,6 +27,8 @@ Every public name is importable from ``persson.slip`` (and, as before, the curve
 """
 
 from .brush import BrushCurve, BrushMap, brush_mu, two_coefficient_map, two_coefficient_mu
+from .brush import KINEMATICS, BrushTerms, MapSensitivity, brush_terms
+from .brush_identify import BrushIdentification, identify_two_coefficient
 from .brush_fit import BrushFit, fit_brush, stribeck_brush_mu
 from .contact import CONTACT_PARAMETERS, Contact, Tread
 from .curve import PatchProfile, SlipResult, mu_slip, predict_slip
@@ -42,6 +45,7 @@ from .references import (AKAIKE_1974, BLOK_1937, BURCKHARDT_1993, CANUDAS_2003, 
                          RADO_1994, SAKAI_1981, SCHWARZ_1978, STRIBECK_1902, TIMOSHENKO_GERE)
 from .road import (BURCKHARDT_DRY_ASPHALT, MF_DRY_TARMAC, RoadCase, burckhardt, example_road_case, road_model,
                    with_road_heating)
+from .references import TRAILER_2023
 from .speedlaw_fit import (ACCEPTANCE_SSE, SPEED_LAW_NAMES, SpeedLawFit, SpeedLawTable, fit_speed_laws,
                            information_criteria, speed_laws_from_model)
 from .speedlaws import (SPEED_LAWS, do_marsac_mosset, fit_do_marsac_mosset, fit_gompertz, fit_la_torre, fit_piarc,
@@ -58,6 +62,9 @@ __all__ = [
     "Contact", "CONTACT_PARAMETERS", "Tread", "Kinematics", "drft_kinematics", "drft_from_angular", "drft_speeds",
     "brush_mu", "BrushCurve", "two_coefficient_mu", "BrushMap", "two_coefficient_map",
     "stribeck_brush_mu", "fit_brush", "BrushFit",
+    # the trailer article's brush: kinematics dx = s x, adhesion/sliding terms, identification from a Magic Formula
+    "KINEMATICS", "brush_terms", "BrushTerms", "MapSensitivity", "identify_two_coefficient", "BrushIdentification",
+    "TRAILER_2023",
     # friction against slip from the engine
     "SlipResult", "PatchProfile", "mu_slip", "predict_slip", "fit_slip", "SlipFit",
     "PatchHeating", "PatchSolution", "patch_friction", "road_model", "with_road_heating",

@@ -136,3 +136,10 @@ TIMOSHENKO_GERE = "timoshenko-gere:mechanics-of-materials-1972"
 #: M. Burckhardt, Fahrwerktechnik: Radschlupf-Regelsysteme, Vogel, Wuerzburg (1993): mu(s) = c1 (1 - exp(-c2 s))
 #: - c3 s with constants per road surface (dry asphalt c1 = 1.2801, c2 = 23.99, c3 = 0.52).
 BURCKHARDT_1993 = "burckhardt:radschlupf-regelsysteme-1993"
+
+
+#: Study on the influence of environmental conditions on road friction characteristics, Lubricants 11(7), 277
+#: (2023): the road-friction trailer, its Magic Formula identification and its two-coefficient brush with the
+#: bristle kinematics dx = s x and Sakai's n = 4 pressure (Section 4, Eqs. 11-25, Figures 16-20).
+TRAILER_2023 = "10.3390/lubricants11070277"
+__all__ += ["TRAILER_2023"]

@@ -138,6 +138,23 @@ class RoadProfile:
             cols[f"n_{j + 1}"] = self.n_samples[:, j]
         return cols
 
+    def two_coefficient_brush(self, *, sakai_n: float = 4.0, kinematics: str = "pacejka"):
+        """The two-coefficient brush at every position (:func:`persson.slip.identify_two_coefficient`: mu_D the
+        locked mu, the initial slope B C D, mu_s free; the article's Figure 18), the points' standard errors
+        propagated through the three-point identification; NaN where no Magic Formula was identified."""
+        from persson.slip import identify_two_coefficient
+
+        cov = np.zeros((self.n, 3, 3))
+        ok = self.identified
+        if np.any(ok):  # dq = J^-1 (dm - mu'(s) ds) in q = log(B, C, D) (module docstring), then to B, C, D
+            q = np.log(np.stack([self.B[ok], self.C[ok], self.D[ok]], axis=1))
+            _, J, dmu_ds = _curve(q, self.slip[ok])
+            Jinv = np.linalg.inv(J) * np.exp(q)[:, :, None]
+            var = self.mu_std[ok] ** 2 + (dmu_ds * self.slip_std[ok]) ** 2
+            cov[ok] = np.einsum("nik,nk,njk->nij", Jinv, var, Jinv)
+        formulas = [self.formula(i) if ok[i] else None for i in range(self.n)]
+        return identify_two_coefficient(formulas, covariance=cov, sakai_n=sakai_n, kinematics=kinematics)
+
     def to_csv(self, path, comments: tuple[str, ...] = (), *, overwrite: bool = False):
         """Write :meth:`as_table` (NaN where not identified) with the notes as comments, atomically."""
         from persson.io import write_csv
