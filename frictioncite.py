@@ -80,6 +80,8 @@ REFERENCES: dict[str, str] = {
     "arxiv:1102.5412": "A. Almqvist, C. Campana, N. Prodanov, B. N. J. Persson, Interfacial separation between "
     "elastic solids with randomly rough surfaces: comparison between theory and numerical techniques, J. Mech. "
     "Phys. Solids 59, 2355 (2011).",
+    "wang-muser:tribol-lett-65-2017": "A. Wang, M. H. Müser, Gauging Persson theory on adhesion, Tribol. Lett. 65 "
+    "(2017).",
     "10.1098/rspa.1966.0242": "J. A. Greenwood, J. B. P. Williamson, Contact of nominally flat surfaces, Proc. R. "
     "Soc. A 295, 300 (1966).",
     "10.1007/BF01520701": "H. C. Booij, G. P. J. M. Thoone, Generalization of Kramers-Kronig transforms and some "

@@ -230,7 +230,8 @@ def test_result_is_frozen_scalar_for_scalar_pressure_and_tabulates():
     assert r.area_q.shape == (1, r.q.size) and r.G_q.shape == r.area_q.shape
     t = r.as_table()
     assert list(t) == ["pressure_Pa", "contact_area", "mean_separation_m", "elastic_energy_J_m2",
-                       "penetration_depth_m", "penetration_persson_m", "penetration_kluppel_m",
+                       "penetration_depth_m", "penetration_persson_m", "penetration_load_weighted_m",
+                       "penetration_kluppel_m",
                        "excited_layer_thickness_m"]
     assert all(v.shape == (1,) for v in t.values())
     text = repr(r)

@@ -46,10 +46,12 @@ def test_each_correction_brings_the_area_at_one_percent_of_E_star_within_10_perc
     assert a == pytest.approx(GFMD_AREA[3], rel=0.10)
 
 
-@pytest.mark.parametrize("correction", corrections.CORRECTIONS)
-def test_with_gamma_one_half_the_corrections_follow_gfmd_within_6_percent_at_every_load(correction):
+@pytest.mark.parametrize("correction, bound", [("yang-persson", 0.06), ("xu2024", 0.06), ("wang-muser", 0.11)])
+def test_the_corrections_follow_gfmd_at_every_load(correction, bound):
+    # gamma = 0.5 for yang-persson and xu2024; wang-muser has its own constant 5/9 (tuned on other GFMD data:
+    # 10 % low at p/E* = 1e-4, the 11.8 % of Xu et al.'s Fig. 2 with their coarser scale grid)
     a = contact(SURFACE, 1.0, GFMD_P, correction=correction, gamma=0.5).contact_area
-    assert np.max(np.abs(a / GFMD_AREA - 1)) < 0.06
+    assert np.max(np.abs(a / GFMD_AREA - 1)) < bound
 
 
 @pytest.mark.parametrize("correction, bound", [("xu2024", 0.055), ("yang-persson", 0.085)])
@@ -86,6 +88,36 @@ def test_yang_persson_map_equals_the_scale_by_scale_integration_of_the_corrected
                                                                                                        rel=1e-5)
 
 
+def test_wang_muser_map_equals_their_scale_by_scale_growth_of_the_pressure_variance():
+    # Wang & Müser (2017) as implemented by Xu et al. (2024), Persson_LE_Area_WM17.m: dV = S_WM(A) dV_c,
+    # S_WM(A) = 5/9 - 2/9 A^2 + (11/9 - 5/9) A^4, A = erf(p / sqrt(2 V)); integrated in q directly
+    p, Es = 0.01, 1.0
+    C = SURFACE.C
+
+    def rhs(q, V):
+        A = special.erf(p / math.sqrt(2 * V[0])) if V[0] > 0 else 1.0
+        return [(5 / 9 - 2 / 9 * A**2 + 6 / 9 * A**4) * math.pi / 2 * Es**2 * q**3 * C(q)]
+
+    sol = integrate.solve_ivp(rhs, (1e4, 1e6), [0.0], method="LSODA", rtol=1e-10, atol=1e-30)
+    ref = special.erf(p / math.sqrt(2 * sol.y[0, -1]))
+    assert contact(SURFACE, Es, p, correction="wang-muser").contact_area == pytest.approx(ref, rel=1e-5)
+
+
+def test_documented_gfmd_table():
+    # docs/contact.md: A/A0 at p/E* = 1e-4, 0.01, 0.113 and the energy ratios at 1e-4 for every law
+    p = GFMD_P[[0, 3, 9]]
+    area = {None: [0.000577, 0.0576, 0.586], "yang-persson": [0.000816, 0.0802, 0.632],
+            "xu2024": [0.000815, 0.0784, 0.634], "wang-muser": [0.000774, 0.0775, 0.661]}
+    for corr, ref in area.items():
+        np.testing.assert_allclose(contact(SURFACE, 1.0, p, correction=corr).contact_area, ref, rtol=3e-3)
+    energy = {(None, "area"): 1.80, ("xu2024", "area"): 2.53, ("wang-muser", "area"): 2.68,
+              ("xu2024", "xu2024-hybrid"): 2.31, (None, "gfmd-gap"): 1.18}
+    for (corr, gap), ref in energy.items():
+        gamma = 0.42 if gap == "xu2024-hybrid" else 0.5
+        U = contact(SURFACE, 1.0, GFMD_P[0], correction=corr, gap_correction=gap, gamma=gamma).elastic_energy
+        assert U / GFMD_UEL[0] == pytest.approx(ref, abs=0.01)
+
+
 def test_xu_map_solves_its_defining_equation():
     # Xu et al. (2024): A = erf(p / sqrt(2 (gamma + (1 - gamma) A) V_c)), V_c = (pi/2) E*^2 int q^3 C dq
     gamma = 0.42
@@ -100,15 +132,17 @@ def test_xu_map_solves_its_defining_equation():
 @pytest.mark.parametrize("correction", corrections.CORRECTIONS)
 @pytest.mark.parametrize("gamma", [0.3, 0.5, 0.8])
 def test_limits_small_load_area_grows_by_one_over_sqrt_gamma_and_full_contact_is_unchanged(correction, gamma):
+    # S(0) = gamma for yang-persson and xu2024, a = 5/9 for wang-muser (whatever gamma)
+    s0 = 5 / 9 if correction == "wang-muser" else gamma
     G = np.array([1e10, 1e20, 1e35])
     ratio = corrections.corrected_area(G, correction, gamma) / corrections.corrected_area(G, None)
-    np.testing.assert_allclose(ratio, 1 / math.sqrt(gamma), rtol=1e-4)
+    np.testing.assert_allclose(ratio, 1 / math.sqrt(s0), rtol=1e-4)
     G = np.array([0.0, 1e-3, 1e-2])   # 1 - P = erfc(1/(2 sqrt G)) < 2e-12: S = 1 to that
     np.testing.assert_allclose(corrections.corrected_area(G, correction, gamma),
                                corrections.corrected_area(G, None), rtol=1e-9)
 
 
-@pytest.mark.parametrize("correction", corrections.CORRECTIONS)
+@pytest.mark.parametrize("correction", ["yang-persson", "xu2024"])
 def test_gamma_one_switches_the_correction_off(correction):
     G = np.geomspace(1e-3, 1e8, 50)
     np.testing.assert_allclose(corrections.corrected_area(G, correction, 1.0), special.erf(0.5 / np.sqrt(G)),
@@ -170,6 +204,7 @@ def test_bad_correction_and_gamma_are_named():
         corrections.corrected_area(1.0, "persson2001")
     with pytest.raises(InputError, match="gamma"):
         corrections.corrected_area(1.0, "xu2024", 0.0)
+    assert corrections.corrected_area(1e6, "wang-muser", 0.0) > corrections.corrected_area(1e6, None)
     with pytest.raises(InputError, match="gamma"):
         corrections.corrected_area(1.0, None, True)
 

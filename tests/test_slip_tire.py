@@ -120,6 +120,27 @@ def test_three_point_identification():
         tire.magic_formula_from_points([0.0, 0.1, 1.0], [0.1, 0.5, 0.4])
 
 
+# Pacejka's typical shapes (dry and wet tarmac, tire.PACEJKA_TYPICAL) and corners away from them: early and late
+# peaks, C from 1.2 to 2.3, E from -2 to 1 (0.97 is the slowly falling dry curve where a single start stopped at
+# B, C, D, E = 14.47, 1.316, 1.003, 0.042)
+MF_CORNERS = [(10.0, 1.9, 1.0, 0.97), (12.0, 2.3, 0.82, 1.0), (25.0, 1.3, 1.1, 0.3), (6.0, 1.45, 0.7, -2.0),
+              (40.0, 1.6, 1.2, 0.9), (18.0, 1.2, 1.0, -1.0)]
+
+
+@pytest.mark.parametrize("B, C, D, E", MF_CORNERS)
+def test_noise_free_magic_formula_is_recovered_exactly(B, C, D, E):
+    s = np.linspace(0.0, 1.0, 26)
+    f = tire.fit_magic_formula(s, tire.magic_formula(s, B, C, D, E))
+    np.testing.assert_allclose(f.values, [B, C, D, E], rtol=1e-6)
+    assert f.rms < 1e-9
+    assert f.slip_at_peak == pytest.approx(mf_peak_slip(B, C, E), abs=1e-6)
+
+
+def test_literature_shapes_are_pacejkas_typical_coefficients():
+    assert tire.PACEJKA_TYPICAL["dry tarmac"] == (10.0, 1.9, 1.0, 0.97)
+    assert tire.PACEJKA_TYPICAL["wet tarmac"] == (12.0, 2.3, 0.82, 1.0)
+
+
 def test_peak_of_tabulated_curve():
     s = np.linspace(0, 1, 101)
     mu = tire.magic_formula(s, 14.0, 1.65, 0.95, -0.5)

@@ -151,6 +151,7 @@ class Predictor:
         mu = np.empty(m.n)
         mu_loc = np.empty(m.n)
         notes: dict[str, None] = {}
+        raised: dict[tuple, None] = {}
         converged = True
         dry = wet = None
         for g in self.groups:
@@ -173,10 +174,11 @@ class Predictor:
                 warnings.simplefilter("always")
                 r = mg.friction(g.points[:, 0], temperature=g.points[:, 1], pressure=g.points[:, 2])
             self.n_calls += 1
-            for w in caught:
-                notes[f"{w.category.__name__}: {w.message}"] = None
             for note in r.notes:
                 notes[note] = None
+            for w in caught:  # the engine's warnings are among its notes already: each once, and warned below
+                raised[(w.category, str(w.message))] = None
+                notes[str(w.message)] = None
             converged = converged and bool(r.converged)
             mu_g = np.atleast_1d(np.asarray(r.mu, dtype=float))
             if not np.all(np.isfinite(mu_g)):
@@ -189,6 +191,8 @@ class Predictor:
             for sw in g.sweeps:
                 mu[sw.rows] = self._brush(sw, g.points[sw.points, 0], mu_g[sw.points], m.slip[sw.rows],
                                           m.speed[sw.rows])
+        for category, message in raised:
+            warnings.warn(message, category, stacklevel=2)
         return Prediction(mu=mu, mu_local=mu_loc, converged=converged, notes=tuple(notes))
 
     def _patch(self, model, rows, key):

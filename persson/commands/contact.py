@@ -39,10 +39,12 @@ def add_arguments(p):
                    help="background temperature, deg C (default: the case's)")
     p.add_argument("--gamma", type=float, default=None,
                    help="gamma of S = gamma + (1-gamma) P^2 (default: the case's, else 0.5)")
-    p.add_argument("--correction", choices=("none", "yang-persson", "xu2024"), default="none",
+    p.add_argument("--correction", choices=("none", "yang-persson", "xu2024", "wang-muser"), default="none",
                    help="area correction (default none: uncorrected Persson theory)")
-    p.add_argument("--penetration", choices=("persson", "kluppel"), default="persson",
-                   help="definition of the penetration_depth_m column (both are written)")
+    p.add_argument("--gap-correction", choices=("area", "persson", "xu2024-hybrid", "gfmd-gap"), default="area",
+                   help="law of the elastic energy and the separation (default area: the area law's)")
+    p.add_argument("--penetration", choices=("persson", "load-weighted", "kluppel"), default="persson",
+                   help="definition of the penetration_depth_m column (every one is written)")
     p.add_argument("--n-sigma", type=float, default=3.0,
                    help="height of the asperity tops in h_rms for the 'persson' penetration depth (default 3)")
     p.add_argument("-o", "--output", default=None, help="output CSV (default: <name>_contact.csv here)")
@@ -114,10 +116,12 @@ def run(args) -> int:
             T = args.temperature
         with status.phase(f"contact at {pressures.size} pressures"):
             r = contact(surface, material, pressures, speed=args.speed, temperature=T, gamma=gamma, nu=nu,
-                        correction=correction, penetration=args.penetration, n_sigma=args.n_sigma)
+                        correction=correction, gap_correction=args.gap_correction, penetration=args.penetration,
+                        n_sigma=args.n_sigma)
         how = (f"E_star_Pa={r.E_star!r}" if r.E_star is not None
                else f"speed_m_s={r.speed!r}, temperature_C={r.temperature!r}, poisson={nu!r}")
         comments = (where, how, f"gamma={r.gamma!r}", f"correction={r.correction or 'none'}",
+                    f"gap_correction={r.gap_correction}",
                     f"penetration_depth_m: {r.penetration} definition (n_sigma={r.n_sigma!r})",
                     f"excited_layer_thickness_m weighted by {r.excited_layer_weight}",
                     f"hrms_m={r.hrms!r}, rms_slope={r.rms_slope!r}", *r.notes)

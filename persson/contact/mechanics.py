@@ -47,8 +47,9 @@ __all__ = ["contact", "ContactResult"]
 
 @doi("10.1063/1.1388626", "10.1103/PhysRevLett.99.125502", "10.1088/0953-8984/20/21/215214")
 def contact(surface, material_or_Estar, pressure, *, speed=None, temperature: float = 20.0, gamma: float = 0.5,
-            nu: float = 0.5, correction: str | None = None, penetration: str = "persson", n_sigma: float = 3.0,
-            q_per_decade: int = 32, grid=None) -> "ContactResult":
+            nu: float = 0.5, correction: str | None = None, gap_correction: str = "area",
+            penetration: str = "persson", n_sigma: float = 3.0, q_per_decade: int = 32,
+            grid=None) -> "ContactResult":
     r"""Contact area, separation, elastic energy and penetration depth at the nominal pressure(s) ``pressure``.
 
     Parameters
@@ -69,10 +70,15 @@ def contact(surface, material_or_Estar, pressure, *, speed=None, temperature: fl
         the corrections; 0 <= gamma <= 1 (default 0.5, as :class:`persson.Model`).
     nu : float
         Poisson ratio of the material (viscoelastic path), 0 <= nu <= 0.5.
-    correction : {None, "yang-persson", "xu2024"}
+    correction : {None, "yang-persson", "xu2024", "wang-muser"}
         Area correction (:mod:`persson.contact.corrections`); None (default) is uncorrected Persson theory.
-    penetration : {"persson", "kluppel"}
-        Definition reported as ``penetration_depth`` (both are in ``penetration_depths``).
+    gap_correction : {"area", "persson", "xu2024-hybrid", "gfmd-gap"} or None
+        Law of the elastic energy and the separation (:mod:`persson.contact.corrections`): ``"area"`` (default)
+        follows the area law, ``"persson"`` (or None) is uncorrected whatever the area, ``"gfmd-gap"`` is fitted
+        to GFMD mean gaps.
+    penetration : {"persson", "load-weighted", "kluppel"}
+        Definition reported as ``penetration_depth`` (every one is in ``penetration_depths``):
+        :func:`persson.contact.separation.penetration_depth`.
     n_sigma : float
         Height of the asperity tops in units of h_rms for the "persson" penetration depth (default 3).
     q_per_decade : int
@@ -94,6 +100,7 @@ def contact(surface, material_or_Estar, pressure, *, speed=None, temperature: fl
     1.0
     """
     correction, gamma = corrections.check_correction(correction, gamma)
+    gap = corrections.check_gap_correction(gap_correction, correction, gamma)
     if penetration not in separation.PENETRATION_DEFINITIONS:
         raise InputError(f"penetration: expected one of {list(separation.PENETRATION_DEFINITIONS)}, "
                          f"got {penetration!r}")
@@ -112,7 +119,7 @@ def contact(surface, material_or_Estar, pressure, *, speed=None, temperature: fl
         if Es <= 0:
             raise InputError(f"material_or_Estar: expected an effective modulus E* > 0 Pa, got {Es:g}")
         plausible_modulus(Es, "material_or_Estar (E*)", stacklevel=3)
-        core = _elastic(surface, Es, p, gamma, correction, q_per_decade)
+        core = _elastic(surface, Es, p, gamma, correction, gap, q_per_decade)
     elif hasattr(material_or_Estar, "E"):
         if speed is None:
             raise InputError("speed: a viscoelastic material needs a sliding speed in m/s (or give the effective "
@@ -123,17 +130,23 @@ def contact(surface, material_or_Estar, pressure, *, speed=None, temperature: fl
         plausible_speed(v, "speed", stacklevel=3)
         plausible_temperature(number(temperature, "temperature"), "temperature", stacklevel=3)
         core = _viscoelastic(surface, material_or_Estar, p, v, number(temperature, "temperature"), nu, gamma,
-                             correction, grid)
+                             correction, gap, grid)
     else:
         raise InputError(f"material_or_Estar: expected E* in Pa (a number) or a material with E(omega, T), "
                          f"got {material_or_Estar!r}")
 
+    notes = list(core["notes"])
     for msg in unit_slip_notes(surface, (), core["P"][:, -1]):  # full contact on a road: a unit slip
-        core["notes"] = list(core["notes"]) + [msg]
+        notes.append(msg)
         warnings.warn(msg, UnitWarning, stacklevel=2)
-    depths = {name: separation.penetration_depth(core["u_bar"], core["hrms"], definition=name, n_sigma=n_sigma)
+    if correction is not None and gap == "area":
+        notes.append(f"the separation and the elastic energy follow the {correction!r} area: at small loads they are "
+                     "further from exact solutions than uncorrected theory (GFMD mean gap +57 % at p/E* = 1e-4, "
+                     "against +29 %); gap_correction='gfmd-gap' is within 7 % of GFMD up to p/E* = 0.025")
+    depths = {name: separation.penetration_depth(core["u_bar"], core["hrms"], definition=name, n_sigma=n_sigma,
+                                                 energy_per_load=core["U"] / p)
               for name in separation.PENETRATION_DEFINITIONS}
-    cites = citations_of(contact, corrections.citations(correction), separation.mean_separation,
+    cites = citations_of(contact, corrections.citations(correction, gap), separation.mean_separation,
                          separation.excited_layer_thickness, surface,
                          separation.penetration_depth if penetration == "kluppel" else ())
     out = (lambda a: float(a[0])) if scalar else (lambda a: a)
@@ -145,7 +158,7 @@ def contact(surface, material_or_Estar, pressure, *, speed=None, temperature: fl
         n_sigma=n_sigma, penetration_depths={k: out(v) for k, v in depths.items()},
         excited_layer_thickness=out(core["layer"]), excited_layer_weight=core["layer_weight"],
         q=core["q"], area_q=core["P"], G_q=core["G"], hrms=core["hrms"], rms_slope=core["slope"],
-        notes=tuple(core["notes"]), citations=cites, scalar=scalar)
+        notes=tuple(notes), citations=cites, scalar=scalar, gap_correction=gap)
 
 
 @dataclass(frozen=True, eq=False)
@@ -167,6 +180,8 @@ class ContactResult:
         Parameter of S = gamma + (1-gamma) P^2.
     correction : str or None
         Area correction used (None: uncorrected Persson theory).
+    gap_correction : str
+        Law of the elastic energy and the separation (``"area"``: the area law's).
     contact_area : float or ndarray
         Real contact area ratio A/A0 = P(q1).
     mean_separation : float or ndarray
@@ -176,7 +191,7 @@ class ContactResult:
     penetration_depth : float or ndarray
         Penetration depth by the definition ``penetration``, m.
     penetration : str
-        The definition of ``penetration_depth`` ("persson" or "kluppel").
+        The definition of ``penetration_depth`` ("persson", "load-weighted" or "kluppel").
     n_sigma : float
         Height of the asperity tops in h_rms for the "persson" depth.
     penetration_depths : dict
@@ -220,6 +235,7 @@ class ContactResult:
     notes: tuple = ()
     citations: tuple = ()
     scalar: bool = False
+    gap_correction: str = "area"
 
     def __repr__(self) -> str:
         p = np.atleast_1d(self.pressure)
@@ -230,7 +246,7 @@ class ContactResult:
         rng = (lambda x, f: f"{f(x.min())}" if x.size == 1 else f"{f(x.min())}-{f(x.max())}")
         return (f"ContactResult({p.size} pressure{'s' if p.size > 1 else ''} {rng(p, lambda x: f'{x:.3g}')} Pa, "
                 f"{how}, A/A0 {rng(a, lambda x: f'{x:.3g}')}, u_bar {rng(u, lambda x: f'{x:.3g}')} m, "
-                f"correction={self.correction})")
+                f"correction={self.correction}, gap_correction={self.gap_correction})")
 
     def as_table(self) -> dict[str, np.ndarray]:
         """Columns per pressure: ``pressure_Pa, contact_area, mean_separation_m, elastic_energy_J_m2,
@@ -243,23 +259,22 @@ class ContactResult:
             "penetration_depth_m": np.atleast_1d(self.penetration_depth),
         }
         for name, d in self.penetration_depths.items():
-            cols[f"penetration_{name}_m"] = np.atleast_1d(d)
+            cols[f"penetration_{name.replace('-', '_')}_m"] = np.atleast_1d(d)
         cols["excited_layer_thickness_m"] = np.atleast_1d(self.excited_layer_thickness)
         return cols
 
 
 # ---------------------------------------------------------------------------------------------------------
-def _elastic(surface, Es: float, p: np.ndarray, gamma: float, correction, q_per_decade) -> dict:
+def _elastic(surface, Es: float, p: np.ndarray, gamma: float, correction, gap, q_per_decade) -> dict:
     q = _nodes(surface, q_per_decade)
     C = _psd_on(surface, q)
     m3 = np.concatenate([[0.0], np.cumsum(separation.segment_moments(q, C, 3))])
     G = (math.pi / 4.0) * (Es / p[:, None]) ** 2 * m3[None, :]
     P = corrections.corrected_area(G, correction, gamma)
-    u_bar = separation.mean_separation(q, C, G, gamma, correction=correction)
+    u_bar = separation.mean_separation(q, C, G, gamma, correction=correction, gap_correction=gap)
 
     def w_of(g):
-        pc = corrections.corrected_area(g, correction, gamma)
-        return pc * (gamma + (1.0 - gamma) * pc * pc)
+        return corrections.energy_weight(g, correction, gamma, gap)
 
     # U/A0 = (pi E*/2) int q^2 C W dq = (pi E*/2) int W(G) 2 s ds / q; W = 1 where G < 1e-4 (s < s_lo)
     energy = separation.integral_over_s(q, C, G, lambda g, s, qq: w_of(g) * 2.0 * s,
@@ -272,7 +287,7 @@ def _elastic(surface, Es: float, p: np.ndarray, gamma: float, correction, q_per_
                 hrms=_hrms(surface, q, C), slope=_slope(surface, q, C), notes=_notes(surface))
 
 
-def _viscoelastic(surface, material, p, v, T, nu, gamma, correction, grid) -> dict:
+def _viscoelastic(surface, material, p, v, T, nu, gamma, correction, gap, grid) -> dict:
     from ..engine.model import Model
 
     kwargs = {} if grid is None else {"grid": grid}
@@ -281,27 +296,12 @@ def _viscoelastic(surface, material, p, v, T, nu, gamma, correction, grid) -> di
     q = np.asarray(r.q, dtype=float)
     G = np.atleast_2d(r.G_q)
     C = _psd_on(surface, q)
-    if correction is None:
-        P = np.atleast_2d(r.area_q)
+    P = np.atleast_2d(r.area_q) if correction is None else corrections.corrected_area(G, correction, gamma)
+    if correction is None and gap in ("area", "persson"):
         u_bar = np.atleast_1d(r.mean_separation)
     else:
-        P = corrections.corrected_area(G, correction, gamma)
-        u_bar = separation.mean_separation(q, C, G, gamma, correction=correction)
-    # U/A0 = (pi/2) int q^2 C E*_q W dq, E*_q = sigma0 [(dG/dm3) / (pi/4)]^(1/2) (m3 = int q^3 C dq), constant
-    # on each interval of the nodes and interpolated in s = m3^(1/2) between interval midpoints
-    m3 = np.concatenate([[0.0], np.cumsum(separation.segment_moments(q, C, 3))])
-    E_int = p[:, None] * np.sqrt(np.maximum(np.diff(G, axis=-1), 0.0) / np.diff(m3) / (math.pi / 4.0))
-    s_mid = np.sqrt(0.5 * (m3[:-1] + m3[1:]))
-
-    def integrand(g, s, qq):
-        Eq = np.empty(g.shape)
-        for i in range(g.shape[0]):
-            Eq[i] = np.interp(s[i] if s.shape[0] == g.shape[0] else s[0], s_mid, E_int[i])
-        pc = corrections.corrected_area(g, correction, gamma)
-        return Eq * pc * (gamma + (1.0 - gamma) * pc * pc) * 2.0 * s
-
-    U = 0.5 * math.pi * separation.integral_over_s(
-        q, C, G, integrand, below=lambda s_lo, q_lo: E_int[:, 0] * separation.moment_from_start(q, C, q_lo, 2))
+        u_bar = separation.mean_separation(q, C, G, gamma, correction=correction, gap_correction=gap)
+    U = p * separation.elastic_energy_per_load(q, C, G, gamma, correction=correction, gap_correction=gap)
     return dict(q=q, G=G, P=P, u_bar=u_bar, U=U, layer=np.atleast_1d(r.excited_layer_thickness),
                 layer_weight="dissipation", E_star=None, hrms=_hrms(surface, q, C), slope=_slope(surface, q, C),
                 notes=tuple(r.notes))

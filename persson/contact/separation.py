@@ -44,18 +44,21 @@ from scipy import special
 from frictioncite import doi
 
 from .corrections import _table as _corrections_table
-from .corrections import check_correction, separation_kernel_ln
+from .corrections import (GFMD_GAP_GAMMA, WANG_MUSER_A, check_correction, check_gap_correction,
+                          separation_kernel_ln)
 from ..errors import InputError
 
-__all__ = ["mean_separation", "separation_decay_length", "penetration_depth", "excited_layer_thickness",
-           "integral_over_s", "segment_moments", "moment_from_start", "PENETRATION_DEFINITIONS"]
+__all__ = ["mean_separation", "separation_and_energy", "separation_decay_length", "small_load_factor",
+           "penetration_depth", "elastic_energy_per_load", "excited_layer_thickness", "integral_over_s",
+           "segment_moments", "moment_from_start", "PENETRATION_DEFINITIONS"]
 
 #: Names of the penetration-depth definitions of :func:`penetration_depth`.
-PENETRATION_DEFINITIONS = ("persson", "kluppel")
+PENETRATION_DEFINITIONS = ("persson", "load-weighted", "kluppel")
 
 
 @doi("10.1103/PhysRevLett.99.125502", "10.1088/0953-8984/20/21/215214")
-def mean_separation(q, C, G, gamma: float, *, correction: str | None = None) -> np.ndarray:
+def mean_separation(q, C, G, gamma: float, *, correction: str | None = None,
+                    gap_correction: str = "area") -> np.ndarray:
     """Average interfacial separation u_bar, m, per row of ``G``.
 
     Parameters
@@ -68,49 +71,86 @@ def mean_separation(q, C, G, gamma: float, *, correction: str | None = None) -> 
         Persson's G(q) (0 at q0).
     gamma : float
         Parameter of Yang & Persson (2008); 1 recovers Persson (2007).
-    correction : {None, "yang-persson", "xu2024"}
+    correction : {None, "yang-persson", "xu2024", "wang-muser"}
         Area correction (:mod:`persson.contact.corrections`); None is uncorrected Persson theory.
+    gap_correction : {"area", "persson", "xu2024-hybrid", "gfmd-gap"} or None
+        Energy law of the separation (:mod:`persson.contact.corrections`); "area" follows the area law.
 
     Returns
     -------
     ndarray (n_speed,)
         u_bar, m.
     """
+    return _separation_and_energy(q, C, G, gamma, correction, gap_correction, energy=False)[0]
+
+
+@doi("10.1103/PhysRevLett.99.125502", "10.1088/0953-8984/20/21/215214")
+def separation_and_energy(q, C, G, gamma: float, *, correction: str | None = None,
+                          gap_correction: str = "area") -> tuple[np.ndarray, np.ndarray]:
+    """(:func:`mean_separation`, :func:`elastic_energy_per_load`) in one pass over the nodes (what a friction
+    result reports: the separation and the load-weighted penetration depth). Same arguments."""
+    return _separation_and_energy(q, C, G, gamma, correction, gap_correction, energy=True)
+
+
+def _separation_and_energy(q, C, G, gamma, correction, gap_correction, energy):
     correction, gamma = check_correction(correction, gamma)
+    gap = check_gap_correction(gap_correction, correction, gamma)
     q = np.asarray(q, dtype=float)
     C = np.asarray(C, dtype=float)
     G = np.atleast_2d(np.asarray(G, dtype=float))
 
     def kernel(lng, s, q):
-        return separation_kernel_ln(lng, correction, gamma)
+        return separation_kernel_ln(lng, correction, gamma, gap)
 
     s = _s(q, C)
     first = _first_interval(q, C, s, G, kernel, 0.0, True)
+    U = _energy_first(q, C, s, G, correction, gamma, gap) if energy else None
     if q.size < 3:
-        return 2.0 * first
+        return 2.0 * first, (None if U is None else 0.5 * math.pi * U)
     # the other intervals: the same 4-point rule as integral_over_s, in a compiled loop (the hot path of
     # every friction call)
-    tab = _corrections_table(correction, gamma)
+    tab = _corrections_table(correction, gamma, gap)
     slope = (tab.J[-1] - tab.J[-2]) / (tab.lnG[-1] - tab.lnG[-2])
     qr, Cr, sr, lnGr = _refined(q, C, s, np.log(np.maximum(G, 1e-300)))
     rest = _kernel_sum(lnGr, qr, Cr, sr, tab.lnG[0], tab.lnG[-1], tab.inv_step, tab.lnJ_floor, tab.J[-1], slope,
                        _GL_X, _GL_W)
-    return 2.0 * (first + rest)
+    if energy:
+        Gr = np.exp(lnGr)
+        Gr[:, 0] = G[:, 0]
+        # E*_q / sigma0 on each (refined) interval: [(dG/dm3) / (pi/4)]^(1/2), m3 = s^2
+        e = np.sqrt(np.maximum(np.diff(Gr, axis=1), 0.0) / np.diff(sr * sr) / (math.pi / 4.0))
+        U = 0.5 * math.pi * (U + _energy_sum(lnGr, qr, Cr, sr, e, tab.lnG[0], tab.lnG[-1], tab.inv_step, tab.lnW,
+                                             _GL_X, _GL_W))
+    return 2.0 * (first + rest), U
+
+
+def _energy_first(q, C, s, G, correction, gamma, gap):
+    """int_0^{s_1} (E*_q / sigma0) W 2 s ds / q: the first interval of the elastic energy per unit load (without
+    its factor pi/2); E*_q / sigma0 = [(dG/dm3) / (pi/4)]^(1/2) is constant there (G is proportional to m3 = s^2
+    from G = 0 at q0, exact for an elastic solid)."""
+    tab = _corrections_table(correction, gamma, gap)
+    e0 = np.sqrt(np.maximum(G[:, 1] - G[:, 0], 0.0) / (s[1] ** 2 - s[0] ** 2) / (math.pi / 4.0))
+    return _energy_first_sum(np.ascontiguousarray(G[:, 1]), e0, q[0], q[1], C[0], C[1], s[1], _G_NEGLIGIBLE,
+                             tab.lnG[0], tab.lnG[-1], tab.inv_step, tab.lnW, _GL_X, _GL_W)
 
 
 @doi("10.1103/PhysRevLett.99.125502")
-def separation_decay_length(q, C, gamma: float, *, correction: str | None = None) -> float:
+def separation_decay_length(q, C, gamma: float, *, correction: str | None = None,
+                            gap_correction: str = "area") -> float:
     r"""u0 of the large-separation law :math:`\sigma_0 \propto \exp(-\bar u/u_0)`, m:
     :math:`u_0 = \sqrt\pi\,\gamma\int_{q_0}^{q_1} q^2 C(q) w(q) dq` (Persson 2007).
 
-    With an area correction the small-load area is :math:`1/\sqrt\gamma` times larger and the kernel grows as
-    :math:`(\sqrt\gamma/2)\ln G` instead of :math:`(\gamma/2)\ln G`, so :math:`\gamma` becomes
-    :math:`\sqrt\gamma` in u0.
+    At small load the energy weight is :math:`W \approx S_e(0)\,P_e` with :math:`P_e \approx k/\sqrt{\pi G}`, so
+    the kernel grows as :math:`(S_e(0)\,k/2)\ln G` and :math:`\gamma` becomes :math:`S_e(0)\,k` in u0: with an
+    area correction of Yang-Persson type followed by the energy (``gap_correction="area"``) the area is
+    :math:`1/\sqrt\gamma` times larger and :math:`\gamma` becomes :math:`\sqrt\gamma`; ``"gfmd-gap"`` gives
+    its own :math:`\gamma_g`.
     """
     correction, gamma = check_correction(correction, gamma)
+    gap = check_gap_correction(gap_correction, correction, gamma)
     q = np.asarray(q, dtype=float)
     C = np.asarray(C, dtype=float)
-    g_eff = gamma if correction is None else math.sqrt(gamma)
+    g_eff = small_load_factor(correction, gamma, gap)
     # int ds/q: 4-point Gauss-Legendre in s per interval, q(s) exact between nodes (regular also at q0)
     s = _s(q, C)
     half = 0.5 * np.diff(s)
@@ -119,22 +159,55 @@ def separation_decay_length(q, C, gamma: float, *, correction: str | None = None
     return 2.0 * g_eff * float(np.sum(half[:, None] * _GL_W[None, :] / qu))
 
 
+def small_load_factor(correction, gamma: float, gap_correction: str = "area") -> float:
+    """The factor S_e(0) k that takes the place of gamma in u0 (:func:`separation_decay_length`)."""
+    gap = check_gap_correction(gap_correction, correction, gamma)
+    if gap in ("persson", "gfmd-gap"):
+        return gamma if gap == "persson" else GFMD_GAP_GAMMA
+    if gap == "xu2024-hybrid":
+        return math.sqrt(gamma)                 # S_WM(0) = gamma on the xu2024 area, 1/sqrt(gamma) times larger
+    if correction is None:
+        return gamma
+    if correction == "wang-muser":
+        return math.sqrt(WANG_MUSER_A)
+    return math.sqrt(gamma)
+
+
 @doi("10.1103/PhysRevLett.99.125502", "10.5254/1.3547607", "10.1098/rspa.1966.0242")
-def penetration_depth(u_bar, hrms: float, *, definition: str = "persson", n_sigma: float = 3.0) -> np.ndarray:
+def penetration_depth(u_bar, hrms: float, *, definition: str = "persson", n_sigma: float = 3.0,
+                      energy_per_load=None) -> np.ndarray:
     r"""Penetration depth of the road asperities into the rubber, m.
 
-    Both definitions take the heights of the hard surface as Gaussian with standard deviation ``hrms``
-    (the assumption of Persson's theory) and the rubber's mean surface at :math:`\bar u` above the mean plane
-    of the hard surface (Persson 2007: :math:`\bar u` is the average separation of the two mean planes).
+    The rubber's mean surface lies at :math:`\bar u` above the mean plane of the hard surface (Persson 2007:
+    :math:`\bar u` is the average separation of the two mean planes); a point of the hard surface at height z in
+    contact pushes the rubber's surface :math:`z - \bar u` above that mean surface.
 
+    ``"load-weighted"``
+        The load-weighted mean of that penetration over the real contact,
+
+        .. math:: \delta_p = \frac{\int p(x)\,[z(x) - \bar u]\,d^2x}{\int p(x)\,d^2x} = \frac{2\,U_{el}}{A_0\sigma_0},
+
+        the second form by Clapeyron's theorem (the elastic energy of a linear solid is half the work of its surface
+        tractions on its surface displacements, and the fluctuating displacement is :math:`z - \bar u` where
+        the traction acts; for a Hertzian asperity :math:`\delta_p` is 4/5 of the indentation depth). It needs
+        the elastic energy per unit load, ``energy_per_load`` :math:`= U_{el}/(A_0\sigma_0)`
+        (:func:`elastic_energy_per_load`). Positive and continuous at every load: at small load, where
+        :math:`\sigma_0 \propto e^{-\bar u/u_0}` and :math:`U_{el}/A_0 = \int_{\bar u}^\infty \sigma_0\,d\bar u
+        = u_0\sigma_0`, it tends to :math:`2 u_0` (each asperity in contact is pressed in by the same depth
+        whatever their number); at full contact it falls as :math:`1/\sigma_0` (the pressure is spread over high
+        and low points alike).
     ``"persson"`` (default)
-        The tops of the highest asperities are taken at :math:`z_{top} = n_\sigma h_{rms}` (``n_sigma = 3``:
-        the 99.87 % quantile of the Gaussian height distribution), so they are buried
+        The depth of the highest asperities: their tops are taken at :math:`z_{top} = n_\sigma h_{rms}`
+        (``n_sigma = 3``: the 99.87 % quantile of the Gaussian height distribution), buried
+        :math:`n_\sigma h_{rms} - \bar u` deep, and never less deep than the load-weighted mean penetration (the
+        deepest asperity is pressed in at least as far as the load-weighted mean of all of them):
 
-        .. math:: \delta = n_\sigma h_{rms} - \bar u
+        .. math:: \delta = \max\left(n_\sigma h_{rms} - \bar u,\; \delta_p\right).
 
-        deep (0 when the rubber does not reach them). The quantile is a convention of this package, not a
-        result of the theory; the depth moves one-to-one with it.
+        Where the rubber's mean surface lies above the quantile (:math:`\bar u > n_\sigma h_{rms}` at small loads,
+        with contact on still higher tops) the depth is :math:`\delta_p`, positive and continuous; without
+        ``energy_per_load`` it is :math:`\max(n_\sigma h_{rms} - \bar u, 0)`, 0 there. The quantile is a convention
+        of this package, not a result of the theory; the depth moves one-to-one with it.
     ``"kluppel"``
         Mean penetration of the asperities that reach above the rubber's mean surface: the mean excess height
         of the height distribution above :math:`d = \bar u`, as in the Greenwood-Williamson-type description of
@@ -144,7 +217,8 @@ def penetration_depth(u_bar, hrms: float, *, definition: str = "persson", n_sigm
 
         .. math:: \delta = h_{rms}\,\frac{F_1(t)}{F_0(t)} = h_{rms}\left[\frac{\varphi(t)}{Q(t)} - t\right],
 
-        :math:`\varphi` the standard normal density, Q its upper tail. It does not depend on ``n_sigma``.
+        :math:`\varphi` the standard normal density, Q its upper tail. A geometric estimate (every point above
+        :math:`\bar u` counted, pressed or not); it does not depend on ``n_sigma``.
 
     Parameters
     ----------
@@ -152,15 +226,18 @@ def penetration_depth(u_bar, hrms: float, *, definition: str = "persson", n_sigm
         Mean interfacial separation, m (>= 0).
     hrms : float
         RMS height of the hard surface, m (> 0).
-    definition : {"persson", "kluppel"}
+    definition : {"persson", "load-weighted", "kluppel"}
         Which definition.
     n_sigma : float
         Height of the asperity tops in units of h_rms ("persson" only), > 0.
+    energy_per_load : float or array_like, optional
+        :math:`U_{el}/(A_0\sigma_0)`, m, broadcast against ``u_bar``: required by "load-weighted", the lower
+        bound of "persson".
 
     Returns
     -------
     ndarray
-        Penetration depth, m, >= 0, shape of ``u_bar``.
+        Penetration depth, m, >= 0, shape of ``u_bar`` (broadcast with ``energy_per_load``).
     """
     if definition not in PENETRATION_DEFINITIONS:
         raise InputError(f"definition: expected one of {list(PENETRATION_DEFINITIONS)}, got {definition!r}")
@@ -168,14 +245,53 @@ def penetration_depth(u_bar, hrms: float, *, definition: str = "persson", n_sigm
     h = float(hrms)
     if not (math.isfinite(h) and h > 0):
         raise InputError(f"hrms: expected an rms height > 0 m, got {hrms!r}")
+    e = None
+    if energy_per_load is not None:
+        e = np.asarray(energy_per_load, dtype=float)
+        if not np.all(np.isfinite(e)) or np.any(e < 0):
+            raise InputError("energy_per_load: expected finite values >= 0 m")
+    if definition == "load-weighted":
+        if e is None:
+            raise InputError("energy_per_load: the 'load-weighted' penetration depth needs the elastic energy per "
+                             "unit load U_el/(A0 sigma0) in m (elastic_energy_per_load)")
+        return np.broadcast_to(2.0 * e, np.broadcast_shapes(u.shape, e.shape)).copy()
     if definition == "persson":
         n = float(n_sigma)
         if isinstance(n_sigma, bool) or not (math.isfinite(n) and n > 0):
             raise InputError(f"n_sigma: expected a number of standard deviations > 0, got {n_sigma!r}")
-        return np.maximum(n * h - u, 0.0)
+        return np.maximum(n * h - u, 0.0 if e is None else 2.0 * e)
     # phi(t)/Q(t) = sqrt(2/pi) / erfcx(t/sqrt 2): no underflow of Q at large t (the Mills ratio).
     t = u / h
     return h * (math.sqrt(2.0 / math.pi) / special.erfcx(t / math.sqrt(2.0)) - t)
+
+
+@doi("10.1088/0953-8984/20/21/215214")
+def elastic_energy_per_load(q, C, G, gamma: float, *, correction: str | None = None,
+                            gap_correction: str = "area") -> np.ndarray:
+    r"""Elastic energy per unit nominal area and unit load, :math:`U_{el}/(A_0\sigma_0)`, m, per row of ``G``.
+
+    Yang & Persson (2008): :math:`U_{el}/A_0 = \frac{\pi}{2}\int dq\, q^2 C\, E^*_q\, W(G(q))`, W the energy
+    weight of :func:`persson.contact.corrections.energy_weight`. The effective modulus at scale q is the one
+    that G implies, :math:`E^*_q = \sigma_0\,[(dG/dm_3)/(\pi/4)]^{1/2}` (:math:`m_3 = \int q^3 C dq`): exact for an
+    elastic solid (:math:`G = (\pi/4)(E^*/\sigma_0)^2 m_3`), a definition for a viscoelastic one. So
+    :math:`U_{el}/(A_0\sigma_0)` depends on G alone. Half of :math:`2U_{el}/(A_0\sigma_0)`, the load-weighted
+    penetration depth (:func:`penetration_depth`).
+
+    Parameters
+    ----------
+    q, C : ndarray (n_q,)
+        Nodes (rad/m, increasing) and PSD (m^4, > 0; a power law between nodes).
+    G : ndarray (n, n_q)
+        Persson's G(q) (0 at q0, increasing).
+    gamma, correction, gap_correction
+        As in :func:`mean_separation`.
+
+    Returns
+    -------
+    ndarray (n,)
+        :math:`U_{el}/(A_0\sigma_0)`, m.
+    """
+    return _separation_and_energy(q, C, G, gamma, correction, gap_correction, energy=True)[1]
 
 
 @doi("10.1063/1.1388626")
@@ -359,6 +475,126 @@ def _kernel_sum(lnG, q, C, s, lnG_first, lnG_last, inv_step, lnJ, J_last, slope_
                 k = int(t)
                 t -= k
                 out[r] += wgt * math.exp(lnJ[k] + t * (lnJ[k + 1] - lnJ[k]))
+    return out
+
+
+@njit(cache=True)
+def _energy_sum(lnG, q, C, s, e, lnG_first, lnG_last, inv_step, lnW, glx, glw):
+    """sum over the intervals i >= 1 of int e_i W(G(s)) 2 s / q ds, the elastic energy per unit load of
+    :func:`elastic_energy_per_load` without its factor pi/2 (the 4-point rule of :func:`integral_over_s`).
+
+    Parameters
+    ----------
+    lnG : ndarray (m, n)
+        ln G at the nodes, per row; ln G is linear in ln s between nodes.
+    q, C, s : ndarray (n,)
+        Nodes (rad/m), PSD (m^4, a power law between nodes) and s = (int_{q0}^{q} q'^3 C dq')^(1/2) there.
+    e : ndarray (m, n - 1)
+        E*_q / sigma0 on each interval (constant there).
+    lnG_first, lnG_last, inv_step : float
+        First and last node of the uniform table of ln W in ln G and the nodes per unit ln G.
+    lnW : ndarray
+        ln W of the energy weight on the table (W = 1 below it, ln W falls with slope -1/2 past it).
+    glx, glw : ndarray
+        Gauss-Legendre nodes and weights on [-1, 1].
+    """
+    m, n = lnG.shape
+    out = np.zeros(m)
+    top = lnW.size - 1.000001
+    W_last = lnW[lnW.size - 1]
+    for i in range(1, n - 1):
+        a = math.log(s[i])
+        b = math.log(s[i + 1])
+        half = 0.5 * (b - a)
+        mid = 0.5 * (a + b)
+        k = 4.0 + math.log(C[i + 1] / C[i]) / math.log(q[i + 1] / q[i])
+        base = C[i] * q[i] ** 4
+        for j in range(glx.size):
+            u = mid + half * glx[j]
+            su = math.exp(u)
+            frac = (u - a) / (2.0 * half)
+            x = (su * su - s[i] * s[i]) / base
+            if abs(k * x) < 1e-12:
+                qu = q[i] * math.exp(x)
+            else:
+                qu = q[i] * math.exp(math.log1p(k * x) / k)
+            wgt = half * glw[j] * su / qu * 2.0 * su
+            for r in range(m):
+                lg = lnG[r, i] + (lnG[r, i + 1] - lnG[r, i]) * frac
+                if lg < lnG_first:
+                    w = 1.0
+                elif lg > lnG_last:
+                    w = math.exp(W_last - 0.5 * (lg - lnG_last))
+                else:
+                    t = min((lg - lnG_first) * inv_step, top)
+                    kk = int(t)
+                    t -= kk
+                    w = math.exp(lnW[kk] + t * (lnW[kk + 1] - lnW[kk]))
+                out[r] += wgt * e[r, i] * w
+    return out
+
+
+@njit(cache=True)
+def _energy_first_sum(G1, e0, q0, q1, C0, C1, s1, G_lo, lnG_first, lnG_last, inv_step, lnW, glx, glw):
+    """The first interval of :func:`_energy_sum`: int_0^{s1} e0 W(G(s)) 2 s / q ds with G = G1 (s/s1)^2.
+
+    Parameters
+    ----------
+    G1, e0 : ndarray (m,)
+        G at the second node and E*_q / sigma0 on the interval, per row.
+    q0, q1, C0, C1 : float
+        The interval's nodes (rad/m) and PSD there (m^4, a power law between them).
+    s1 : float
+        s = (int_{q0}^{q1} q^3 C dq)^(1/2).
+    G_lo : float
+        Below this G the weight W is 1 to double precision: that part is e0 int q^2 C dq in closed form.
+    lnG_first, lnG_last, inv_step, lnW, glx, glw
+        As in :func:`_energy_sum`.
+    """
+    m = G1.size
+    out = np.zeros(m)
+    kexp = math.log(C1 / C0) / math.log(q1 / q0)
+    k = 4.0 + kexp                      # exponent of the moment int q^3 C dq
+    base = C0 * q0 ** 4
+    e2 = 3.0 + kexp                     # exponent of int q^2 C dq
+    top = lnW.size - 1.000001
+    W_last = lnW[lnW.size - 1]
+    ls1 = math.log(s1)
+    for r in range(m):
+        if e0[r] <= 0.0:
+            continue
+        span = 0.5 * math.log(G1[r] / G_lo) if G1[r] > G_lo else 0.0
+        # W = 1 from q0 to where G = G_lo: e0 int_{q0}^{q_lo} q^2 C dq
+        s_lo = s1 * math.exp(-span)
+        x = s_lo * s_lo / base
+        q_lo = q0 * math.exp(x) if abs(k * x) < 1e-12 else q0 * math.exp(math.log1p(k * x) / k)
+        eL = e2 * math.log(q_lo / q0)
+        if abs(eL) < 1e-10:
+            mom = C0 * q0 ** 3 * math.log(q_lo / q0)
+        else:
+            mom = C0 * q0 ** 3 * math.expm1(eL) / e2
+        acc = mom
+        if span > 0.0:
+            n_panels = int(math.ceil(span))
+            width = span / n_panels
+            for p in range(n_panels):
+                for j in range(glx.size):
+                    u = ls1 - span + width * (p + 0.5 + 0.5 * glx[j])
+                    su = math.exp(u)
+                    lg = math.log(G1[r]) + 2.0 * (u - ls1)
+                    x = su * su / base
+                    qu = q0 * math.exp(x) if abs(k * x) < 1e-12 else q0 * math.exp(math.log1p(k * x) / k)
+                    if lg < lnG_first:
+                        w = 1.0
+                    elif lg > lnG_last:
+                        w = math.exp(W_last - 0.5 * (lg - lnG_last))
+                    else:
+                        t = min((lg - lnG_first) * inv_step, top)
+                        kk = int(t)
+                        t -= kk
+                        w = math.exp(lnW[kk] + t * (lnW[kk + 1] - lnW[kk]))
+                    acc += 0.5 * width * glw[j] * w * 2.0 * su * su / qu
+        out[r] = e0[r] * acc
     return out
 
 

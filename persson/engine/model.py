@@ -61,7 +61,7 @@ class Model:
     grid : GridSettings
         Numerical resolution; the defaults keep the quadrature error below 1e-3 of mu from soft to glassy rubber,
         and every result carries its own estimate (``error_estimate``).
-    correction : {None, "yang-persson", "xu2024"}
+    correction : {None, "yang-persson", "xu2024", "wang-muser"}
         Area correction of :mod:`persson.contact.corrections` (None, the default: Persson's P = erf(1/(2 sqrt G))).
         A correction raises the small-load contact area towards exact numerical contact mechanics and, through
         P in the friction integral, the hysteresis friction (by about 40 % on the example road): see
@@ -219,9 +219,13 @@ class Model:
         C_nodes = np.asarray(surface.C(solved.q), dtype=float)
         hrms = math.sqrt(solver.psd_moment(surface, solved.q, 1))
         if hrms > 0:
-            u_bar = separation.mean_separation(solved.q, C_nodes, solved.G, self.gamma, correction=self.correction)
+            u_bar, per_load = separation.separation_and_energy(solved.q, C_nodes, solved.G, self.gamma,
+                                                               correction=self.correction)
+            # the depth of the highest asperities, never less than the load-weighted mean 2 U_el / sigma0
+            depth = separation.penetration_depth(u_bar, hrms, energy_per_load=per_load)
         else:  # no roughness: the rubber touches the flat everywhere
             u_bar = np.zeros(v.size)
+            depth = np.zeros(v.size)
 
         result = FrictionResult(
             speed=v, temperature=float(T0[0]) if np.ndim(temperature) == 0 else T0,
@@ -232,8 +236,7 @@ class Model:
             q=solved.q, area_q=solved.P, G_q=solved.G, temperature_q=solved.T_q, dmu_dlnq=solved.dmu,
             max_flash_temperature=out(np.max(solved.T_q, axis=1) - T0, scalar),
             mean_separation=out(u_bar, scalar),
-            penetration_depth=out(separation.penetration_depth(u_bar, hrms) if hrms > 0 else np.zeros(v.size),
-                                  scalar),
+            penetration_depth=out(depth, scalar),
             excited_layer_thickness=out(solved.excited_layer, scalar),
             mu_cumulative=solved.mu_cumulative * np.broadcast_to(np.asarray(load_share, dtype=float), v.shape)[:, None],
             load_share=out(np.broadcast_to(np.asarray(load_share, dtype=float), v.shape).copy(), scalar),

@@ -565,7 +565,7 @@ def _flash(prep, q_m, a_t0, D, heat_factor, tol, max_iter, T_start=None):
 def contact_law(gamma: float, correction: str | None = None) -> tuple:
     """The contact law the kernels take (:func:`persson.engine.kernels.area`): gamma and, for an area correction of
     :mod:`persson.contact.corrections`, its table of ln P_c on a uniform grid of ln G."""
-    if correction is None or float(gamma) == 1.0:
+    if correction is None or (float(gamma) == 1.0 and correction != "wang-muser"):
         return (float(gamma), np.empty(0), 0.0, 1.0)
     from ..contact.corrections import _table, check_correction
 

@@ -36,8 +36,9 @@ from .fit import SlipFit, fit_slip
 from .fitting import FitResult
 from .heating import PatchHeating, PatchSolution, patch_friction
 from .kinematics import Kinematics, drft_from_angular, drft_kinematics, drft_speeds
-from .magic import (MagicFormula, MagicFormulaFit, SimpleMagicFormula, fit_magic_formula, magic_formula,
-                    magic_formula_from_peak, magic_formula_from_points, magic_formula_peak_B, magic_formula_simple)
+from .magic import (PACEJKA_TYPICAL, MagicFormula, MagicFormulaFit, SimpleMagicFormula, fit_magic_formula,
+                    magic_formula, magic_formula_from_peak, magic_formula_from_points, magic_formula_peak_B,
+                    magic_formula_simple)
 from .peaks import peak
 from .references import (AKAIKE_1974, BLOK_1937, BURCKHARDT_1993, CANUDAS_2003, CARSLAW_JAEGER, DIJKS_1974, DO_2004,
                          GENT_2012, GOMPERTZ_1825, HURVICH_TSAI_1989, JAEGER_1942, LA_TORRE_2001, LAMPAERT_2002,
@@ -72,6 +73,7 @@ __all__ = [
     # curve laws
     "magic_formula", "magic_formula_simple", "MagicFormula", "SimpleMagicFormula", "magic_formula_from_points",
     "magic_formula_from_peak", "magic_formula_peak_B", "FitResult", "MagicFormulaFit", "fit_magic_formula", "peak",
+    "PACEJKA_TYPICAL",
     "piarc", "piarc_ifi", "do_marsac_mosset", "rado", "fit_speed_law", "fit_piarc", "fit_do_marsac_mosset",
     "fit_rado", "SPEED_LAWS",
     # wet-road friction against speed: every law, ranked; texture, water and tread; the Stribeck curve

@@ -116,8 +116,11 @@ def _propagate(quantity, values, cov) -> tuple[float, float]:
 
 
 def _fit(law, func, names, bounds, x, y, sigma, fixed, starts, citations, *, tol: float = 1e-14,
-         maxfev: int = 20000) -> dict:
-    """Multi-start curve_fit of ``func(x, *params)`` with some parameters fixed; the pieces of a FitResult."""
+         maxfev: int = 20000, agree: int | None = None) -> dict:
+    """Multi-start curve_fit of ``func(x, *params)`` with some parameters fixed; the pieces of a FitResult.
+
+    ``agree``: stop once that many starts have reached the best residual found (to 1e-9), or one has fitted
+    exactly (the starts are then expected best first, e.g. screened by their residual)."""
     from scipy.optimize import OptimizeWarning, curve_fit
 
     fixed = dict(fixed or {})
@@ -144,6 +147,8 @@ def _fit(law, func, names, bounds, x, y, sigma, fixed, starts, citations, *, tol
         return func(xx, *full(np.asarray(p)))
 
     best = None
+    n_best = 0
+    scale = float(y @ y) if sigma is None else float((y / sigma) @ (y / sigma))
     notes = []
     for start in starts:
         p0 = np.array([start.get(n, 1.0) for n in free], dtype=float)
@@ -159,8 +164,14 @@ def _fit(law, func, names, bounds, x, y, sigma, fixed, starts, citations, *, tol
         r = y - f(x, *p)
         w = r if sigma is None else r / sigma
         cost = float(w @ w)
+        if best is None or cost < best[0] * (1 - 1e-9):
+            n_best = 1                      # a new best
+        elif cost <= best[0] * (1 + 1e-9):
+            n_best += 1                     # the best reached again from another start
         if best is None or cost < best[0] * (1 - 1e-12):
             best = (cost, p, cov)
+        if agree and (n_best >= agree or best[0] <= 1e-28 * scale):
+            break
     if best is None:
         raise InputError(f"x, mu: the {law} fit did not converge from any starting point")
     cost, p, cov = best

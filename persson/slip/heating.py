@@ -53,6 +53,7 @@ at :math:`T_0` (a DRFT track warmed by earlier turns is a higher :math:`T_0`); c
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -375,6 +376,10 @@ def patch_friction(model, heating: PatchHeating, contact, slip, speed, temperatu
         notes.append(f"patch_heating: background temperature rise above the table ({heating.max_rise:g} K cap) at "
                      f"{len(hot)} condition(s); evaluated at the cap")
     mu_loc = tab.mu_at_sigma0(vs, sweep)
+    # the engine's warnings, recorded while the table was filled, reach the caller as warnings (once each) as
+    # well as in the notes
+    for category, message in tab.warned:
+        warnings.warn(message, category, stacklevel=2)
     return PatchSolution(mu=mu, stick_fraction=xc, mu_local=mu_loc, max_rise=rise, xi=xi.copy(),
                          temperature=Tprof if profiles else None, shear=shear if profiles else None,
                          mu_profile=muprof if profiles else None, table_points=tab.points - points0,

@@ -45,6 +45,9 @@ class _Tables:
         self.calls = 0
         self.converged = True
         self.notes: list[str] = []
+        # (category, message) of every warning the engine raised while filling the table, in order, once each:
+        # patch_friction issues them again to its caller (they are recorded here so that the notes keep them)
+        self.warned: dict[tuple, None] = {}
         self._warnings = warnings
         nc = keys.shape[0]
         ng = gnodes.size
@@ -173,11 +176,17 @@ class _Tables:
         with self._warnings.catch_warnings(record=True) as caught:
             self._warnings.simplefilter("always")
             r = self.model.friction(v, temperature=T, pressure=p)
+        r_notes = tuple(getattr(r, "notes", ()) or ())
+        for note in r_notes:
+            if note not in self.notes:
+                self.notes.append(note)
         for w in caught:
             if issubclass(w.category, UnitWarning):
                 continue  # the table's temperatures are degrees Celsius by construction
-            self.notes.append(f"{w.category.__name__}: {w.message}")
-        self.notes.extend(getattr(r, "notes", ()) or ())
+            msg = str(w.message)
+            self.warned[(w.category, msg)] = None
+            if msg not in self.notes:  # the engine's warnings are among its notes already: once each
+                self.notes.append(msg)
         self.converged = self.converged and bool(getattr(r, "converged", True))
         self.points += v.size
         self.calls += 1

@@ -44,7 +44,7 @@ from .references import MAGIC_FORMULA, PACEJKA_BOOK
 
 __all__ = ["magic_formula", "magic_formula_simple", "MagicFormula", "SimpleMagicFormula",
            "magic_formula_from_points", "magic_formula_peak_B", "magic_formula_from_peak", "MagicFormulaFit",
-           "fit_magic_formula"]
+           "fit_magic_formula", "PACEJKA_TYPICAL"]
 
 
 # =========================================================================================================
@@ -471,38 +471,16 @@ def fit_magic_formula(slip, mu, *, form: str = "BCDE", sigma=None, fixed: dict |
         if form != "BCDE":
             raise InputError("peak: a declared peak is supported for form=\"BCDE\" only")
         return _fit_with_peak(x, y, sig, peak, fixed, p0)
-    # characteristic points of the data for the starting values (Pacejka's relations between B, C, D, E and
-    # the peak D, the asymptote y_a, the slope BCD and the slip of the peak x_m)
-    j = int(np.argmax(y))
-    D0 = float(max(y[j], 1e-3))
-    xm = float(max(x[j], 1e-3))
-    ya = float(y[np.argmax(x)])
-    C0 = float(np.clip(1.0 + (1.0 - 2.0 / math.pi * math.asin(np.clip(ya / D0, -0.999, 0.999))), 1.05, 1.95))
-    small = (x > 0) & (x <= 0.5 * xm)
-    K0 = float(np.sum(x[small] * y[small]) / np.sum(x[small] ** 2)) if np.any(small) else 3.0 * D0 / xm
-    K0 = max(K0, D0 / xm)
-    B0 = K0 / (C0 * D0)
-    Bx = B0 * xm
-    E0 = float(np.clip((Bx - math.tan(math.pi / (2 * C0))) / (Bx - math.atan(Bx)), -5.0, 0.9)) if Bx > 1e-6 else 0.0
     if form == "BCDE":
-        names = ("B", "C", "D", "E")
-        func = magic_formula
-        bounds = _MF_BOUNDS
-        starts = [dict(B=B0, C=C0, D=D0, E=E0), dict(B=B0, C=C0, D=D0, E=0.0),
-                  dict(B=2 * B0, C=1.5, D=D0, E=0.0), dict(B=0.5 * B0, C=1.9, D=D0, E=-1.0),
-                  dict(B=B0, C=1.3, D=1.05 * D0, E=0.5)]
-        law = "magic_formula"
+        names, func, bounds, law = ("B", "C", "D", "E"), magic_formula, _MF_BOUNDS, "magic_formula"
     else:
-        names = ("a", "b", "c", "d")
-        func = magic_formula_simple
-        bounds = _MFS_BOUNDS
-        d0 = float(y[np.argmin(x)]) if x.min() == 0 else 0.0
-        starts = [dict(a=D0 - d0, b=C0, c=B0, d=d0), dict(a=D0, b=C0, c=B0, d=0.0),
-                  dict(a=D0, b=1.5, c=2 * B0, d=0.0), dict(a=D0, b=1.9, c=0.5 * B0, d=0.0)]
-        law = "magic_formula_simple"
+        names, func, bounds, law = ("a", "b", "c", "d"), magic_formula_simple, _MFS_BOUNDS, "magic_formula_simple"
+    # multi-start: the data's characteristic points, the literature shapes and a grid of shapes, screened by
+    # their residual; a local fit from each of the best (and from p0)
+    starts = _screened(_magic_starts(x, y, form), func, names, bounds, x, y, sig, fixed)
     if p0:
         starts.insert(0, {**starts[0], **{k: number(v, f"p0[{k!r}]") for k, v in p0.items()}})
-    parts = _fit(law, func, names, bounds, x, y, sig, fixed, starts, (MAGIC_FORMULA, PACEJKA_BOOK))
+    parts = _fit(law, func, names, bounds, x, y, sig, fixed, starts, (MAGIC_FORMULA, PACEJKA_BOOK), agree=3)
     vals, cov = parts["values"], parts["covariance"]
 
     def pk(v):
@@ -513,3 +491,77 @@ def fit_magic_formula(slip, mu, *, form: str = "BCDE", sigma=None, fixed: dict |
     lk, lk_std = _propagate(lambda v: func(1.0, *v), vals, cov)
     return MagicFormulaFit(**parts, peak_mu=peak_mu, peak_mu_std=peak_std, slip_at_peak=sp, slip_at_peak_std=sp_std,
                            locked_mu=float(lk), locked_mu_std=lk_std)
+
+
+#: Typical Magic Formula coefficients (B, C, D, E) of the longitudinal force by road surface, from Pacejka's
+#: tables as quoted in the Simscape Driveline documentation (MathWorks, "Tire-Road Interaction (Magic
+#: Formula)"): starting points of :func:`fit_magic_formula` (shapes; D and B are rescaled to the data).
+PACEJKA_TYPICAL = {"dry tarmac": (10.0, 1.9, 1.0, 0.97), "wet tarmac": (12.0, 2.3, 0.82, 1.0),
+                   "snow": (5.0, 2.0, 0.3, 1.0), "ice": (4.0, 2.0, 0.1, 1.0)}
+
+# shape factors and curvature factors of the grid of starting shapes (C > 1: a curve with a peak)
+_GRID_C = (1.15, 1.35, 1.6, 1.9, 2.3, 2.8)
+_GRID_E = (-3.0, -1.0, 0.0, 0.5, 0.8, 0.95, 0.99)
+# starts kept for a local fit after screening by their residual
+_N_LOCAL = 10
+
+
+def _magic_starts(x, y, form: str) -> list[dict]:
+    """Starting points of the Magic Formula fit: the data's characteristic points (Pacejka's relations between
+    B, C, D, E and the peak D, the asymptote, the slope BCD and the slip of the peak), the literature shapes of
+    :data:`PACEJKA_TYPICAL` and a grid of shapes (C, E), each with D the data's peak and B putting the curve's peak
+    at the data's (:func:`magic_formula_peak_B`)."""
+    j = int(np.argmax(y))
+    D0 = float(max(y[j], 1e-3))
+    xm = float(min(max(x[j], 1e-3), 1.0))
+    ya = float(y[np.argmax(x)])
+    C0 = float(np.clip(1.0 + (1.0 - 2.0 / math.pi * math.asin(np.clip(ya / D0, -0.999, 0.999))), 1.05, 1.95))
+    small = (x > 0) & (x <= 0.5 * xm)
+    K0 = float(np.sum(x[small] * y[small]) / np.sum(x[small] ** 2)) if np.any(small) else 3.0 * D0 / xm
+    K0 = max(K0, D0 / xm)
+    B0 = K0 / (C0 * D0)
+    Bx = B0 * xm
+    E0 = float(np.clip((Bx - math.tan(math.pi / (2 * C0))) / (Bx - math.atan(Bx)), -5.0, 0.9)) if Bx > 1e-6 else 0.0
+    shapes = [(B0, C0, E0), (B0, C0, 0.0), (2 * B0, 1.5, 0.0), (0.5 * B0, 1.9, -1.0), (B0, 1.3, 0.5)]
+    for B, C, _, E in PACEJKA_TYPICAL.values():
+        shapes.append((B, C, E))
+        shapes.append((None, C, E))
+    shapes += [(None, C, E) for C in _GRID_C for E in _GRID_E]
+    starts = []
+    for B, C, E in shapes:
+        E = min(E, 0.999)
+        if B is None:
+            try:
+                B = magic_formula_peak_B(xm, C, E)
+            except (InputError, ValueError):
+                continue
+        if form == "BCDE":
+            starts.append(dict(B=B, C=C, D=D0, E=E))
+        elif abs(E) < 1e-12:  # the simple form is the B, C, D form with E = 0, plus an offset
+            d0 = float(y[np.argmin(x)]) if x.min() == 0 else 0.0
+            starts += [dict(a=D0 - d0, b=C, c=B, d=d0), dict(a=D0, b=C, c=B, d=0.0)]
+    return starts
+
+
+def _screened(starts, func, names, bounds, x, y, sig, fixed) -> list[dict]:
+    """The starts with the smallest residual (at most ``_N_LOCAL``, distinct), the best first: a local fit from
+    each of them finds the global optimum of every curve the grid of shapes covers."""
+    fixed = dict(fixed or {})
+    w = 1.0 if sig is None else 1.0 / sig
+    scored = []
+    for st in starts:
+        v = [fixed.get(n, st.get(n, 1.0)) for n in names]
+        v = [min(max(float(val), bounds[n][0]), bounds[n][1]) for n, val in zip(names, v)]
+        with np.errstate(all="ignore"):
+            r = (func(x, *v) - y) * w
+        cost = float(r @ r)
+        if math.isfinite(cost):
+            scored.append((cost, dict(zip(names, v))))
+    scored.sort(key=lambda t: t[0])
+    out = []
+    for _, st in scored:
+        if not any(all(math.isclose(st[n], o[n], rel_tol=1e-6, abs_tol=1e-9) for n in names) for o in out):
+            out.append(st)
+        if len(out) == _N_LOCAL:
+            break
+    return out or starts[:1]
