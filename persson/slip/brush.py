@@ -63,13 +63,10 @@ terms of the friction separately (the article's Figure 19): the **adhesion-regio
 
 Also here: the two-coefficient brush used to analyse trailer data (static limit :math:`\mu_s` in the stick zone,
 dynamic :math:`\mu_D` in the slide zone, Sakai's n = 4 pressure) and its map over
-:math:`n_1 = \mu_D/\mu_s` and :math:`n_2 = (\text{initial slope})/\mu_s`, with the sensitivity of the peak ratio
-to each (:meth:`BrushMap.sensitivity`); its identification from a Magic Formula is in
-:mod:`persson.slip.brush_identify`; :func:`fit_brush`, the brush model with a Stribeck-type sliding friction fitted
-to a measured curve alone; and the DRFT kinematics (braking and driving).
-
-Magic Formula fits, friction-speed laws and curve peaks are in :mod:`persson.slip`; plots in
-:mod:`persson.slip.plots`.
+:math:`n_1 = \mu_D/\mu_s` and :math:`n_2 = (\text{initial slope})/\mu_s`. Elsewhere in :mod:`persson.slip`:
+:func:`~persson.slip.mu_slip` (:mod:`~persson.slip.curve`) drives this brush with the engine's friction,
+:func:`~persson.slip.fit_brush` (:mod:`~persson.slip.brush_fit`) fits a Stribeck-type brush to a measured curve,
+the DRFT kinematics are in :mod:`~persson.slip.kinematics`, the Magic Formula in :mod:`~persson.slip.magic`.
 """
 
 from __future__ import annotations

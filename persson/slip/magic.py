@@ -1,4 +1,6 @@
-r"""Tire-level curve laws and fits: Pacejka's Magic Formula on mu(slip), friction-speed laws on mu(V).
+r"""Pacejka's Magic Formula on mu(slip): the curve, its identification from a few points, and its fits.
+
+Friction-speed laws on mu(V) are in :mod:`persson.slip.speedlaws`.
 
 Magic Formula (Pacejka & Bakker 1992; Pacejka, *Tire and Vehicle Dynamics*, ch. 4):
 
@@ -12,15 +14,6 @@ Peak mu, slip at the peak and locked-wheel mu (:math:`\mu(s=1)`) are computed fr
 be declared: :func:`magic_formula_from_peak` identifies the curve from the peak and one or two locked-wheel values
 (the peak's value and position are two conditions), and ``fit_magic_formula(..., peak=(s_p, mu_p))`` fits a full
 curve with the peak held there.
-
-Friction-speed laws (V a speed in m/s: the slip speed or the test speed of the data):
-
-* PIARC exponential (PIARC 1995, International Friction Index): :math:`\mu(V) = \mu_0 e^{-V/S_p}`
-  (the IFI form :math:`F(S) = F_{60}\,e^{(60 - S)/S_p}` with S in km/h is :func:`piarc_ifi`);
-* Do, Marsac & Mosset (2004) modified exponential, with the linear term of the issue's specification:
-  :math:`\mu(V) = \mu_0 e^{-(V/V_s)^\alpha} + \beta V` (alpha = 1, beta = 0 is PIARC);
-* Rado's log-normal model (Rado 1994): :math:`\mu(V) = \mu_L + (\mu_{peak} - \mu_L)
-  \exp\{-[\ln(V/V_c)/C]^2\}` (:math:`\mu_L = 0` unless fitted).
 
 Every fit uses :func:`scipy.optimize.curve_fit` (several starting points, the best kept) and returns a frozen
 :class:`FitResult` with the parameters, their standard uncertainties and the covariance. Without ``sigma`` the
