@@ -112,12 +112,12 @@ REFERENCES: dict[str, str] = {
     "J. Am. Statist. Assoc. 88, 1273 (1993).",
     "10.1076/vesd.39.3.189.14152": "C. Canudas-de-Wit, P. Tsiotras, E. Velenis, M. Basset, G. Gissinger, Dynamic "
     "friction models for road/tire longitudinal interaction, Vehicle System Dynamics 39, 189 (2003).",
-    "kane:wear-342-163-2015": "M. Kane, V. Cerezo, A contribution to tire/road friction modeling: from a simplified "
-    "dynamic frictional contact model to a \"Dynamic Friction Tester\" model, Wear 342-343, 163 (2015).",
-    "kane:ijpe-20-965-2019": "M. Kane, M.-T. Do, V. Cerezo, Z. Rado, C. Khelifi, Contribution to pavement friction "
-    "modelling: an introduction of the wetting effect, Int. J. Pavement Eng. 20, 965 (2019).",
+    "10.1080/10298436.2017.1369776": "M. Kane, M.-T. Do, V. Cerezo, Z. Rado, C. Khelifi, Contribution to pavement "
+    "friction modelling: an introduction of the wetting effect, Int. J. Pavement Eng. (published online 6 September "
+    "2017).",
     "kane:tire-pavement-tool": "Tire/pavement friction: presentation of a comprehensive physical tool through "
-    "advanced contact modelling (the element tool of Kane and co-workers, Université Gustave Eiffel, Nantes).",
+    "advanced contact modelling (authors and venue not identified; braking tests of a Renault Clio 3 on a "
+    "university test track on the campus of Nantes, France; the element model of M. Kane and co-workers).",
     "10.1098/rstl.1886.0005": "O. Reynolds, On the theory of lubrication and its application to Mr. Beauchamp "
     "Tower's experiments, Phil. Trans. R. Soc. Lond. 177, 157 (1886).",
     "hamrock:fffl-2004": "B. J. Hamrock, S. R. Schmid, B. O. Jacobson, Fundamentals of Fluid Film Lubrication, 2nd "

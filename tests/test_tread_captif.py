@@ -2,7 +2,9 @@
 
 The scans are 0.0375 mm laser profiles of a coarse chip seal (MPD about 3 mm); the tool uses them at the paper's
 resolution (0.1 mm road elements, averaged). A chip seal drains a 1 mm water film entirely (no hydrodynamic lift),
-and its sharp macrotexture gives it more macro-hysteresis than a fine road with the same local friction.
+and its sharp macrotexture gives it more macro-hysteresis than a fine road with the same local friction. About 1 %
+of its contacts sit on flanks past the self-locking limit of Eq. 2 (chip faces, tan alpha > 1/mu_loc), and they
+carry a third of the locked-wheel mu: a part set by the cap jam_min, which the result books and flags.
 """
 
 import math
@@ -14,6 +16,7 @@ import pytest
 import materials
 import surfaces
 from persson import tread
+from persson.errors import AccuracyWarning
 
 DATA = Path(__file__).resolve().parents[1].parent / "shared" / "data" / "road_profiles"
 FILES = sorted(DATA.glob("captif_aylesbury_station_*.dat")) if DATA.is_dir() else []
@@ -40,6 +43,7 @@ def test_captif_scans_become_three_rows_of_road_elements(captif):
 
 
 @pytest.mark.filterwarnings("ignore:.*flanks too steep:persson.errors.PhysicsWarning")
+@pytest.mark.filterwarnings("ignore:.*self-locking limit:persson.errors.AccuracyWarning")
 def test_chip_seal_ranks_above_a_fine_road_and_drains_the_water(captif):
     t = tread.Tire(diameter=0.63, width=0.205, load=4000.0, inflation_pressure=2.2e5, tread_depth=8e-3,
                    grooves=tread.Grooves(width=8e-3, pitch=30e-3))
@@ -53,3 +57,19 @@ def test_chip_seal_ranks_above_a_fine_road_and_drains_the_water(captif):
     assert wet.lift == 0.0                                                # the chips hold the whole film
     r = tread.simulate(t, captif, TREAD, speed=16.7, slip=1.0, mu_loc=0.5, element_size=5e-4)
     assert r.load_residual < 1e-9 and 0.05 < r.contact_fraction < 0.9
+
+
+@pytest.mark.filterwarnings("ignore:.*flanks too steep:persson.errors.PhysicsWarning")
+def test_chip_seal_friction_resting_on_self_locking_flanks_is_flagged(captif):
+    t = tread.Tire(diameter=0.63, width=0.205, load=4000.0, inflation_pressure=2.2e5, tread_depth=8e-3)
+    runs = []
+    for jam_min in (0.1, 0.2):
+        with pytest.warns(AccuracyWarning, match="self-locking limit"):
+            runs.append(tread.simulate(t, captif, TREAD, speed=16.7, slip=1.0, mu_loc=0.5, element_size=5e-4,
+                                       jam_min=jam_min))
+    tight, loose = runs
+    assert 0.2 * tight.mu < tight.jammed_share < tight.mu
+    assert any("self-locking" in n for n in tight.notes)
+    # doubling the cap roughly halves the capped part: mu moves with the cap, not with the road
+    assert loose.mu < tight.mu - 0.4 * tight.jammed_share
+    assert loose.jammed_share < tight.jammed_share

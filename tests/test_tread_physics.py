@@ -102,7 +102,7 @@ def test_element_leaving_contact_relaxes_exponentially():
     z[0, 500:] = -5e-3
     n_elem, dt, V = 400, dx / 10.0, 10.0
     K, C = 2.0e4, 0.5                                   # C/K = 25 us: a few steps of 10 us
-    _, _, _, residual, _, _, u, _ = kernels.march(
+    _, _, _, residual, _, _, u, _, _ = kernels.march(
         z=z, tan_alpha=np.gradient(z, dx, axis=1), dx_road=dx, x_start=n_elem * dx + dx, n_steps=2000, dt=dt,
         v_slide=V, v_roll=0.0, n_elem=n_elem, dx_elem=dx, land=np.ones((1, n_elem + 2002), dtype=bool),
         shape=np.ones(11), offset_scale=0.0, stiffness=K, damping=C, shear_stiffness=np.inf, area=1e-5,
@@ -162,3 +162,55 @@ def test_corners_glassy_cold_fast_and_soft_hot_slow(rough):
     assert cold.penetration < hot.penetration
     for r in (cold, hot):
         assert r.load_residual < 1e-9 and np.isfinite(r.mu) and r.mu > 0
+
+
+def test_flanks_past_the_self_locking_limit_carry_a_force_set_by_the_cap():
+    """Eq. 2 on a flank with tan(alpha) >= 1/mu_loc has no finite tangential force (a self-locking wedge); the
+    march caps the denominator at jam_min and books that force apart. Every element on the same slope t, rigid in
+    shear, elastic: mu = (t + mu_loc)/(1 - mu_loc t) below the limit, (t + mu_loc)/jam_min past it, all booked."""
+    dx, n_elem = 1e-4, 200
+    n = 2000
+    z = np.zeros((1, n))
+    for t, jam_min in ((1.0, 0.1), (3.0, 0.1), (3.0, 0.2)):
+        mu_t, _, _, residual, jammed, _, _, _, jam_t = kernels.march(
+            z=z, tan_alpha=np.full((1, n), t), dx_road=dx, x_start=n_elem * dx + dx, n_steps=500, dt=dx / 10.0,
+            v_slide=10.0, v_roll=0.0, n_elem=n_elem, dx_elem=dx, land=np.ones((1, n_elem + 502), dtype=bool),
+            shape=np.ones(11), offset_scale=0.0, stiffness=2.0e4, damping=0.0, shear_stiffness=np.inf, area=1e-5,
+            load=100.0, load_total=100.0, p0=0.0, dp=1.0, mu_table=np.array([0.5]), jam_min=jam_min, probe=-1)
+        den = 1.0 - 0.5 * t
+        if den >= jam_min:
+            np.testing.assert_allclose(mu_t, (t + 0.5) / den, rtol=1e-12)
+            assert jammed == 0.0 and np.all(jam_t == 0.0)
+        else:
+            np.testing.assert_allclose(mu_t, (t + 0.5) / jam_min, rtol=1e-12)
+            np.testing.assert_allclose(jam_t, mu_t, rtol=1e-12)
+            assert jammed == 1.0
+        assert residual < 1e-9
+
+
+def test_a_flat_face_rests_on_the_upper_envelope_of_the_road():
+    """contact_surface against the closed form for h = a sin(kx): the face of length l touches the crest while one
+    lies under it, else the higher of its two ends; its slope is the chord of that envelope across the face."""
+    a, lam, dx = 50e-6, 2e-3, 1e-6
+    x = np.arange(6001) * dx
+    road = tread.Road((a * np.sin(2 * np.pi * x / lam))[None, :], dx)
+    face = 0.4e-3
+    z_e, tan_e = tread.contact_surface(road, face)
+
+    def envelope(xs):
+        lo, hi = xs - face / 2, xs + face / 2
+        crest = np.floor((hi - lam / 4) / lam) * lam + lam / 4 >= lo
+        return np.where(crest, a, a * np.maximum(np.sin(2 * np.pi * lo / lam), np.sin(2 * np.pi * hi / lam)))
+
+    inner = slice(400, -400)
+    np.testing.assert_allclose(z_e[0, inner], envelope(x[inner]), atol=a * (2 * np.pi * dx / lam) ** 2)
+    chord = (envelope(x + face / 2) - envelope(x - face / 2)) / face
+    np.testing.assert_allclose(tan_e[0, inner], chord[inner], atol=4 * a * (2 * np.pi / lam) * dx / face)
+    # a slot narrower than the face is bridged: the element never sees it
+    slot = np.zeros((1, 4001))
+    slot[0, 2000:2003] = -1e-3
+    z_s, tan_s = tread.contact_surface(tread.Road(slot, 1e-4), 5e-4)
+    assert np.all(z_s == 0.0) and np.all(tan_s == 0.0)
+    # without a face: the road itself
+    z0, t0 = tread.contact_surface(road, None)
+    assert z0 is road.z and np.array_equal(t0, road.slope)

@@ -4,9 +4,9 @@ The physics is documented in :mod:`persson.tread.simulate` and ``docs/tread.md``
 compiled loops. Every kernel is called with keyword arguments (by :func:`persson.tread.simulate` and
 :func:`persson.tread.slip_map`).
 
-Model marched (Kane & Cerezo, Wear 342-343 (2015); the element tool of Kane et al., whose paper "Tire/pavement
-friction: presentation of a comprehensive physical tool through advanced contact modelling" numbers the
-equations used here, Eqs. 2-6):
+Model marched (the element tool whose paper "Tire/pavement friction: presentation of a comprehensive physical tool
+through advanced contact modelling" numbers the equations used here, Eqs. 2-6; the element model of M. Kane and
+co-workers, Int. J. Pavement Eng., doi:10.1080/10298436.2017.1369776):
 
 * tread elements on a regular lattice of spacing ``dx_elem`` in each of ``n_rows`` rows; each row slides over its
   own road profile; all rows share one tread-base height ``b`` (the belt);
@@ -29,7 +29,9 @@ equations used here, Eqs. 2-6):
   :math:`T = F (\sin\alpha + \mu\cos\alpha)/(\cos\alpha - \mu\sin\alpha)`, with
   :math:`\tan\alpha` the road's local slope under the tip and :math:`\mu` the local friction
   :math:`\mu_{loc}` at the element's nominal pressure ``F / area``; friction :math:`\mu(t) = \sum T / W`
-  (Eq. 5) with ``load_total`` the tyre load W.
+  (Eq. 5) with ``load_total`` the tyre load W. On a flank with :math:`\tan\alpha \to 1/\mu` the denominator
+  vanishes (a self-locking wedge): it is held at ``jam_min`` and the force of those contacts is traced apart
+  (``jam_t``), being set by the cap rather than by the road.
 """
 
 from __future__ import annotations
@@ -120,6 +122,9 @@ def march(z, tan_alpha, dx_road, x_start, n_steps, dt, v_slide, v_roll, n_elem, 
         State after the last step, one column per element in patch order (row by row, leading edge first): road
         position of the tip (m), patch position (m), compression (m), normal force (N, 0 out of contact or in a
         groove), 1 for rubber and 0 for groove.
+    jam_t : ndarray, shape (n_steps,)
+        The part of ``mu_t`` carried by contacts whose Eq. 2 denominator was capped at ``jam_min``: the friction
+        that scales with the cap (1/jam_min) rather than with the road.
     """
     n_rows = z.shape[0]
     n_road = z.shape[1]
@@ -128,14 +133,11 @@ def march(z, tan_alpha, dx_road, x_start, n_steps, dt, v_slide, v_roll, n_elem, 
     u = np.zeros(n_tot)             # compression of each slot
     w = np.zeros(n_tot)             # shear displacement of the element (belt and tread)
     slide = np.zeros(n_tot, dtype=np.bool_)  # has reached the friction cone since it entered the patch
-    tip = np.zeros(n_tot)           # road position of the tip
     rubber = np.zeros(n_tot, dtype=np.bool_)
     a = np.zeros(n_tot)             # a_i: F_i = kappa * max(0, a_i - b)
-    zt = np.zeros(n_tot)
-    slope = np.zeros(n_tot)
-    off = np.zeros(n_tot)
     offs = np.zeros(n_elem)
     mu_t = np.zeros(n_steps)
+    jam_t = np.zeros(n_steps)
     probe_t = np.zeros(n_steps if probe >= 0 else 0)
     contact_t = np.zeros(n_steps)
     pen_t = np.zeros(n_steps)
@@ -146,6 +148,8 @@ def march(z, tan_alpha, dx_road, x_start, n_steps, dt, v_slide, v_roll, n_elem, 
     c_kappa = c_dt / kappa
     inv_dp = 1.0 / dp
     inv_dx = 1.0 / dx_road
+    inv_area = 1.0 / area
+    inv_kt = 1.0 / shear_stiffness
     n_shape = shape.shape[0]
     shape_step = (n_shape - 1) / (n_elem * dx_elem)
     g_max = 0.0
@@ -155,15 +159,13 @@ def march(z, tan_alpha, dx_road, x_start, n_steps, dt, v_slide, v_roll, n_elem, 
     head = 0
     phase = 0.0
     next_mat = n_elem
+    n_rubber = 0
     for r in range(n_rows):
         for k in range(n_elem):
             e = r * n_elem + k
             rubber[e] = land[r, k]
-            tip[e] = x_start - k * dx_elem
-    n_rubber = 0
-    for e in range(n_tot):
-        if rubber[e]:
-            n_rubber += 1
+            if rubber[e]:
+                n_rubber += 1
     x_front = x_start
     b = 0.0
     b_set = False
@@ -172,6 +174,18 @@ def march(z, tan_alpha, dx_road, x_start, n_steps, dt, v_slide, v_roll, n_elem, 
     n_jam = 0
     n_stuck = 0
     n_contact_steps = 0
+    offs_phase = -1.0
+    # the belt offset at the element lattice (patch positions j dx_elem), interpolated in the phase at every step
+    lattice_offs = np.empty(n_elem + 1)
+    for j in range(n_elem + 1):
+        s = j * dx_elem * shape_step
+        i0 = int(s)
+        if i0 > n_shape - 2:
+            i0 = n_shape - 2
+        lattice_offs[j] = offset_scale * (g_max - shape[i0] - (s - i0) * (shape[i0 + 1] - shape[i0]))
+    # tread elements on a multiple of the road grid share the interpolation weight: one floor per step, not per tip
+    ratio = int(round(dx_elem / dx_road))
+    lattice = ratio >= 1 and abs(dx_elem / dx_road - ratio) < 1e-9
     for n in range(n_steps):
         # material motion through the patch: at most one new element per step (dt is chosen so)
         phase += v_roll * dt
@@ -183,45 +197,55 @@ def march(z, tan_alpha, dx_road, x_start, n_steps, dt, v_slide, v_roll, n_elem, 
             next_mat += 1
             for r in range(n_rows):
                 e = r * n_elem + head
+                if rubber[e]:
+                    n_rubber -= 1
                 rubber[e] = land[r, m]
+                if rubber[e]:
+                    n_rubber += 1
                 u[e] = 0.0
                 # it entered phase / v_roll ago: its shear after this step's increment is v_slide * phase / v_roll
                 w[e] = v_slide * (phase / v_roll - dt)
                 slide[e] = False
-                tip[e] = x_front - phase
-        # belt offsets at the patch positions (shared by the rows), then trial tips and the road under them
-        for j in range(n_elem):
-            s = (phase + j * dx_elem) * shape_step
-            i0 = int(s)
-            if i0 > n_shape - 2:
-                i0 = n_shape - 2
-            offs[j] = offset_scale * (g_max - shape[i0] - (s - i0) * (shape[i0 + 1] - shape[i0]))
+        # belt offsets at the patch positions (shared by the rows; unchanged while the phase is: locked wheel)
+        if phase != offs_phase:
+            offs_phase = phase
+            g = phase / dx_elem
+            for j in range(n_elem):
+                offs[j] = lattice_offs[j] + g * (lattice_offs[j + 1] - lattice_offs[j])
+        # the road under each tip: a_i = z(tip) - offset - C/(dt kappa) u_i, so that F_i = kappa (a_i - b)
         a_max = -np.inf
         total = 0.0  # sum of max(0, a_i - b) and its count at the previous step's b (the Newton warm start)
         m_act = 0
+        front = x_front - phase
+        pos = front * inv_dx
+        i_front = int(math.floor(pos))
+        f_front = pos - i_front
         for r in range(n_rows):
+            e0 = r * n_elem
             for j in range(n_elem):
                 k = head + j
                 if k >= n_elem:
                     k -= n_elem
-                e = r * n_elem + k
+                e = e0 + k
                 if not rubber[e]:
                     a[e] = -np.inf
                     continue
-                base = x_front - phase - j * dx_elem
-                tip[e] = base  # the tread surface follows the road at the sliding speed (Eq. 6)
-                xp = base
-                pos = xp * inv_dx
-                i = int(pos)
+                # the tread surface follows the road at the sliding speed (Eq. 6)
+                if lattice:
+                    i = i_front - j * ratio
+                    f = f_front
+                else:
+                    pos = (front - j * dx_elem) * inv_dx
+                    i = int(math.floor(pos))
+                    f = pos - i
                 if i < 0:
                     i = 0
+                    f = 0.0
                 elif i > n_road - 2:
                     i = n_road - 2
-                f = pos - i
-                zt[e] = z[r, i] + f * (z[r, i + 1] - z[r, i])
-                slope[e] = tan_alpha[r, i] + f * (tan_alpha[r, i + 1] - tan_alpha[r, i])
-                off[e] = offs[j]
-                ae = zt[e] - offs[j] - c_kappa * u[e]
+                    f = 1.0
+                zt = z[r, i] + f * (z[r, i + 1] - z[r, i])
+                ae = zt - offs[j] - c_kappa * u[e]
                 a[e] = ae
                 if ae > a_max:
                     a_max = ae
@@ -238,13 +262,13 @@ def march(z, tan_alpha, dx_road, x_start, n_steps, dt, v_slide, v_roll, n_elem, 
         for it in range(200):
             if m_act < 0:
                 total = 0.0
-                cnt = 0.0
+                cnt = 0
                 for e in range(n_tot):  # grooves hold a = -inf: never in contact
                     d = a[e] - b
                     if d > 0.0:
                         total += d
-                        cnt += 1.0
-                m_act = int(cnt)
+                        cnt += 1
+                m_act = cnt
             if m_act == m_prev:
                 break
             b = b + (total - target) / m_act
@@ -253,57 +277,77 @@ def march(z, tan_alpha, dx_road, x_start, n_steps, dt, v_slide, v_roll, n_elem, 
         # element states and forces
         sum_f = 0.0
         sum_t = 0.0
+        sum_tj = 0.0
         n_c = 0
         sum_u = 0.0
         for r in range(n_rows):
+            e0 = r * n_elem
             for j in range(n_elem):
                 k = head + j
                 if k >= n_elem:
                     k -= n_elem
-                e = r * n_elem + k
+                e = e0 + k
                 if not rubber[e]:
                     continue
-                base = x_front - phase - j * dx_elem
-                u_c = zt[e] - off[e] - b
-                force = kappa * u_c - c_dt * u[e]
-                if force > 0.0:
+                d = a[e] - b
+                u_c = d + c_kappa * u[e]      # the road under the tip less the unloaded tip height
+                if d > 0.0:
+                    force = kappa * d
                     u[e] = u_c
                     sum_f += force
                     n_c += 1
                     sum_u += u_c
-                    p = force / area
-                    mu = _table(mu_table, p0, inv_dp, p)
-                    t = slope[e]
+                    mu = _table(mu_table, p0, inv_dp, force * inv_area)
+                    if lattice:
+                        i = i_front - j * ratio
+                        f = f_front
+                    else:
+                        pos = (front - j * dx_elem) * inv_dx
+                        i = int(math.floor(pos))
+                        f = pos - i
+                    if i < 0:
+                        i = 0
+                        f = 0.0
+                    elif i > n_road - 2:
+                        i = n_road - 2
+                        f = 1.0
+                    t = tan_alpha[r, i] + f * (tan_alpha[r, i + 1] - tan_alpha[r, i])
                     den = 1.0 - mu * t
-                    if den < jam_min:
+                    capped = den < jam_min
+                    if capped:
                         den = jam_min
                         n_jam += 1
                     t_max = force * (t + mu) / den
                     if rigid or slide[e]:
                         tang = t_max
-                        w[e] = max(t_max, 0.0) / shear_stiffness
+                        w[e] = max(t_max, 0.0) * inv_kt
                     else:
                         # brush: an adhering element shears (belt and tread) by the sliding distance until its
                         # force reaches the friction cone of Eq. 2; from then on it slides until it leaves the patch
                         w_trial = w[e] + v_slide * dt
                         t_trial = shear_stiffness * w_trial
                         den2 = 1.0 + mu * t
-                        if den2 < jam_min:
+                        capped2 = den2 < jam_min
+                        if capped2:
                             den2 = jam_min
                         t_min = force * (t - mu) / den2
                         if t_trial >= t_max:
                             tang = t_max
                             slide[e] = True
-                            w[e] = max(t_max, 0.0) / shear_stiffness
+                            w[e] = max(t_max, 0.0) * inv_kt
                         elif t_trial < t_min:
                             tang = t_min
+                            capped = capped2
                             slide[e] = True
                             w[e] = 0.0
                         else:
                             tang = t_trial
+                            capped = False
                             w[e] = w_trial
                             n_stuck += 1
                     sum_t += tang
+                    if capped:
+                        sum_tj += tang
                 else:
                     u_free = u[e] * decay
                     u[e] = u_c if u_c >= u_free else u_free
@@ -313,6 +357,7 @@ def march(z, tan_alpha, dx_road, x_start, n_steps, dt, v_slide, v_roll, n_elem, 
             k = head + probe
             probe_t[n] = u[k - n_elem if k >= n_elem else k]
         mu_t[n] = sum_t / load_total
+        jam_t[n] = sum_tj / load_total
         contact_t[n] = n_c / n_rubber if n_rubber > 0 else 0.0
         pen_t[n] = sum_u / n_c if n_c > 0 else 0.0
         err = abs(sum_f - load) / load
@@ -328,12 +373,12 @@ def march(z, tan_alpha, dx_road, x_start, n_steps, dt, v_slide, v_roll, n_elem, 
                 k -= n_elem
             e = r * n_elem + k
             c = r * n_elem + j
-            final[0, c] = tip[e]
+            final[0, c] = x_front - phase - j * dx_elem
             final[1, c] = phase + j * dx_elem
             final[2, c] = u[e]
             final[3, c] = kappa * (a[e] - b) if (rubber[e] and a[e] > b) else 0.0
             final[4, c] = 1.0 if rubber[e] else 0.0
-    return mu_t, contact_t, pen_t, residual, jammed, stuck, probe_t, final
+    return mu_t, contact_t, pen_t, residual, jammed, stuck, probe_t, final, jam_t
 
 
 @njit(cache=True, parallel=True)
@@ -389,14 +434,15 @@ def march_points(z, tan_alpha, dx_road, x_start, n_steps, dt, v_slide, v_roll, n
 
     Returns
     -------
-    stats : ndarray, shape (n_points, 7)
+    stats : ndarray, shape (n_points, 8)
         Per point: mean mu, standard error of the mean mu, mean contact fraction, mean penetration (m), largest
-        relative load-balance error, jammed fraction, stuck fraction.
+        relative load-balance error, jammed fraction, stuck fraction, and the part of the mean mu carried by the
+        jammed contacts (see :func:`march`).
     """
     n_points = v_slide.shape[0]
-    stats = np.zeros((n_points, 7))
+    stats = np.zeros((n_points, 8))
     for i in prange(n_points):
-        mu_t, c_t, p_t, res, jam, stk, _, _ = march(
+        mu_t, c_t, p_t, res, jam, stk, _, _, jam_t = march(
             z, tan_alpha, dx_road, x_start, n_steps[i], dt[i], v_slide[i], v_roll[i], n_elem, dx_elem, land, shape,
             offset_scale[i], stiffness[i], damping[i], shear_stiffness[i], area, load[i], load_total, p0,
             dp, mu_table[i], jam_min, -1)
@@ -408,6 +454,7 @@ def march_points(z, tan_alpha, dx_road, x_start, n_steps, dt, v_slide, v_roll, n
         stats[i, 4] = res
         stats[i, 5] = jam
         stats[i, 6] = stk
+        stats[i, 7] = np.mean(jam_t[skip[i]:])
     return stats
 
 

@@ -46,6 +46,9 @@ class TreadResult:
         adhesion zone).
     jammed_fraction : float
         Share of the contact element-steps on flanks too steep for Eq. 2 (denominator capped).
+    jammed_share : float
+        The part of ``mu`` carried by those capped contacts: it scales as 1/jam_min, so a result where it is a
+        sizeable part of ``mu`` measures the cap rather than the road (an AccuracyWarning says so above 5 %).
     stiffness, damping, shear_stiffness : float
         Normal stiffness K (N/m), damping C (N s/m) and shear stiffness (N/m) of one element.
     element_size : float
@@ -85,6 +88,7 @@ class TreadResult:
     final_state: dict = field(default_factory=dict, repr=False)
     notes: tuple = ()
     citations: tuple = ()
+    jammed_share: float = 0.0
 
     def __repr__(self) -> str:
         return (f"TreadResult(mu={self.mu:.4g} +- {self.mu_std:.2g}, slip={self.slip:g}, speed={self.speed:g} m/s, "
@@ -114,6 +118,9 @@ class SlipMap:
     temperature : float
     notes : tuple of str
     citations : tuple of str
+    jammed_share : ndarray, shape (n_speed, n_slip) or None
+        The part of ``mu`` carried by contacts capped at the self-locking limit of Eq. 2 (see
+        :class:`TreadResult`).
     """
 
     slips: np.ndarray
@@ -131,6 +138,7 @@ class SlipMap:
     temperature: float
     notes: tuple = ()
     citations: tuple = ()
+    jammed_share: np.ndarray | None = None
 
     def as_table(self) -> dict[str, np.ndarray]:
         """Long table: one row per (speed, slip): ``speed_m_s, slip, mu, mu_std, contact_fraction,

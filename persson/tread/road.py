@@ -14,6 +14,12 @@ the slopes (its friction vanishes on any periodic road, as it must), and the vis
 :math:`C v \langle h'^2\rangle` at second order in the element size.
 The scales finer than the road elements (wavevectors above :math:`\pi/\Delta x`) are invisible to the march;
 their friction enters through :math:`\mu_{loc}` (:mod:`persson.tread.local`).
+
+A tread element with a flat contact face of length :math:`\ell` cannot follow the road on scales shorter than its
+face: it rests on the highest point under it. :func:`contact_surface` gives the road as such an element sees it,
+the upper envelope (a grey dilation with a flat segment of length :math:`\ell`) and its chord slope across the
+face, :math:`\tan\alpha = [z_e(x + \ell/2) - z_e(x - \ell/2)]/\ell`; without a face the element touches the road at
+its tip (the heights and central differences above).
 """
 
 from __future__ import annotations
@@ -28,14 +34,14 @@ from frictioncite import doi
 from .._checks import finite_array, positive
 from ..errors import InputError
 
-__all__ = ["Road", "as_road"]
+__all__ = ["Road", "as_road", "contact_surface"]
 
-#: M. Kane, V. Cerezo, A contribution to tire/road friction modeling: from a simplified dynamic frictional
-#: contact model to a "Dynamic Friction Tester" model, Wear 342-343, 163 (2015).
-KANE_2015 = "kane:wear-342-163-2015"
+#: The element tool's paper, "Tire/pavement friction: presentation of a comprehensive physical tool through
+#: advanced contact modelling" (equation numbers of this package are its own; authors and venue not identified).
+TOOL_PAPER = "kane:tire-pavement-tool"
 
 
-@doi(KANE_2015)
+@doi(TOOL_PAPER)
 @dataclass(frozen=True, eq=False)
 class Road:
     r"""Road elements of one or more parallel profiles on a common uniform grid.
@@ -130,6 +136,41 @@ class Road:
         """The first ``length`` metres of every row."""
         n = int(math.floor(positive(length, "length") / self.dx * (1 + 1e-12))) + 1
         return Road(self.z[:, :n], self.dx, self.names, self.source, self.profiles, self.notes)
+
+
+def contact_surface(road: Road, face: float | None = None) -> tuple[np.ndarray, np.ndarray]:
+    r"""Heights and slopes of the road as a tread element with a flat face of length ``face`` meets it.
+
+    Parameters
+    ----------
+    road : Road
+        The road elements.
+    face : float or None
+        Length of the element's contact face, m; None (or a face no longer than one road element): a point
+        contact at the tip, the road's own heights and :attr:`Road.slope`.
+
+    Returns
+    -------
+    z : ndarray, shape (n_rows, n)
+        The upper envelope :math:`z_e(x) = \max_{|s| \le \ell/2} z(x + s)`, m (the road itself without a face).
+    tan_alpha : ndarray, shape (n_rows, n)
+        Its chord slope across the face, :math:`[z_e(x + \ell/2) - z_e(x - \ell/2)]/\ell` (one-sided within half a
+        face of the ends).
+    """
+    if face is None:
+        return road.z, np.ascontiguousarray(road.slope)
+    half = int(round(positive(face, "face") / road.dx / 2.0))
+    if half < 1:
+        return road.z, np.ascontiguousarray(road.slope)
+    from scipy import ndimage
+
+    z = ndimage.maximum_filter1d(road.z, size=2 * half + 1, axis=1, mode="nearest")
+    n = z.shape[1]
+    idx = np.arange(n)
+    hi = np.minimum(idx + half, n - 1)
+    lo = np.maximum(idx - half, 0)
+    tan = (z[:, hi] - z[:, lo]) / ((hi - lo) * road.dx)
+    return np.ascontiguousarray(z), np.ascontiguousarray(tan)
 
 
 def as_road(road, dx: float | None = None, *, max_dropout_fraction: float = 0.2) -> Road:

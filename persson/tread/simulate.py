@@ -1,9 +1,9 @@
 r"""The tread on the road, step 2: time march of the patterned tread over road profiles; maps and rankings.
 
-The element tool of Kane and co-workers (Kane & Cerezo, Wear 342-343, 163 (2015); with water, Kane et al.,
-Int. J. Pavement Eng. 20, 965 (2019); the tool presented in "Tire/pavement friction: presentation of a
-comprehensive physical tool through advanced contact modelling", Université Gustave Eiffel, Nantes, whose
-equation numbers are used throughout this package):
+The element tool presented in "Tire/pavement friction: presentation of a comprehensive physical tool through
+advanced contact modelling" (its equation numbers are used throughout this package; the element model of M. Kane and
+co-workers, with water: Kane, Do, Cerezo, Rado & Khelifi, Int. J. Pavement Eng. (2017),
+doi:10.1080/10298436.2017.1369776):
 
 1. step 1, the static footprint (:class:`persson.tread.Tire`): length L, width, the pressure's shape along L;
 2. the tread is a row (one per road profile: a 2-D grid) of elements of spacing :math:`\Delta x_e`, each a Kelvin
@@ -39,19 +39,16 @@ import numpy as np
 from frictioncite import citations_of, doi
 
 from .._checks import finite_array, number, plausible_temperature, positive
-from ..errors import InputError, PhysicsWarning
+from ..errors import AccuracyWarning, InputError, PhysicsWarning
 from . import kernels
 from .local import LocalFriction, constant_friction, local_friction
 from .results import Ranking, SlipMap, TreadResult
-from .road import KANE_2015, Road, as_road
+from .road import TOOL_PAPER, Road, as_road, contact_surface
 from .tire import Tire
-from .wet import KANE_2019, Water, wet_state
+from .wet import KANE_2017, Water, wet_state
 
 __all__ = ["simulate", "slip_map", "rank_surfaces", "DEFAULT_SLIPS", "TOOL_PAPER", "FLYVBJERG_1989"]
 
-#: The element tool's paper: "Tire/pavement friction: presentation of a comprehensive physical tool through
-#: advanced contact modelling" (Université Gustave Eiffel, Nantes).
-TOOL_PAPER = "kane:tire-pavement-tool"
 #: H. Flyvbjerg, H. G. Petersen, Error estimates on averages of correlated data, J. Chem. Phys. 91, 461 (1989).
 FLYVBJERG_1989 = "10.1063/1.457480"
 #: C. Spearman (1904) and M. G. Kendall (1938): the rank correlations of :func:`rank_surfaces`.
@@ -66,9 +63,11 @@ DEFAULT_ELEMENT = 0.2e-3
 _N_SHAPE = 1025
 _N_PRESSURE = 4096
 _JAM_NOTE = 0.01
+#: Share of mu carried by capped (self-locking) contacts above which the result is flagged.
+_SHARE_WARN = 0.05
 
 
-@doi(TOOL_PAPER, KANE_2015, KANE_2019, FLYVBJERG_1989)
+@doi(TOOL_PAPER, KANE_2017, FLYVBJERG_1989)
 def simulate(tire: Tire, road, material, speed: float, slip: float, temperature: float = 20.0, mu_loc=None,
              water: Water | None = None, **options) -> TreadResult:
     r"""Friction of the tyre's tread on ``road`` at one slip ratio and speed, with its time trace.
@@ -98,12 +97,17 @@ def simulate(tire: Tire, road, material, speed: float, slip: float, temperature:
         step that skips no road element and no patch element, times ``courant``), ``courant`` (default 1),
         ``stiffness`` (Pa/m) and ``damping`` (Pa s/m) per unit area instead of the compound's,
         ``microtexture``, ``q1``, ``adhesion``, ``local_effects`` (see :func:`persson.tread.local_friction`),
-        ``n_blocks`` (10), ``jam_min`` (0.1: smallest Eq. 2 denominator).
+        ``n_blocks`` (10), ``jam_min`` (0.1: the smallest Eq. 2 denominator; flanks steeper than
+        :math:`\tan\alpha = (1 - \text{jam\_min})/\mu_{loc}` are self-locking for Eq. 2 and their force is capped
+        there and booked in ``jammed_share``), ``face`` (m; None: a point contact at the element's tip; a length:
+        the element's flat contact face, resting on the road's upper envelope over that length, see
+        :func:`persson.tread.contact_surface`).
 
     Returns
     -------
     TreadResult
-        ``.mu, .mu_std, .time, .mu_t`` and the contact fraction, penetration, diagnostics and notes.
+        ``.mu, .mu_std, .time, .mu_t`` and the contact fraction, penetration, diagnostics and notes. An
+        AccuracyWarning says when more than 5 % of ``mu`` is carried by self-locking contacts (``jammed_share``).
 
     Raises
     ------
@@ -116,8 +120,8 @@ def simulate(tire: Tire, road, material, speed: float, slip: float, temperature:
     V = positive(speed, "speed")
     local = setup.local_table(mu_loc, [s * V])
     pts = setup.points(np.array([s]), np.array([V]), local)
-    mu_t, c_t, p_t, residual, jammed, stuck, _, final = kernels.march(
-        z=setup.road.z, tan_alpha=setup.tan_alpha, dx_road=setup.road.dx, x_start=setup.x_start,
+    mu_t, c_t, p_t, residual, jammed, stuck, _, final, jam_t = kernels.march(
+        z=setup.z_contact, tan_alpha=setup.tan_alpha, dx_road=setup.road.dx, x_start=setup.x_start,
         n_steps=int(pts.n_steps[0]),
         dt=float(pts.dt[0]), v_slide=float(pts.v_slide[0]), v_roll=float(pts.v_roll[0]), n_elem=setup.n_elem,
         dx_elem=setup.dx_elem, land=pts.land, shape=setup.shape, offset_scale=float(pts.offset_scale[0]),
@@ -127,21 +131,23 @@ def simulate(tire: Tire, road, material, speed: float, slip: float, temperature:
         jam_min=setup.jam_min, probe=-1)
     k = int(pts.skip[0])
     mean, err = kernels.block_mean(mu_t[k:], setup.n_blocks)
+    share = float(np.mean(jam_t[k:]))
     notes = list(setup.notes) + [n for ns in pts.notes for n in ns] + list(local.notes)
-    notes += _diagnostics(residual, jammed)
+    notes += _diagnostics(residual, jammed, share, float(mean), setup.jam_min)
     time = (np.arange(mu_t.size) + 1.0) * float(pts.dt[0])
     return TreadResult(
         mu=float(mean), mu_std=float(err), time=time, mu_t=mu_t, contact_fraction=float(np.mean(c_t[k:])),
         contact_t=c_t, penetration=float(np.mean(p_t[k:])), penetration_t=p_t, slip=s, speed=V,
         sliding_speed=s * V, temperature=setup.temperature, lift=float(pts.lift[0]), transient=k * float(pts.dt[0]),
         load_residual=float(residual), stuck_fraction=float(stuck), jammed_fraction=float(jammed),
+        jammed_share=share,
         stiffness=float(pts.stiffness[0]), damping=float(pts.damping[0]),
         shear_stiffness=float(pts.shear_stiffness[0]), element_size=setup.dx_elem, dt=float(pts.dt[0]),
         final_state=_final_state(final, setup), notes=tuple(dict.fromkeys(notes)),
         citations=citations_of(simulate, tire, local, setup.road))
 
 
-@doi(TOOL_PAPER, KANE_2015, KANE_2019, FLYVBJERG_1989)
+@doi(TOOL_PAPER, KANE_2017, FLYVBJERG_1989)
 def slip_map(tire: Tire, road, material, slips=DEFAULT_SLIPS, speeds=(16.7,), temperature: float = 20.0,
              water: Water | None = None, mu_loc=None, **options) -> SlipMap:
     """Steady friction over slip ratios and speeds; ABS peak and locked wheel per speed.
@@ -173,7 +179,7 @@ def slip_map(tire: Tire, road, material, slips=DEFAULT_SLIPS, speeds=(16.7,), te
     local = setup.local_table(mu_loc, (S * VV).ravel())
     pts = setup.points(S.ravel(), VV.ravel(), local)
     stats = kernels.march_points(
-        z=setup.road.z, tan_alpha=setup.tan_alpha, dx_road=setup.road.dx, x_start=setup.x_start,
+        z=setup.z_contact, tan_alpha=setup.tan_alpha, dx_road=setup.road.dx, x_start=setup.x_start,
         n_steps=pts.n_steps, dt=pts.dt,
         v_slide=pts.v_slide, v_roll=pts.v_roll, n_elem=setup.n_elem, dx_elem=setup.dx_elem, land=pts.land,
         shape=setup.shape, offset_scale=pts.offset_scale, stiffness=pts.stiffness, damping=pts.damping,
@@ -187,12 +193,15 @@ def slip_map(tire: Tire, road, material, slips=DEFAULT_SLIPS, speeds=(16.7,), te
     ipk = np.argmax(mu_all, axis=1)
     rows = np.arange(V.size)
     notes = list(setup.notes) + [n for ns in pts.notes for n in ns] + list(local.notes)
-    notes += _diagnostics(float(stats[:, 4].max()), float(stats[:, 5].max()))
+    worst = int(np.argmax(stats[:, 7] / np.maximum(np.abs(stats[:, 0]), 1e-300)))
+    notes += _diagnostics(float(stats[:, 4].max()), float(stats[:, 5].max()), float(stats[worst, 7]),
+                          float(stats[worst, 0]), setup.jam_min)
     return SlipMap(
         slips=s_req, speeds=V, mu=mu_all[:, cols], mu_std=err_all[:, cols],
         contact_fraction=stats[:, 2].reshape(shape)[:, cols], penetration=stats[:, 3].reshape(shape)[:, cols],
         lift=pts.lift.reshape(shape)[:, cols], peak_mu=mu_all[rows, ipk], peak_slip=s_all[ipk],
         peak_std=err_all[rows, ipk], locked_mu=mu_all[:, -1], locked_std=err_all[:, -1],
+        jammed_share=stats[:, 7].reshape(shape)[:, cols],
         temperature=setup.temperature, notes=tuple(dict.fromkeys(notes)),
         citations=citations_of(slip_map, tire, local, setup.road))
 
@@ -285,7 +294,7 @@ class _Points:
 
 
 _OPTIONS = ("element_size", "road_element", "rows", "dt", "courant", "stiffness", "damping", "microtexture", "q1",
-            "adhesion", "local_effects", "n_blocks", "jam_min")
+            "adhesion", "local_effects", "n_blocks", "jam_min", "face")
 
 
 @dataclass(frozen=True, eq=False)
@@ -305,6 +314,7 @@ class _Setup:
     y_rows: np.ndarray
     x_start: float
     travel: float
+    z_contact: np.ndarray
     tan_alpha: np.ndarray
     options: dict
     n_blocks: int
@@ -368,9 +378,16 @@ class _Setup:
         jam = number(options.get("jam_min", 0.1), "jam_min")
         if not 0.0 < jam <= 1.0:
             raise InputError(f"jam_min: expected 0 < jam_min <= 1, got {jam:g}")
+        face = options.get("face")
+        if face is not None:
+            face = positive(face, "face")
+            if face > length / 4:
+                raise InputError(f"face: {face:g} m is more than a quarter of the {length:.4g} m footprint; "
+                                 "expected the contact face of one tread element (m)")
+        z_contact, tan_alpha = contact_surface(rd, face)
         return cls(tire=tire, road=rd, material=material, temperature=T, water=water, n_elem=n_elem, dx_elem=dx_e,
                    area=dx_e * width_row, shape=shape, land_fraction=land_fraction, y_rows=y_rows, x_start=x_start,
-                   travel=travel, tan_alpha=np.ascontiguousarray(rd.slope), options=dict(options),
+                   travel=travel, z_contact=z_contact, tan_alpha=tan_alpha, options=dict(options),
                    n_blocks=n_blocks, jam_min=jam, notes=tuple(notes))
 
     def local_table(self, mu_loc, sliding_speeds) -> LocalFriction:
@@ -500,7 +517,7 @@ def _slip(value) -> float:
     return s
 
 
-def _diagnostics(residual: float, jammed: float) -> list[str]:
+def _diagnostics(residual: float, jammed: float, share: float, mu: float, jam_min: float) -> list[str]:
     notes = []
     if residual > 1e-9:
         notes.append(f"load balance: largest relative error {residual:.3g} (expected <= 1e-9)")
@@ -510,6 +527,13 @@ def _diagnostics(residual: float, jammed: float) -> list[str]:
                "size, which no finer time step changes")
         notes.append(msg)
         warnings.warn(msg, PhysicsWarning, stacklevel=3)
+    if share > _SHARE_WARN * abs(mu) and share > 1e-3:
+        msg = (f"{share:.3g} of mu = {mu:.3g} ({share / abs(mu):.0%}) is carried by the contacts on flanks at the "
+               f"self-locking limit of Eq. 2, whose force scales as 1/jam_min (jam_min = {jam_min:g}): that part "
+               "measures the cap, not the road; the mean of Eq. 2 over such flanks has no finite limit without the "
+               "rubber's own deformation (see the docs, 'Sharp textures')")
+        notes.append(msg)
+        warnings.warn(msg, AccuracyWarning, stacklevel=3)
     return notes
 
 

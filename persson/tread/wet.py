@@ -9,11 +9,12 @@ closed form in Hamrock, Schmid & Jacobson, *Fundamentals of Fluid Film Lubricati
 .. math:: W_h = \frac{\alpha\,6\eta V\,\beta\,l\,L^2}{H_{out}^2 (a - 1)^2}
           \left[\ln a - \frac{2(a - 1)}{a + 1}\right],\qquad a = \frac{H_{in}}{H_{out}} ,
 
-with :math:`\alpha = \beta = 1` the pure slider. The tool of Kane et al. (Kane, Do, Cerezo, Rado & Khelifi,
-Int. J. Pavement Eng. 20, 965 (2019)) applies it to the tyre footprint as a "pseudo" bearing with two empirical
-factors :math:`\alpha, \beta`; their calibrated values are not published in a form this package could verify, so
-both default to 1 and are inputs. The asperities carry :math:`W - W_h`; the friction is normalised by W; adhesion
-is taken out of :math:`\mu_{loc}`.
+with :math:`\alpha = \beta = 1` the pure slider. The element tool applies it to the tyre footprint as a "pseudo"
+bearing with two empirical factors :math:`\alpha, \beta` (the wetting effect of the element model: M. Kane, M.-T.
+Do, V. Cerezo, Z. Rado, C. Khelifi, Int. J. Pavement Eng. (2017), doi:10.1080/10298436.2017.1369776). Calibrated
+values of :math:`\alpha, \beta`, and the authors' choice of :math:`H_{in}, H_{out}`, could not be found in the sources
+consulted, so both factors default to 1 and are inputs, and the film thicknesses are this package's choice below.
+The asperities carry :math:`W - W_h`; the friction is normalised by W; adhesion is taken out of :math:`\mu_{loc}`.
 
 Choice of the film thicknesses (stated here because the result depends on it as :math:`H_{out}^{-2}`):
 
@@ -46,13 +47,15 @@ from .._checks import positive
 from ..errors import InputError
 from .pattern import Grooves
 
-__all__ = ["Water", "WetState", "bearing_lift", "wet_state", "REYNOLDS_1886", "KANE_2019", "HORNE_1963"]
+__all__ = ["Water", "WetState", "bearing_lift", "wet_state", "REYNOLDS_1886", "KANE_2017", "KANE_2019", "HORNE_1963"]
 
 #: O. Reynolds, On the theory of lubrication, Phil. Trans. R. Soc. Lond. 177, 157 (1886).
 REYNOLDS_1886 = "10.1098/rstl.1886.0005"
 #: M. Kane, M.-T. Do, V. Cerezo, Z. Rado, C. Khelifi, Contribution to pavement friction modelling: an
-#: introduction of the wetting effect, Int. J. Pavement Eng. 20, 965 (2019).
-KANE_2019 = "kane:ijpe-20-965-2019"
+#: introduction of the wetting effect, Int. J. Pavement Eng. (published online 6 Sep 2017).
+KANE_2017 = "10.1080/10298436.2017.1369776"
+#: The same paper under the name this module first gave it (kept for scripts that use it).
+KANE_2019 = KANE_2017
 #: B. J. Hamrock, S. R. Schmid, B. O. Jacobson, Fundamentals of Fluid Film Lubrication, 2nd ed. (2004), ch. 8.
 HAMROCK_2004 = "hamrock:fffl-2004"
 #: W. B. Horne, R. C. Dreher, Phenomena of pneumatic tire hydroplaning, NASA TN D-2056 (1963).
@@ -100,7 +103,7 @@ class Water:
             object.__setattr__(self, "outlet_gap", positive(self.outlet_gap, "water.outlet_gap"))
 
 
-@doi(REYNOLDS_1886, HAMROCK_2004, KANE_2019)
+@doi(REYNOLDS_1886, HAMROCK_2004, KANE_2017)
 def bearing_lift(speed, *, viscosity: float, length: float, width: float, inlet: float, outlet: float,
                  alpha: float = 1.0, beta: float = 1.0):
     r"""Load capacity of the pseudo-hydrodynamic bearing, Eq. 7, N.
@@ -162,7 +165,7 @@ class WetState:
     notes: tuple = ()
 
 
-@doi(REYNOLDS_1886, KANE_2019, HORNE_1963, ISO_13473)
+@doi(REYNOLDS_1886, KANE_2017, HORNE_1963, ISO_13473)
 def wet_state(water: Water, tire, road, speed: float, slip: float = 1.0, *,
               texture_depth: float | None = None) -> WetState:
     r"""Hydrodynamic lift of ``tire`` on ``road`` under ``water`` at vehicle speed ``speed`` (m/s) and ``slip``.
