@@ -383,6 +383,11 @@ _TIRE_KEYS = (
     Key("tire", "adhesion", BOOLEAN, "Adhesion in mu_loc on a dry road.", "true"),
     Key("tire", "element_size_m", POSITIVE, "Tread element spacing, m.", "0.2 mm"),
     Key("tire", "road_element_m", POSITIVE, "Road element size, m.", "the profiles' spacing"),
+    Key("tire", "contact_length_m", POSITIVE, "Measured footprint length, m, instead of the model's (the "
+        "model's footprint shape is that of a 205/60 R15 reference tyre; its area is within 10 % of ink prints)."),
+    Key("tire", "contact_width_m", POSITIVE, "Measured footprint width, m, instead of the model's."),
+    Key("tire", "face_m", POSITIVE, "Length of an element's flat contact face: the element rests on the road's "
+        "upper envelope over it (none: a point contact at the element's tip).", "none"),
 )
 _GROOVES = _subtable("groove width and pitch", ("width_m", "pitch_m"), width_m=POSITIVE, pitch_m=POSITIVE,
                      depth_m=POSITIVE, angle_deg=_range(-90.0, 90.0))

@@ -117,6 +117,10 @@ def read_tread_case(path, *, progress=None) -> TreadCase:
         kw["pressure_distribution"] = tab["pressure_distribution"]
     if "vertical_stiffness_N_per_m" in tab:
         kw["vertical_stiffness"] = tab["vertical_stiffness_N_per_m"]
+    if "contact_length_m" in tab:
+        kw["contact_length"] = tab["contact_length_m"]
+    if "contact_width_m" in tab:
+        kw["contact_width"] = tab["contact_width_m"]
     tire = _named(path, "", Tire, diameter=tab["diameter_m"], width=tab["width_m"], load=tab["load_N"],
                   inflation_pressure=tab["inflation_pressure_Pa"], tread_depth=tab["tread_depth_m"],
                   grooves=pattern, **kw)
@@ -137,7 +141,7 @@ def read_tread_case(path, *, progress=None) -> TreadCase:
     slips = np.asarray(tab.get("slips", DEFAULT_SLIPS), dtype=float)
     options = {}
     for key, opt in (("q1", "q1"), ("element_size_m", "element_size"), ("road_element_m", "road_element"),
-                     ("adhesion", "adhesion")):
+                     ("adhesion", "adhesion"), ("face_m", "face")):
         if key in tab:
             options[opt] = tab[key]
     if tab.get("flash_temperature", False):
