@@ -165,6 +165,10 @@ REFERENCES: dict[str, str] = {
     "Nostrand Reinhold, New York (1972).",
     "burckhardt:radschlupf-regelsysteme-1993": "M. Burckhardt, Fahrwerktechnik: Radschlupf-Regelsysteme, Vogel, "
     "Wuerzburg (1993).",
+    "carbone:epje-29-275-2009": "G. Carbone, B. Lorenz, B. N. J. Persson, A. Wohlers, Contact mechanics and rubber "
+    "friction for randomly rough surfaces with anisotropic statistical properties, Eur. Phys. J. E 29, 275 (2009).",
+    "10.1140/epje/i2019-11844-5": "L. Afferrante, C. Putignano, N. Menga, G. Carbone, Friction in rough contacts of "
+    "linear viscoelastic surfaces with anisotropic statistical properties, Eur. Phys. J. E 42, 80 (2019).",
 }
 
 

@@ -19,12 +19,15 @@ Typical use::
 This package knows nothing of rubber.
 """
 
+from .anisotropy import AnisotropicPSD, Anisotropy, Stretched, Unidirectional, stretched, unidirectional
+from .directional import DirectionalPSDs, directional_psds
 from .cutoffs import RolloffFit, SelfAffineFit, fit_rolloff, fit_self_affine, reliability_limit
 from .errors import AccuracyWarning, DataWarning, InputError, SurfacesWarning, UnitWarning
 from .io import profiles_from_array, read_captif, read_height_map, read_profiles, read_profiles_csv
 from .maps import HeightMap
 from .profiles import Profile, ProfileSet
 from .psd import PSD, Cutoffs, SelfAffine, read_psd
+from .psd2d import PSD2D
 from .spectra import PSD1D, abel_forward, gamma_factor
 from .synthetic import example_road, synthesize_map, synthesize_profiles
 from .texture import HDC, HDCFit, MPDResult, etd, fit_hdc, hdc, mpd, rms_slope, rq
@@ -33,6 +36,9 @@ __all__ = [
     "InputError", "SurfacesWarning", "DataWarning", "AccuracyWarning", "UnitWarning",
     # PSD objects
     "PSD", "SelfAffine", "PSD1D", "Cutoffs", "read_psd", "abel_forward", "gamma_factor",
+    # anisotropic surfaces
+    "PSD2D", "AnisotropicPSD", "Anisotropy", "Stretched", "Unidirectional", "stretched", "unidirectional",
+    "DirectionalPSDs", "directional_psds",
     # data
     "Profile", "ProfileSet", "HeightMap",
     "read_profiles", "read_profiles_csv", "read_captif", "profiles_from_array", "read_height_map",

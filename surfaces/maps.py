@@ -24,6 +24,7 @@ from ._util import flat_after_detrend, positive, span
 from .errors import InputError
 from .profiles import Profile, ProfileSet
 from .psd import PSD
+from .psd2d import PSD2D, periodogram_2d
 from .psdfit import with_estimated_rolloff
 
 __all__ = ["HeightMap"]
@@ -184,6 +185,42 @@ class HeightMap:
         return with_estimated_rolloff(PSD(q_bin[ok], C_bin[ok], q_r=q_lim, extrapolated=False,
                                           source=f"{self.source or 'height map'} (radial average)",
                                           qL=2 * math.pi / Lmax))
+
+    @doi("10.1088/2051-672X/aa51f8", "10.1088/0953-8984/17/1/R01")
+    def psd2d(self, window: str | None = "auto", detrend: str = "auto", n_per_decade: int = 20,
+              q_r: float | None = None, smoothing_deg: float = 5.0) -> PSD2D:
+        r"""The 2-D PSD :math:`C(q_x, q_y)` without radial averaging (Persson convention), windowed as :meth:`psd`.
+
+        Parameters
+        ----------
+        window, detrend, n_per_decade, q_r
+            As :meth:`psd` (the angular mean of the result is exactly that radial PSD).
+        smoothing_deg : float
+            Angular smoothing of the polar description used by the friction engine, degrees
+            (:class:`surfaces.PSD2D`).
+
+        Returns
+        -------
+        surfaces.PSD2D
+            The periodogram on the full grid of wavevectors (``qx``, ``qy``, ``C_grid``), its angular mean
+            (``radial``), its principal directions and anisotropy (``anisotropy()``).
+        """
+        kind = detrend if detrend != "auto" else ("mean" if self.periodic else "plane")
+        h = self.detrend(kind).z
+        if flat_after_detrend(self.z, h):
+            raise InputError(f"{self.source or 'HeightMap'}: no roughness: the heights are constant (or a {kind} "
+                             f"only) after detrending ({kind}); the PSD would be zero")
+        ny, nx = h.shape
+        win = (None if self.periodic else "hann") if window == "auto" else window
+        if win in (None, "none", "boxcar"):
+            w = np.ones_like(h)
+        else:
+            w = np.outer(_signal().get_window(win, ny), _signal().get_window(win, nx))
+        qx, qy, C = periodogram_2d(h, self.dx, self.dy, w)
+        q_lim = math.pi / max(self.dx, self.dy) if q_r is None else min(positive(q_r, "q_r"),
+                                                                         math.pi / max(self.dx, self.dy))
+        return PSD2D(qx, qy, C, q_r=q_lim, qL=2 * math.pi / max(self.size), source=self.source or "height map",
+                     n_per_decade=n_per_decade, smoothing_deg=smoothing_deg)
 
 
 def _signal():

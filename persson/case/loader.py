@@ -174,11 +174,13 @@ def read_case(path, *, progress: Callable | None = None) -> CaseSpec:
 
         with _key(path, "model", "grid"):
             kwargs["grid"] = GridSettings(**model_tab["grid"])
+    cond = raw.get("conditions", {})
+    if "sliding_direction_deg" in cond:
+        kwargs["direction_deg"] = float(cond["sliding_direction_deg"])
     try:
         model = Model(surface, material, nu=nu, gamma=gamma, effects=effects, **kwargs)
     except InputError as exc:
         raise InputError(f"{path}: {exc}") from None
-    cond = raw.get("conditions", {})
     speeds = _speeds(cond, path)
     T = float(cond.get("temperature_C", 20.0))
     p = float(cond.get("pressure_Pa", 0.3e6))
@@ -291,8 +293,11 @@ def build_surface(tab: dict, base: Path, path: Path):
         ps = sets[0] if len(sets) == 1 else surfaces.ProfileSet.concatenate(sets)
         with _key(path, "surface", "psd_options"):
             p1 = ps.psd(**tab.get("psd_options", {}))
-        with _key(path, "surface", "isotropic_options"):
-            s = p1.to_isotropic(**tab.get("isotropic_options", {}))
+        if "unidirectional_deg" in tab:
+            s = surfaces.unidirectional(p1, angle_deg=tab["unidirectional_deg"])
+        else:
+            with _key(path, "surface", "isotropic_options"):
+                s = p1.to_isotropic(**tab.get("isotropic_options", {}))
     if "q_rolloff" in tab:
         with _key(path, "surface", "q_rolloff"):
             s = s.with_rolloff(float(tab["q_rolloff"]))
@@ -304,8 +309,14 @@ def build_surface(tab: dict, base: Path, path: Path):
             raise InputError(f"{path}: [surface] q1 = {float(q1):g} rad/m lies past the PSD's last q = {hi:g}; "
                              "nothing is extrapolated unless asked: switch on the microtexture effect "
                              "([model] effects = [\"microtexture\"]) to extend the tail")
+        if "unidirectional_deg" in tab:
+            raise InputError(f"{path}: [surface] q0 and q1 do not apply to a unidirectional surface (its band is "
+                             "that of the profiles' 1-D PSD): give psd_options = {{ ... }} or remove them")
         with _key(path, "surface", "q0" if q1 is None else "q1"):
             s = s.with_cutoff(q0=None if q0 is None else float(q0), q1=None if q1 is None else float(q1))
+    if "stretch" in tab:
+        with _key(path, "surface", "stretch"):
+            s = surfaces.stretched(s, ratio=tab["stretch"]["ratio"], angle_deg=tab["stretch"]["angle_deg"])
     return s
 
 
@@ -617,6 +628,7 @@ _ONE_OF = {"surface": ("psd", "profiles", "example"), "material": ("master_curve
 _ONLY_WITH = {
     ("surface", "read_options"): ("profiles",), ("surface", "psd_options"): ("profiles",),
     ("surface", "isotropic_options"): ("profiles",), ("surface", "q_rolloff"): ("psd", "profiles"),
+    ("surface", "unidirectional_deg"): ("profiles",),
     ("material", "dma_options"): ("dma",), ("material", "shift_law"): ("dma",), ("material", "Tg_C"): ("dma",),
     ("material", "wlf_range_C"): ("dma",), ("material", "shift_options"): ("dma",),
     ("material", "T_ref_C"): ("dma",), ("material", "master_curve_options"): ("master_curve",),
@@ -640,6 +652,12 @@ def _check_combinations(raw: dict, path: Path) -> None:
     mat = raw["material"]
     if "wlf" in mat and "shift_factors" in mat:
         raise InputError(f"{path}: [material] give wlf or shift_factors, not both")
+    surf = raw["surface"]
+    if "stretch" in surf and "unidirectional_deg" in surf:
+        raise InputError(f"{path}: [surface] give stretch or unidirectional_deg, not both")
+    if "unidirectional_deg" in surf and "isotropic_options" in surf:
+        raise InputError(f"{path}: [surface] isotropic_options do not apply to a unidirectional surface (no 1-D -> "
+                         "2-D conversion): remove them")
     cond = raw.get("conditions", {})
     if "speeds_m_s" in cond and "speed_range_m_s" in cond:
         raise InputError(f"{path}: [conditions] give speeds_m_s or speed_range_m_s, not both")

@@ -265,6 +265,26 @@ def _wlf(value, where: str) -> dict:
     return {k: _number(value[k], f"{where} {k}") for k in ("C1", "C2", "T_ref_C")}
 
 
+def _degrees(value, where: str) -> float:
+    """An angle in degrees; one that looks like radians (within 2 pi, with a fraction) is refused."""
+    from ..engine.directional import directions
+
+    return float(directions(_number(value, where), where, strict=True))
+
+
+def _stretch(value, where: str) -> dict:
+    if not isinstance(value, dict):
+        raise _expected(where, "a table { ratio = ..., angle_deg = ... }", value)
+    _check_keys(value, {"ratio": None, "angle_deg": None}, where)
+    if "ratio" not in value:
+        raise InputError(f"{where}: missing ratio (expected {{ ratio = 3.0, angle_deg = 0.0 }}, ratio >= 1)")
+    ratio = _number(value["ratio"], f"{where} ratio")
+    if ratio < 1.0:
+        raise _expected(f"{where} ratio", "a stretch factor >= 1 (ridges along angle_deg; for a ratio r < 1 give "
+                        "1/r and angle_deg + 90)", value["ratio"])
+    return {"ratio": ratio, "angle_deg": _degrees(value.get("angle_deg", 0.0), f"{where} angle_deg")}
+
+
 NUMBER = Kind("number", _number)
 POSITIVE = Kind("number > 0", _positive)
 LENGTH = Kind("number in (0, 1]", _length)
@@ -281,6 +301,8 @@ PRESSURE_DISTRIBUTION = Kind('"uniform" | "parabolic" | { sakai_n = n }', _press
 INTEGER = Kind("integer", _integer)
 BOOLEAN = Kind("true | false", _boolean)
 WLF_TABLE = Kind("{ C1, C2, T_ref_C }", _wlf, lambda: {"C1": "", "C2": "K", "T_ref_C": "deg C"})
+DEGREES = Kind("number (degrees)", _degrees)
+STRETCH = Kind("{ ratio, angle_deg }", _stretch, lambda: {"ratio": ">= 1", "angle_deg": "deg"})
 
 
 # ---------------------------------------------------------------------------------------------------------
@@ -433,6 +455,12 @@ KEYS: tuple[Key, ...] = (
     Key("surface", "q_rolloff", POSITIVE, "Roll-off wavevector, rad/m: the PSD is flat below it. Sets the "
         "macro-asperity scale of the flash temperature; without it a PSD table's roll-off is fitted "
         "(`surfaces.fit_rolloff`) and the result says so.", "the PSD file's `# q_rolloff`, else fitted"),
+    Key("surface", "stretch", STRETCH, "An anisotropic surface: the PSD stretched `ratio` times along "
+        "`angle_deg` (degrees from the x axis; the ridges run along it), `{ ratio = 3.0, angle_deg = 0.0 }`.",
+        "isotropic"),
+    Key("surface", "unidirectional_deg", DEGREES, "The profiles, scanned across the ridges of a polished or "
+        "brushed surface, as its unidirectional limit C1D(q) delta(q_perp): the direction of their wavevectors "
+        "(of the scans), degrees from the x axis."),
     Key("surface", "read_options", _READ_OPTIONS, "Options of the profile readers, e.g. "
         "`{ delimiter = \";\" }` (CSV) or `{ trim_plates = false }` (CAPTIF), `format`."),
     Key("surface", "psd_options", _options_of("surfaces:ProfileSet.psd"),
@@ -500,6 +528,9 @@ KEYS: tuple[Key, ...] = (
         "of `speeds_m_s`)."),
     Key("conditions", "temperature_C", NUMBER, "Background temperature, deg C.", "20"),
     Key("conditions", "pressure_Pa", POSITIVE, "Nominal contact pressure, Pa (1 kPa to 100 MPa).", "3e5"),
+    Key("conditions", "sliding_direction_deg", DEGREES, "Sliding direction, degrees from the x axis of the "
+        "surface; it matters on an anisotropic surface (`[surface] stretch` or `unidirectional_deg`). A value "
+        "that looks like radians (within 2 pi, with a fraction) is refused.", "0"),
     # --- measurements
     Key("measurements", "file", FILE, "Measured friction CSV: `slip, speed_m_s, T_C, pressure_Pa, mu` "
         "(optional `mu_std, wet, series, position_m, water_depth_m, tread_depth_m, bpn, mpd_m, device`)."),

@@ -49,7 +49,7 @@ __all__ = ["contact", "ContactResult"]
 def contact(surface, material_or_Estar, pressure, *, speed=None, temperature: float = 20.0, gamma: float = 0.5,
             nu: float = 0.5, correction: str | None = None, gap_correction: str = "area",
             penetration: str = "persson", n_sigma: float = 3.0, q_per_decade: int = 32,
-            grid=None) -> "ContactResult":
+            grid=None, direction_deg: float | None = None) -> "ContactResult":
     r"""Contact area, separation, elastic energy and penetration depth at the nominal pressure(s) ``pressure``.
 
     Parameters
@@ -85,6 +85,10 @@ def contact(surface, material_or_Estar, pressure, *, speed=None, temperature: fl
         Wavevector nodes per decade of the elastic computation (the surface's own nodes and kinks are added).
     grid : persson.GridSettings, optional
         Numerical settings of the engine (viscoelastic path).
+    direction_deg : float, optional
+        Sliding direction, degrees from the x axis of an anisotropic surface (viscoelastic path; default 0). An
+        anisotropic surface pressed without sliding (the elastic path) has the contact of its angular mean
+        :math:`\bar C(q)` exactly (Persson's G(q) at rest depends on nothing else), so it takes no direction.
 
     Returns
     -------
@@ -112,9 +116,11 @@ def contact(surface, material_or_Estar, pressure, *, speed=None, temperature: fl
     plausible_pressure(p, "pressure", stacklevel=3)  # the unit checks of Model.friction: MPa typed as Pa warns
     if isinstance(material_or_Estar, (int, float, np.integer, np.floating)) and not isinstance(material_or_Estar,
                                                                                                 bool):
-        if speed is not None:
-            raise InputError("speed: an elastic contact (material_or_Estar given as E*, a number) takes no speed; "
-                             "pass a viscoelastic material to use a sliding speed")
+        if speed is not None or direction_deg is not None:
+            name = "speed" if speed is not None else "direction_deg"
+            raise InputError(f"{name}: an elastic contact (material_or_Estar given as E*, a number) takes no "
+                             f"{'speed' if speed is not None else 'sliding direction'}; pass a viscoelastic "
+                             "material to use a sliding speed (and direction)")
         Es = number(material_or_Estar, "material_or_Estar")
         if Es <= 0:
             raise InputError(f"material_or_Estar: expected an effective modulus E* > 0 Pa, got {Es:g}")
@@ -130,7 +136,7 @@ def contact(surface, material_or_Estar, pressure, *, speed=None, temperature: fl
         plausible_speed(v, "speed", stacklevel=3)
         plausible_temperature(number(temperature, "temperature"), "temperature", stacklevel=3)
         core = _viscoelastic(surface, material_or_Estar, p, v, number(temperature, "temperature"), nu, gamma,
-                             correction, gap, grid)
+                             correction, gap, grid, direction_deg)
     else:
         raise InputError(f"material_or_Estar: expected E* in Pa (a number) or a material with E(omega, T), "
                          f"got {material_or_Estar!r}")
@@ -287,12 +293,14 @@ def _elastic(surface, Es: float, p: np.ndarray, gamma: float, correction, gap, q
                 hrms=_hrms(surface, q, C), slope=_slope(surface, q, C), notes=_notes(surface))
 
 
-def _viscoelastic(surface, material, p, v, T, nu, gamma, correction, gap, grid) -> dict:
+def _viscoelastic(surface, material, p, v, T, nu, gamma, correction, gap, grid, direction_deg=None) -> dict:
     from ..engine.model import Model
 
     kwargs = {} if grid is None else {"grid": grid}
     model = Model(surface, material, nu=nu, gamma=gamma, **kwargs)
-    r = model.friction(np.full(p.size, v), temperature=T, pressure=p)
+    if direction_deg is not None and np.ndim(direction_deg) != 0:
+        raise InputError(f"direction_deg: expected one sliding direction in degrees, got {direction_deg!r}")
+    r = model.friction(np.full(p.size, v), temperature=T, pressure=p, direction_deg=direction_deg)
     q = np.asarray(r.q, dtype=float)
     G = np.atleast_2d(r.G_q)
     C = _psd_on(surface, q)
@@ -371,7 +379,10 @@ def _slope(surface, q, C) -> float:
 
 
 def _notes(surface) -> tuple[str, ...]:
+    out = ()
     if getattr(surface, "extrapolated", False):
         q_r = getattr(surface, "q_r", None)
-        return (f"PSD tail extrapolated past q_r = {q_r:.4g} rad/m" if q_r else "PSD tail extrapolated",)
-    return ()
+        out = (f"PSD tail extrapolated past q_r = {q_r:.4g} rad/m" if q_r else "PSD tail extrapolated",)
+    if getattr(surface, "is_anisotropic", False):
+        out += ("anisotropic surface pressed without sliding: its contact is that of the angular mean of its PSD",)
+    return out

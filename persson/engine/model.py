@@ -27,7 +27,8 @@ from frictioncite import citations_of, doi
 from materials.shift import extrapolated_shift_note
 
 from ..contact import corrections, separation
-from . import solver
+from . import directional, solver
+from .anisotropic import is_anisotropic
 from .._checks import UnitWarning, number, plausible_pressure, plausible_speed, plausible_temperature, unit_slip_notes
 from .conditions import Conditions, SolverState
 from ..effects.base import Effect
@@ -66,6 +67,10 @@ class Model:
         A correction raises the small-load contact area towards exact numerical contact mechanics and, through
         P in the friction integral, the hysteresis friction (by about 40 % on the example road): see
         ``docs/contact.md``.
+    direction_deg : float, optional
+        Sliding direction, degrees from the x axis of an anisotropic surface (``surfaces.stretched``,
+        ``surfaces.unidirectional``, ``HeightMap.psd2d``), used when :meth:`friction` is not given one; None (the
+        default) means 0 on an anisotropic surface (the result says so). An isotropic surface ignores it.
 
     Examples
     --------
@@ -84,6 +89,7 @@ class Model:
     effects: tuple = ()
     grid: GridSettings = field(default_factory=GridSettings)
     correction: str | None = None
+    direction_deg: float | None = None
 
     def __post_init__(self):
         nu = number(self.nu, "nu")
@@ -120,9 +126,15 @@ class Model:
         object.__setattr__(self, "nu", nu)
         object.__setattr__(self, "gamma", gamma)
         object.__setattr__(self, "effects", effects)
+        if self.direction_deg is not None:
+            if np.ndim(self.direction_deg) != 0:
+                raise InputError(f"direction_deg: expected one sliding direction in degrees, got {self.direction_deg!r}"
+                                 " (give several directions to friction(..., direction_deg=[...]))")
+            object.__setattr__(self, "direction_deg",
+                               float(directional.directions(self.direction_deg, "direction_deg", stacklevel=4)))
 
     # ----------------------------------------------------------------------------------------------------
-    def friction(self, speed, temperature=20.0, pressure=0.3e6) -> FrictionResult:
+    def friction(self, speed, temperature=20.0, pressure=0.3e6, direction_deg=None):
         """Friction, contact area and per-scale detail at the sliding speed(s) ``speed``.
 
         Parameters
@@ -133,18 +145,32 @@ class Model:
             Background temperature T0, deg C; an array gives one temperature per speed (same length).
         pressure : float or array_like
             Nominal contact pressure sigma0, Pa, > 0; an array gives one pressure per speed.
+        direction_deg : float or array_like, optional
+            Sliding direction(s), degrees from the x axis of an anisotropic surface (default the model's
+            ``direction_deg``, else 0); an isotropic surface's friction does not depend on it.
 
         Returns
         -------
-        FrictionResult
-            ``temperature`` and ``pressure`` are floats when given as scalars, else arrays per speed.
+        FrictionResult or persson.engine.directional.DirectionalFriction
+            ``temperature`` and ``pressure`` are floats when given as scalars, else arrays per speed. An array of
+            directions gives a ``DirectionalFriction`` (mu per direction and speed, each direction's result, a
+            polar plot).
 
         Notes
         -----
         Speeds with different temperatures share one modulus table through time-temperature superposition,
         E(omega, T) = b_T E(omega a_T, T_table), with ``log10_aT`` (and ``log10_bT`` when present) of the
         material; a material without ``log10_aT`` is evaluated at each distinct temperature separately.
+        An anisotropic surface is solved with Persson's angular integrals over C(q, phi) and
+        Im E(q v cos(phi - theta)) (:mod:`persson.engine.anisotropic`).
         """
+        if direction_deg is not None or self.direction_deg is not None or is_anisotropic(self.surface):
+            return directional.friction(self, speed, temperature, pressure, direction_deg)
+        return self._friction(speed, temperature, pressure)
+
+    def _friction(self, speed, temperature=20.0, pressure=0.3e6, *, solve=None) -> FrictionResult:
+        """:meth:`friction` for one sliding direction; ``solve`` replaces :func:`persson.engine.solver.solve`
+        (the anisotropic engine hands in each direction's solution)."""
         v, scalar = _speeds(speed)
         T0 = _per_speed(temperature, "temperature", v.size)
         sigma0 = _per_speed(pressure, "pressure", v.size)
@@ -153,9 +179,9 @@ class Model:
             raise InputError(f"pressure: expected a nominal pressure > 0 Pa, got {sigma0[i]:g}"
                              + (f" at index {i}" if np.ndim(pressure) else ""))
         # unit slips (MPa typed as Pa, kelvin as deg C) warn; below absolute zero is an error
-        plausible_pressure(sigma0, "pressure", stacklevel=3)
-        plausible_temperature(T0, "temperature", stacklevel=3)
-        plausible_speed(v, "speed", stacklevel=3)
+        plausible_pressure(sigma0, "pressure", stacklevel=4)
+        plausible_temperature(T0, "temperature", stacklevel=4)
+        plausible_speed(v, "speed", stacklevel=4)
         # Conditions keep scalars for scalar arguments (effects written for one temperature keep working)
         T_c = T0 if np.ndim(temperature) else float(T0[0])
         p_c = sigma0 if np.ndim(pressure) else float(sigma0[0])
@@ -169,8 +195,8 @@ class Model:
         thermal = next((e for e in self.effects if e.solver_role == "temperature"), None)
 
         modulus = next((e for e in self.effects if type(e).modulus_factors is not Effect.modulus_factors), None)
-        solved = solver.solve(surface, material, cond, self.grid, self.nu, self.gamma, thermal, self.correction,
-                              modulus)
+        solved = (solve or solver.solve)(surface, material, cond, self.grid, self.nu, self.gamma, thermal,
+                                         self.correction, modulus)
         state = SolverState(conditions=cond, surface=surface, material=material, q=solved.q,
                             area_q=solved.P, G_q=solved.G, temperature_q=solved.T_q,
                             mu_hysteresis=solved.mu, nu=self.nu, gamma=self.gamma)
@@ -192,21 +218,21 @@ class Model:
         notes = list(_surface_notes(surface)) + list(solved.notes)
         for msg in _physics_notes(self.surface, surface, solved, mu_total, self.effects):
             notes.append(msg)
-            warnings.warn(msg, PhysicsWarning, stacklevel=2)
+            warnings.warn(msg, PhysicsWarning, stacklevel=3)
         # rubber temperatures (background + flash) beyond where the shift law was fitted: one note per call
         msg = extrapolated_shift_note(self.material, float(np.min(solved.T_q)), float(np.max(solved.T_q)))
         if msg is not None:
             notes.append(msg)
-            warnings.warn(msg, PhysicsWarning, stacklevel=2)
+            warnings.warn(msg, PhysicsWarning, stacklevel=3)
         for msg in unit_slip_notes(surface, mu_total, solved.P[:, -1]):
             notes.append(msg)
-            warnings.warn(msg, UnitWarning, stacklevel=2)
+            warnings.warn(msg, UnitWarning, stacklevel=3)
         if not solved.converged:
             bad = np.flatnonzero(~solved.converged_each)
             msg = (f"flash temperature did not converge at {bad.size} of {v.size} speeds "
                    f"(max residual {np.max(solved.residual):.3g} K)")
             notes.append(msg)
-            warnings.warn(msg, ConvergenceWarning, stacklevel=2)
+            warnings.warn(msg, ConvergenceWarning, stacklevel=3)
         coarse_grid = solved.error_estimate > self.grid.tolerance
         if np.any(coarse_grid):
             bad = np.flatnonzero(coarse_grid)
@@ -214,7 +240,7 @@ class Model:
                    f"{v.size} speeds (largest {np.max(solved.error_estimate):.2g}, at v = "
                    f"{v[bad[np.argmax(solved.error_estimate[bad])]]:.3g} m/s): raise GridSettings.q_per_decade")
             notes.append(msg)
-            warnings.warn(msg, AccuracyWarning, stacklevel=2)
+            warnings.warn(msg, AccuracyWarning, stacklevel=3)
         out = _shape
         C_nodes = np.asarray(surface.C(solved.q), dtype=float)
         hrms = math.sqrt(solver.psd_moment(surface, solved.q, 1))
@@ -255,6 +281,7 @@ class Model:
 
     def __repr__(self) -> str:
         extra = f", correction={self.correction!r}" if self.correction else ""
+        extra += f", direction_deg={self.direction_deg:g}" if self.direction_deg is not None else ""
         grid = "" if self.grid == GridSettings() else f", grid={self.grid!r}"
         return (f"Model(surface={self.surface!r}, material={self.material!r}, nu={self.nu:g}, gamma={self.gamma:g}, "
                 f"effects={list(self.effect_names)}{extra}{grid})")
