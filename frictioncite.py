@@ -110,6 +110,10 @@ REFERENCES: dict[str, str] = {
     "successive difference, Ann. Math. Statist. 12, 153 (1941).",
     "10.1080/01621459.1993.10476408": "P. J. Rousseeuw, C. Croux, Alternatives to the median absolute deviation, "
     "J. Am. Statist. Assoc. 88, 1273 (1993).",
+    "isbn:9780750669184": "H. B. Pacejka, Tyre and Vehicle Dynamics, 2nd ed., Butterworth-Heinemann, Oxford (2006), "
+    "Appendix 3, Table A3.1: Magic Formula coefficients of a measured 205/60 R15 passenger-car tyre.",
+    "10.1088/0953-8984/27/17/175008": "G. Fortunato, V. Ciaravola, A. Furno, B. Lorenz, B. N. J. Persson, General "
+    "theory of frictional heating with application to rubber friction, J. Phys.: Condens. Matter 27, 175008 (2015).",
     "10.1076/vesd.39.3.189.14152": "C. Canudas-de-Wit, P. Tsiotras, E. Velenis, M. Basset, G. Gissinger, Dynamic "
     "friction models for road/tire longitudinal interaction, Vehicle System Dynamics 39, 189 (2003).",
     "10.1080/10298436.2017.1369776": "M. Kane, M.-T. Do, V. Cerezo, Z. Rado, C. Khelifi, Contribution to pavement "

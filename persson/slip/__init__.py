@@ -44,8 +44,8 @@ from .references import (AKAIKE_1974, BLOK_1937, BURCKHARDT_1993, CANUDAS_2003, 
                          GENT_2012, GOMPERTZ_1825, HURVICH_TSAI_1989, JAEGER_1942, LA_TORRE_2001, LAMPAERT_2002,
                          LEU_HENRY_1978, MAGIC_FORMULA, MOORE_1975, PACEJKA_BOOK, PERSSON_TREAD_2026, PIARC_1995,
                          RADO_1994, SAKAI_1981, SCHWARZ_1978, STRIBECK_1902, TIMOSHENKO_GERE)
-from .road import (BURCKHARDT_DRY_ASPHALT, MF_DRY_TARMAC, RoadCase, burckhardt, example_road_case, road_model,
-                   with_road_heating)
+from .road import (BURCKHARDT_DRY_ASPHALT, MF_DRY_TARMAC, TIRE_205_60R15, RoadCase, burckhardt, carcass_stiffness,
+                   example_road_case, road_model, tire_magic_formula, tire_slip_stiffness, with_road_heating)
 from .references import TRAILER_2023
 from .speedlaw_fit import (ACCEPTANCE_SSE, SPEED_LAW_NAMES, SpeedLawFit, SpeedLawTable, fit_speed_laws,
                            information_criteria, speed_laws_from_model)
@@ -70,6 +70,7 @@ __all__ = [
     "SlipResult", "PatchProfile", "mu_slip", "predict_slip", "fit_slip", "SlipFit",
     "PatchHeating", "PatchSolution", "patch_friction", "road_model", "with_road_heating",
     "burckhardt", "BURCKHARDT_DRY_ASPHALT", "MF_DRY_TARMAC", "RoadCase", "example_road_case",
+    "TIRE_205_60R15", "tire_magic_formula", "tire_slip_stiffness", "carcass_stiffness",
     # curve laws
     "magic_formula", "magic_formula_simple", "MagicFormula", "SimpleMagicFormula", "magic_formula_from_points",
     "magic_formula_from_peak", "magic_formula_peak_B", "FitResult", "MagicFormulaFit", "fit_magic_formula", "peak",

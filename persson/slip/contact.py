@@ -105,8 +105,22 @@ class Contact:
 
     @classmethod
     def from_tread(cls, length: float, width: float, tread: "Tread", material, *, speed: float,
-                   temperature: float = 20.0, pressure_distribution="parabolic", n_points: int = 401) -> "Contact":
-        r"""The contact patch with the tread stiffness derived from the compound (:meth:`Tread.stiffness`).
+                   temperature: float = 20.0, pressure_distribution="parabolic", n_points: int = 401,
+                   carcass_stiffness: float | None = None) -> "Contact":
+        r"""The contact patch with the tread stiffness derived from the compound (:meth:`Tread.stiffness`), in series
+        with the compliance of the tire's carcass and belt when ``carcass_stiffness`` is given.
+
+        The brush of a tire is the tread element on the belt: the road's shear passes through the rubber block and
+        then through the belt and carcass, so the two compliances add (springs in series),
+
+        .. math:: \frac{1}{k} = \frac{1}{k_{tread}(\omega, T_0)} + \frac{1}{k_c},
+
+        the effective tread-element stiffness :math:`c_p` of Pacejka's brush model, which a tire's measured slip
+        stiffness :math:`C_{F\kappa} = 2 c_p a^2` gives (*Tire and Vehicle Dynamics*, ch. 3; the belt's in-plane
+        deformation in the tread simulation model of the same chapter). :math:`k_c` is the carcass and belt's
+        share, per unit contact area (Pa/m), taken independent of speed and temperature (the belt is steel and
+        cord, not rubber); :func:`persson.slip.road.carcass_stiffness` derives it from a tire's measured slip
+        stiffness.
 
         Parameters
         ----------
@@ -122,10 +136,14 @@ class Contact:
             Temperature of the tread blocks, deg C (the background temperature T0).
         pressure_distribution, n_points
             As for :class:`Contact`.
+        carcass_stiffness : float, optional
+            :math:`k_c`, Pa/m (> 0); None (default) leaves the tread alone (a rigid belt).
         """
         if not isinstance(tread, Tread):
             raise InputError(f"tread: expected a persson.slip.Tread, got {tread!r}")
         k = tread.stiffness(material, speed=speed, temperature=temperature, contact_length=length)
+        if carcass_stiffness is not None:
+            k = 1.0 / (1.0 / k + 1.0 / positive(carcass_stiffness, "carcass_stiffness"))
         return cls(length=length, width=width, stiffness=k, pressure_distribution=pressure_distribution,
                    n_points=n_points)
 
