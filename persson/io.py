@@ -233,11 +233,14 @@ class Outputs:
 
     Examples
     --------
-    >>> with Outputs("persson friction", inputs=[case_file], force=False) as out:   # doctest: +SKIP
-    ...     csv = out.file("result.csv", what="-o")     # checked now; write to ``csv``
-    ...     ...                                          # compute, then write(csv)
-    >>> out.written                                       # doctest: +SKIP
-    [PosixPath('/.../result.csv')]
+    >>> import pathlib, shutil, tempfile
+    >>> folder = pathlib.Path(tempfile.mkdtemp())
+    >>> with Outputs("persson friction", inputs=[folder / "case.toml"], force=False) as out:
+    ...     csv = out.file(folder / "result.csv", what="-o")    # checked now; write to ``csv``
+    ...     _ = csv.write_text("speed_m_s,mu\\n1.0,0.8\\n")     # compute, then write
+    >>> [p.name for p in out.written], (folder / "result.csv").read_text().splitlines()[1]
+    (['result.csv'], '1.0,0.8')
+    >>> shutil.rmtree(folder)
 
     Writers receive a staging path (a hidden folder beside the destination); on success every staged file is
     renamed to its destination, on an exception or Ctrl-C to ``<name>.partial<suffix>`` beside it, the

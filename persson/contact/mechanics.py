@@ -41,6 +41,7 @@ from . import corrections, separation
 from .._checks import (UnitWarning, finite_array, number, plausible_modulus, plausible_pressure, plausible_speed,
                        plausible_temperature, unit_slip_notes)
 from ..errors import InputError
+from ..notes import Note, kinds
 
 __all__ = ["contact", "ContactResult"]
 
@@ -254,6 +255,11 @@ class ContactResult:
                 f"{how}, A/A0 {rng(a, lambda x: f'{x:.3g}')}, u_bar {rng(u, lambda x: f'{x:.3g}')} m, "
                 f"correction={self.correction}, gap_correction={self.gap_correction})")
 
+    @property
+    def note_kinds(self) -> tuple:
+        """The kind of every note (:data:`persson.notes.KINDS`; None for a plain-text note)."""
+        return kinds(self.notes)
+
     def as_table(self) -> dict[str, np.ndarray]:
         """Columns per pressure: ``pressure_Pa, contact_area, mean_separation_m, elastic_energy_J_m2,
         penetration_depth_m, penetration_<definition>_m..., excited_layer_thickness_m``."""
@@ -382,7 +388,9 @@ def _notes(surface) -> tuple[str, ...]:
     out = ()
     if getattr(surface, "extrapolated", False):
         q_r = getattr(surface, "q_r", None)
-        out = (f"PSD tail extrapolated past q_r = {q_r:.4g} rad/m" if q_r else "PSD tail extrapolated",)
+        out = (Note(f"PSD tail extrapolated past q_r = {q_r:.4g} rad/m" if q_r else "PSD tail extrapolated",
+                    "extrapolated"),)
     if getattr(surface, "is_anisotropic", False):
-        out += ("anisotropic surface pressed without sliding: its contact is that of the angular mean of its PSD",)
+        out += (Note("anisotropic surface pressed without sliding: its contact is that of the angular mean of its PSD",
+                     "assumed"),)
     return out

@@ -112,8 +112,9 @@ def _separation_and_energy(q, C, G, gamma, correction, gap_correction, energy):
     tab = _corrections_table(correction, gamma, gap)
     slope = (tab.J[-1] - tab.J[-2]) / (tab.lnG[-1] - tab.lnG[-2])
     qr, Cr, sr, lnGr = _refined(q, C, s, np.log(np.maximum(G, 1e-300)))
-    rest = _kernel_sum(lnGr, qr, Cr, sr, tab.lnG[0], tab.lnG[-1], tab.inv_step, tab.lnJ_floor, tab.J[-1], slope,
-                       _GL_X, _GL_W)
+    rest = _kernel_sum(lnG=lnGr, q=qr, C=Cr, s=sr, lnG_first=tab.lnG[0], lnG_last=tab.lnG[-1],
+                       inv_step=tab.inv_step, lnJ=tab.lnJ_floor, J_last=tab.J[-1], slope_last=slope, glx=_GL_X,
+                       glw=_GL_W)
     if energy:
         Gr = np.exp(lnGr)
         Gr[:, 0] = G[:, 0]
@@ -442,8 +443,39 @@ def _refined(q, C, s, lnG):
 
 @njit(cache=True)
 def _kernel_sum(lnG, q, C, s, lnG_first, lnG_last, inv_step, lnJ, J_last, slope_last, glx, glw):
-    """sum over the intervals i >= 1 of int J(G(s)) / q ds, as _other_intervals with f = the separation kernel
-    (ln J interpolated linearly on its uniform table, extended linearly in ln G past its end)."""
+    """Sum over the intervals i >= 1 of int J(G(s)) / q ds, as :func:`_other_intervals` with f the separation
+    kernel J (ln J interpolated linearly on its uniform table in ln G, J continued linearly in ln G past its end).
+
+    Parameters
+    ----------
+    lnG : ndarray (m, n)
+        ln G at the nodes, one row per speed (or pressure).
+    q : ndarray (n,)
+        Wavevector nodes, rad/m.
+    C : ndarray (n,)
+        The PSD at the nodes, m^4 (a power law between nodes).
+    s : ndarray (n,)
+        s = (int_{q0}^{q} q'^3 C dq')^(1/2) at the nodes, 1.
+    lnG_first : float
+        ln G of the kernel table's first node (J vanishes below it).
+    lnG_last : float
+        ln G of its last node.
+    inv_step : float
+        Nodes of the table per unit ln G.
+    lnJ : ndarray (n_table,)
+        ln J on the table.
+    J_last : float
+        J at the last node.
+    slope_last : float
+        dJ / d ln G past the last node.
+    glx, glw : ndarray (k,)
+        Gauss-Legendre nodes and weights on [-1, 1].
+
+    Returns
+    -------
+    ndarray (m,)
+        The sum, m (the separation is twice the first interval's part plus this).
+    """
     m, n = lnG.shape
     out = np.zeros(m)
     top = lnJ.size - 1.000001

@@ -9,8 +9,10 @@ dataclass fields, and overrides one or more hooks:
     change the PSD (e.g. extrapolate the tail to q1).
 ``transform_material(material, conditions)``
     change the modulus (e.g. large-strain softening).
-``solver_role = "temperature"`` with ``temperature_solver_options()``
-    take part in the solver (the flash temperature).
+``solver_role = "temperature"`` with ``temperature_solver_options(surface=, material=, q=)``
+    set the temperature at each scale: the effect returns the settings
+    (:class:`~persson.engine.conditions.TemperatureSolverOptions`) and the solver runs the self-consistent
+    flash temperature with them.
 ``friction_term(state)``
     add a friction contribution per speed (e.g. adhesion), given the solved :class:`SolverState`.
 ``transform_result(result)``
@@ -42,7 +44,7 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-from ..engine.conditions import Conditions, SolverState
+from ..engine.conditions import Conditions, SolverState, TemperatureSolverOptions
 from ..errors import InputError
 
 __all__ = ["Parameter", "Effect", "available", "effect_class", "get"]
@@ -166,6 +168,25 @@ class Effect:
 
     def friction_term(self, state: SolverState):
         """Return an additional friction coefficient per speed (shape (n_speed,)) or None."""
+        return None
+
+    def temperature_solver_options(self, *, surface, material, q) -> TemperatureSolverOptions | None:
+        """Settings of the self-consistent temperature at each scale, for an effect with
+        ``solver_role = "temperature"`` (None, the default, for any other effect).
+
+        Parameters
+        ----------
+        surface : PSD object
+            The surface after the transform hooks (``C(q)``, ``q_range``, and a roll-off where it declares one).
+        material : material object
+            The material after the transform hooks (``thermal`` for the thermal properties).
+        q : ndarray (n_q,)
+            The wavevector nodes of the solve, rad/m.
+
+        Returns
+        -------
+        TemperatureSolverOptions or None
+        """
         return None
 
     def modulus_factors(self, slope, temperature):

@@ -6,7 +6,6 @@ fields that diagnosis refits. Formulas cite their sources.
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from dataclasses import dataclass
 
@@ -15,7 +14,8 @@ import numpy as np
 from frictioncite import doi
 
 from ..errors import InputError
-from ..engine.conditions import Conditions, SolverState
+from ..engine.conditions import Conditions, SolverState, TemperatureSolverOptions
+from ..notes import Note
 from . import strain as _strain
 from .base import Effect, Parameter
 
@@ -80,29 +80,31 @@ class FlashTemperature(Effect):
         if not (isinstance(self.max_iter, (int, np.integer)) and self.max_iter >= 1):
             raise InputError(f"flash_temperature.max_iter: expected a positive integer, got {self.max_iter!r}")
 
-    def solve_temperature(self, *, prep, conditions: Conditions, material):
-        """Run the self-consistent solver (called by the model; see :func:`persson.engine.solver.run_flash`)."""
-        from ..engine import solver
+    def temperature_solver_options(self, *, surface, material, q) -> TemperatureSolverOptions:
+        """The settings of the self-consistent flash temperature on the wavevector nodes ``q`` (rad/m): q_m and d
+        from the PSD's roll-off (see the class), D and rho c_p from ``material.thermal``; the solver runs it.
 
+        Raises
+        ------
+        InputError
+            If the material has no thermal properties or no temperature dependence (``log10_aT``).
+        """
         thermal = getattr(material, "thermal", None)
         if thermal is None:
             raise InputError("flash_temperature: the material has no thermal properties (material.thermal)")
         if not hasattr(material, "log10_aT"):
             raise InputError("flash_temperature: the material has no temperature dependence (log10_aT); "
                              "the flash temperature would not change the friction")
-        q = prep.q
-        q_roll = _rolloff(prep.surface)
+        q_roll = _rolloff(surface)
         notes = _default_thermal_note(thermal)
         if q_roll is None or not q[0] <= q_roll < q[-1]:
-            q_roll, note = _fitted_rolloff(prep.surface, q, self.macro_scale_ratio)
+            q_roll, note = _fitted_rolloff(surface, q, self.macro_scale_ratio)
             notes += (note,)
         q_m = min(self.macro_scale_ratio * q_roll, q[-1])
         d = self.contact_diameter if self.contact_diameter > 0 else math.pi / q_m
-        D = thermal.diffusivity
-        solved = solver.run_flash(prep, q_m=q_m, a_t0=D * d / prep.v, diffusivity=D,
-                                  heat_factor=prep.pressure / thermal.heat_capacity, tol=self.tol,
-                                  max_iter=int(self.max_iter))
-        return dataclasses.replace(solved, notes=solved.notes + notes) if notes else solved
+        return TemperatureSolverOptions(q_m=q_m, contact_diameter=d, diffusivity=thermal.diffusivity,
+                                        heat_capacity=thermal.heat_capacity, tol=self.tol,
+                                        max_iter=int(self.max_iter), notes=notes)
 
 
 def _fitted_rolloff(surface, q, ratio: float) -> tuple[float, str]:
@@ -110,21 +112,22 @@ def _fitted_rolloff(surface, q, ratio: float) -> tuple[float, str]:
     self-affine above), with a note; where no plateau can be fitted, the first q, with a note and a PhysicsWarning."""
     import warnings
 
-    from ..engine.solver import _per_surface
+    from ..engine.quadrature import _per_surface
     from ..errors import PhysicsWarning
 
     table = _table_of(surface)
     fitted = None if table is None else _per_surface(table, ("fitted_rolloff",), lambda: (_fit_rolloff(table),))[0]
     if fitted is not None and q[0] <= fitted < q[-1]:
-        return fitted, (f"flash temperature: the PSD declares no roll-off; the roll-off fitted to it "
-                        f"(surfaces.fit_rolloff), {fitted:.4g} rad/m, sets the macro-asperity scale q_m = "
-                        f"{ratio:g} x {fitted:.4g} rad/m: give [surface] q_rolloff (PSD.with_rolloff) to choose it")
+        return fitted, Note(f"flash temperature: the PSD declares no roll-off; the roll-off fitted to it "
+                            f"(surfaces.fit_rolloff), {fitted:.4g} rad/m, sets the macro-asperity scale q_m = "
+                            f"{ratio:g} x {fitted:.4g} rad/m: give [surface] q_rolloff (PSD.with_rolloff) to "
+                            "choose it", "assumed")
     msg = (f"flash temperature: the PSD declares no roll-off and none can be fitted (no plateau at its long "
            f"wavelengths); the macro-asperity scale q_m is {ratio:g} x its first q ({q[0]:.4g} rad/m), which makes "
            "the hot spots as large as the scan: give [surface] q_rolloff (PSD.with_rolloff) or "
            "FlashTemperature(contact_diameter=...)")
     warnings.warn(msg, PhysicsWarning, stacklevel=5)
-    return float(q[0]), msg
+    return float(q[0]), Note(msg, "assumed")
 
 
 def _table_of(surface):
@@ -152,9 +155,9 @@ def _default_thermal_note(thermal) -> tuple:
         return ()
     if thermal != default:
         return ()
-    return (f"flash temperature: the thermal properties are the defaults of {type(thermal).__name__} (density "
-            f"{thermal.density:g} kg/m^3, specific heat {thermal.specific_heat:g} J/(kg K), conductivity "
-            f"{thermal.conductivity:g} W/(m K)), not the compound's unless they were given",)
+    return (Note(f"flash temperature: the thermal properties are the defaults of {type(thermal).__name__} (density "
+                 f"{thermal.density:g} kg/m^3, specific heat {thermal.specific_heat:g} J/(kg K), conductivity "
+                 f"{thermal.conductivity:g} W/(m K)), not the compound's unless they were given", "assumed"),)
 
 
 def _rolloff(surface):

@@ -1,6 +1,10 @@
-r"""numba kernels of the Persson solver. Thin wrappers in :mod:`persson.engine.model` prepare the arrays.
+r"""numba kernels of the Persson solver: angular tables, the wavevector quadrature, the hysteresis friction and the
+self-consistent flash temperature.
 
-Three numerical ideas make the solver accurate from soft to glassy rubber:
+Thin wrappers in :mod:`persson.engine.solver` prepare the arrays. The kernels that call one another live in this
+one file on purpose: numba caches a compiled kernel by its own source file only, so a kernel calling a kernel of
+another file would keep running the old code from the cache after that file changed. Three numerical ideas make
+the solver accurate from soft to glassy rubber:
 
 1. **Angular integrals tabulated once per call.** They depend on q, v and a_T only through the reduced frequency
    :math:`\omega = q v a_T`, so :math:`A_{re}(\omega) = \int_0^{2\pi} E'(\omega\cos\phi)^2 d\phi`,
@@ -18,20 +22,24 @@ Three numerical ideas make the solver accurate from soft to glassy rubber:
    on the PSD), so it is smooth. When :math:`|E|/\sigma_0` is large, G rises by orders of magnitude within the
    first q interval and P falls from 1 to almost 0 inside it: a rule sampling P at log-uniform nodes cannot see
    that boundary layer (errors of 10x were seen). Here each interval is cut at the PSD's breakpoints; on each
-   piece G is known at its ends and middle (the PSD integrated exactly, :func:`persson.engine.solver.quadrature_rule`),
-   R is interpolated by the quadratic in G through those three points, and the weight :math:`S(P)P` is integrated
-   exactly (Gauss-Legendre in :math:`s = \sqrt G` on geometric pieces, where :math:`2 s\, S P` is smooth and
-   bounded), :func:`interval_node_weights`.
-
+   piece G is known at its ends and middle (the PSD integrated exactly,
+   :func:`persson.engine.quadrature.quadrature_rule`), R is interpolated by the quadratic in G through those three
+   points, and the weight :math:`S(P)P` is integrated exactly (Gauss-Legendre in :math:`s = \sqrt G` on geometric
+   pieces, where :math:`2 s\, S P` is smooth and bounded), :func:`interval_node_weights`. The heat source of the
+   flash temperature, weight P dG, is integrated the same way (:func:`_flash_speed`).
 3. **A built-in error estimate.** Every speed is also integrated on the coarse grid of every other node and on
    the coarser grid of every fourth; the differences estimate the error of the fine result
-   (:func:`persson.engine.solver._relative_error`). The flash temperature uses the coarse grid alone.
+   (:func:`persson.engine.solver._relative_error`). The flash temperature uses two interleaved coarse grids
+   instead, each a self-consistent solve of its own (:func:`persson.engine.solver._flash_error`).
 
-Grids: nodes ``x`` = ln q (any increasing sequence; third-order interval rule for the non-uniform spacing),
-modulus tables uniform in log10 omega (``lw0``, ``inv_dlw``), holding ln A_re, ln A_im, ln L of the table
-temperature. A temperature T enters through ``shift`` = log10 a_T(T) and ``vshift`` = ln b_T(T) relative to the
-table temperature (time-temperature superposition: E(omega, T) = b_T E(omega a_T, T_table)); per-scale strain
-factors f, g multiply E' and E'' (large-strain modulus).
+The kernels take their arrays grouped in named tuples built once per call (:class:`Nodes`, :class:`QuadratureRule`,
+:class:`AngularTables`, :class:`ContactLaw`, :class:`SpeedFactors`, :class:`Outputs` and, for the flash
+temperature, :class:`FlashSpeeds`, :class:`TemperatureTables`, :class:`HeatSource`, :class:`FixedPoint`, defined in
+:mod:`persson.engine.kernel_arrays`), each field documented there, and are called with keyword arguments.
+Grids: nodes ``x`` = ln q (any increasing sequence; third-order interval rule for the non-uniform spacing), angular
+tables uniform in log10 omega. A temperature T enters through ``shift`` = log10 a_T(T) and ``vshift`` = ln b_T(T)
+relative to the table temperature (time-temperature superposition: E(omega, T) = b_T E(omega a_T, T_table));
+per-scale strain factors f, g multiply E' and E'' (large-strain modulus).
 """
 
 from __future__ import annotations
@@ -40,6 +48,17 @@ import math
 
 import numpy as np
 from numba import njit, prange
+
+from .kernel_arrays import (AngularTables, ContactLaw, FixedPoint, FlashSpeeds, HeatSource, Nodes, Outputs,
+                            QuadratureRule, SpeedFactors, TemperatureTables)
+
+__all__ = ["QuadratureRule", "ContactLaw", "AngularTables", "Nodes", "SpeedFactors", "Outputs",
+           "angular_convolution", "angular_at", "cumulative_weighted", "area", "contact_weight",
+           "interval_node_weights", "friction_cumulative", "linear_at", "scale_factors", "contact_and_friction",
+           "friction_parallel", "friction_serial", "heat_matrix", "integrands_at", "heated_temperature",
+           "flash_parallel", "flash_serial", "heat_kernel", "heat_kernel_factors", "FlashSpeeds", "TemperatureTables",
+           "HeatSource", "FixedPoint"]
+
 
 # Gauss-Legendre nodes on [0, 1] for the product quadrature of the contact weight: 6 points per geometric piece
 # of ratio up to 2 in s (the integrand 2 s w(s^2) is analytic there, error ~ 1e-9 relative per piece), 3 points
@@ -58,16 +77,23 @@ _GL2_W = 0.5 * _GL2_W
 _VERY_NARROW = 1.05
 #: Below s = sqrt(G) = _S_MIN the weight is P = 1 to 1e-300 (erfc(10)); one Gauss piece covers [0, _S_MIN].
 _S_MIN = 0.05
-_LN10 = math.log(10.0)
 
 
 # ==================================================================================================== tables
 @njit(cache=True)
 def angular_convolution(F, c, out):
-    r"""out_j = sum_d c_d F_{j-d} with F clamped to F_0 below the table and to F_{n-1} above it.
+    r"""out_j = sum_d c_d F_{j-d}, with F clamped to F_0 below the table and to F_{n-1} above it: an angular
+    integral on the log-frequency grid (:func:`persson.engine.tabulate.angular_table`).
 
-    ``c`` holds the product-integration weights c_d for d = -1 .. len(c)-2 (``c[d + 1]``), see
-    :func:`persson.engine.tabulate.convolution_weights`; weights past the end of ``c`` are zero.
+    Parameters
+    ----------
+    F : ndarray (n,)
+        The integrand on the uniform log10 omega grid (E'^2, E''^2 in Pa^2 or E'' in Pa).
+    c : ndarray (m,)
+        Product-integration weights c_d for d = -1 .. m - 2, stored at ``c[d + 1]``
+        (:func:`persson.engine.tabulate.convolution_weights`); weights past the end of ``c`` are zero.
+    out : ndarray (n,)
+        Filled with the integral at every node, in the unit of F.
     """
     n = F.shape[0]
     m = c.shape[0]
@@ -90,7 +116,19 @@ def angular_convolution(F, c, out):
 
 @njit(cache=True)
 def _cubic(tab, x):
-    """4-point Lagrange interpolation of ``tab`` at fractional index ``x`` (clamped to the ends)."""
+    """4-point Lagrange interpolation of ``tab`` at fractional index ``x`` (clamped to the ends).
+
+    Parameters
+    ----------
+    tab : ndarray (n,)
+        Values on a uniform grid.
+    x : float
+        Fractional index into ``tab``.
+
+    Returns
+    -------
+    float
+    """
     n = tab.shape[0]
     if x <= 0.0:
         return tab[0]
@@ -106,8 +144,20 @@ def _cubic(tab, x):
 
 
 @njit(cache=True)
-def _linear(tab, x):
-    """Linear interpolation of ``tab`` at fractional index ``x`` (clamped to the ends)."""
+def linear_at(tab, x):
+    """Linear interpolation of ``tab`` at fractional index ``x`` (clamped to the ends).
+
+    Parameters
+    ----------
+    tab : ndarray (n,)
+        Values on a uniform grid.
+    x : float
+        Fractional index into ``tab``.
+
+    Returns
+    -------
+    float
+    """
     n = tab.shape[0]
     if x <= 0.0:
         return tab[0]
@@ -119,24 +169,46 @@ def _linear(tab, x):
 
 
 @njit(cache=True)
-def angular_at(lw, lw0, inv_dlw, ln_are, ln_aim, ln_l):
-    """(A_re, A_im, L) at log10 omega = ``lw`` from the log tables (cubic in log10 omega)."""
-    x = (lw - lw0) * inv_dlw
-    return math.exp(_cubic(ln_are, x)), math.exp(_cubic(ln_aim, x)), math.exp(_cubic(ln_l, x))
+def angular_at(lw, angular):
+    """The angular integrals at one frequency, interpolated cubically in log10 omega.
+
+    Parameters
+    ----------
+    lw : float
+        log10 omega, omega in rad/s (at the table temperature).
+    angular : AngularTables
+        The tables.
+
+    Returns
+    -------
+    (float, float, float)
+        A_re and A_im (Pa^2), L (Pa).
+    """
+    x = (lw - angular.lw0) * angular.inv_dlw
+    return (math.exp(_cubic(angular.ln_are, x)), math.exp(_cubic(angular.ln_aim, x)),
+            math.exp(_cubic(angular.ln_l, x)))
 
 
 # ==================================================================================================== q rules
 @njit(cache=True)
-def cumulative_weighted(K, W, stencil, out):
-    r"""Cumulative :math:`G(q_i) = \int_{x_0}^{x_i} c(x) K(x) dx` from product weights of the rough factor c.
+def cumulative_weighted(K, rule, out):
+    r"""Cumulative :math:`G(q_i) = \int_{x_0}^{x_i} c(x) K(x) dx` from the product weights of the rough factor
+    c = q^4 C(q), integrated exactly piece by piece between the PSD's own breakpoints; K (the smooth angular
+    factor) is interpolated by the quadratic through the stencil of each interval. Where that would decrease G
+    (K varying wildly between nodes) the interval takes the mean of K at its ends times the exact integral of c.
 
-    ``W[i, m]`` = :math:`\int_{x_i}^{x_{i+1}} \ell_m(x) c(x) dx`, with :math:`\ell_m` the Lagrange basis of the
-    quadratic through the nodes ``stencil[i] + m`` (m = 0, 1, 2) and c = q^4 C(q) integrated exactly piece by
-    piece between the PSD's own breakpoints (:func:`persson.engine.solver.quadrature_rule`); K (the smooth angular factor)
-    is interpolated by that quadratic. Where that would decrease G (K varying wildly between nodes) the interval
-    takes the mean of K at its ends times the exact integral of c.
+    Parameters
+    ----------
+    K : ndarray (n_q,)
+        The angular factor A / 8 at the nodes, 1.
+    rule : QuadratureRule
+        The quadrature on the nodes (``W`` and ``stencil`` are used).
+    out : ndarray (n_q,)
+        Filled with G at every node (0 at the first).
     """
     n = K.shape[0]
+    W = rule.W
+    stencil = rule.stencil
     out[0] = 0.0
     for i in range(n - 1):
         a = stencil[i]
@@ -148,22 +220,34 @@ def cumulative_weighted(K, W, stencil, out):
 
 @njit(cache=True)
 def area(G, law):
-    r"""Area of real contact P(G) of the contact law ``law`` = (gamma, ln P table, ln G of its first node,
-    nodes per unit ln G): :math:`\mathrm{erf}(1/(2\sqrt G))` (Persson 2001) when the table is empty, else the
-    corrected area of :mod:`persson.contact.corrections` (ln P linear in ln G between nodes; P = erf(...) = 1 to double
-    precision below the table, P ~ G^(-1/2) past it)."""
+    r"""Area of real contact P(G): :math:`\mathrm{erf}(1/(2\sqrt G))` (Persson 2001) when the law has no table,
+    else the corrected area of :mod:`persson.contact.corrections` (ln P linear in ln G between nodes; P = erf(...)
+    = 1 to double precision below the table, P ~ G^(-1/2) past it).
+
+    Parameters
+    ----------
+    G : float
+        Persson's G, 1.
+    law : ContactLaw
+        The contact law.
+
+    Returns
+    -------
+    float
+        A / A0.
+    """
     if G <= 0.0:
         return 1.0
-    tab = law[1]
+    tab = law.ln_P
     n = tab.shape[0]
     if n == 0:
         return math.erf(0.5 / math.sqrt(G))
     lg = math.log(G)
-    x = (lg - law[2]) * law[3]
+    x = (lg - law.ln_G0) * law.per_ln_G
     if x <= 0.0:
         return math.erf(0.5 / math.sqrt(G))
     if x >= n - 1:
-        return math.exp(tab[n - 1] - 0.5 * (lg - (law[2] + (n - 1) / law[3])))
+        return math.exp(tab[n - 1] - 0.5 * (lg - (law.ln_G0 + (n - 1) / law.per_ln_G)))
     i = int(x)
     f = x - i
     return math.exp(tab[i] + f * (tab[i + 1] - tab[i]))
@@ -171,7 +255,21 @@ def area(G, law):
 
 @njit(cache=True)
 def contact_weight(G, law, kind):
-    """P(G) (``kind`` 1) or S(P) P with S = gamma + (1 - gamma) P^2 (``kind`` 0), gamma = ``law[0]``."""
+    """The weight of dG in the friction (``kind`` 0) or in the flash-temperature heat source (``kind`` 1).
+
+    Parameters
+    ----------
+    G : float
+        Persson's G, 1.
+    law : ContactLaw
+        The contact law.
+    kind : int
+        0: S(P) P with S = gamma + (1 - gamma) P^2; 1: P.
+
+    Returns
+    -------
+    float
+    """
     P = area(G, law)
     if kind == 1:
         return P
@@ -180,8 +278,20 @@ def contact_weight(G, law, kind):
 
 @njit(cache=True)
 def _weight_of_area(P, law):
-    """S(P) P with S = gamma + (1 - gamma) P^2 (Persson's interpolation of the stress factor, gamma = ``law[0]``)."""
-    gamma = law[0]
+    """S(P) P with S = gamma + (1 - gamma) P^2 (Persson's interpolation of the stress factor, Yang & Persson 2008).
+
+    Parameters
+    ----------
+    P : float
+        Area of real contact A / A0.
+    law : ContactLaw
+        The contact law (its ``gamma``).
+
+    Returns
+    -------
+    float
+    """
+    gamma = law.gamma
     return (gamma + (1.0 - gamma) * P * P) * P
 
 
@@ -193,6 +303,24 @@ def _interval_weights(Ga, Gb, G0, G1, G2, use_quadratic, law, kind):
     The contact weight w (:func:`contact_weight`) is integrated by Gauss-Legendre in :math:`s = \sqrt G` on
     pieces [s, 2s] (and one piece [0, 0.05]): :math:`2 s\, w(s^2)` is smooth and bounded (it tends to 2 gamma
     / sqrt(pi) as G grows, since P ~ 1/sqrt(pi G)), so a few pieces cover any rise of G.
+
+    Parameters
+    ----------
+    Ga, Gb : float
+        The range of G integrated over, Ga < Gb.
+    G0, G1, G2 : float
+        The interpolation nodes of R in G (G2 unused when ``use_quadratic`` is False).
+    use_quadratic : bool
+        Quadratic (True) or linear (False) R.
+    law : ContactLaw
+        The contact law.
+    kind : int
+        The weight (see :func:`contact_weight`).
+
+    Returns
+    -------
+    (float, float, float)
+        The weights of R(G0), R(G1), R(G2).
     """
     # moments M_k = int u^k w dG of u = G - G1 (the middle node: well conditioned), then the weights from the
     # Lagrange basis written in u; one pass with no division per Gauss point
@@ -237,9 +365,19 @@ def _interval_weights(Ga, Gb, G0, G1, G2, use_quadratic, law, kind):
 
 
 @njit(cache=True)
-def _quadratic_ok(Ga, Gb, G0, G1, G2):
-    """Quadratic interpolation in G is meaningful when the three G nodes are distinct and roughly evenly spaced
-    (G close to proportional to ln q); else (a stretch where C ~ 0, a jump of the PSD) R is taken linear."""
+def _quadratic_ok(G0, G1, G2):
+    """Whether R may be interpolated quadratically in G: the three G nodes distinct and roughly evenly spaced
+    (G close to proportional to ln q); else (a stretch where C ~ 0, a jump of the PSD) R is taken linear.
+
+    Parameters
+    ----------
+    G0, G1, G2 : float
+        G at the start, middle and end of a piece.
+
+    Returns
+    -------
+    bool
+    """
     d1 = G1 - G0
     d2 = G2 - G1
     if not (d1 > 0.0 and d2 > 0.0):
@@ -249,54 +387,97 @@ def _quadratic_ok(Ga, Gb, G0, G1, G2):
 
 
 @njit(cache=True)
-def interval_node_weights(G, K, i, quad, law, kind):
+def interval_node_weights(G, K, i, rule, law, kind):
     r"""Node weights (first stencil node a, w0, w1, w2) of interval i:
     :math:`\int_{G_i}^{G_{i+1}} F\, w(G)\, dG \approx \sum_m w_m F_{a+m}` for a factor F smooth in ln q.
 
-    The interval is cut at the PSD's breakpoints into pieces (``quad`` = (W, stencil, piece start, Lb, Wp) of
-    :func:`persson.engine.solver.quadrature_rule`). On each piece G is known at its ends and middle from the partial
-    PSD weights ``Wp`` (exact PSD, angular factor K quadratic in ln q), F there from its quadratic in ln q
-    (basis values ``Lb``), and F w dG is integrated with F quadratic in G through those three points and the weight
-    w exact (:func:`_interval_weights`). F is never interpolated across a kink of the PSD, where G(ln q) bends.
+    The interval is cut at the PSD's breakpoints into pieces. On each piece G is known at its ends and middle
+    from the partial PSD weights (exact PSD, angular factor K quadratic in ln q), F there from its quadratic in
+    ln q (the basis values of the rule), and F w dG is integrated with F quadratic in G through those three points
+    and the weight w exact (:func:`_interval_weights`). F is never interpolated across a kink of the PSD, where
+    G(ln q) bends.
+
+    Parameters
+    ----------
+    G : ndarray (n_q,)
+        G at the nodes, 1.
+    K : ndarray (n_q,)
+        The angular factor A / 8 at the nodes, 1.
+    i : int
+        The interval (nodes i, i + 1).
+    rule : QuadratureRule
+        The quadrature on the nodes.
+    law : ContactLaw
+        The contact law.
+    kind : int
+        The weight w (see :func:`contact_weight`).
+
+    Returns
+    -------
+    (int, float, float, float)
+        a and the weights of F_a, F_{a+1}, F_{a+2}.
     """
-    st = quad[1]
-    pstart = quad[2]
-    Lb = quad[3]
-    Wp = quad[4]
-    a = st[i]
+    basis = rule.basis
+    partial = rule.partial
+    a = rule.stencil[i]
     o0 = 0.0
     o1 = 0.0
     o2 = 0.0
-    p0 = pstart[i]
-    p1 = pstart[i + 1]
+    p0 = rule.piece_start[i]
+    p1 = rule.piece_start[i + 1]
     for p in range(p0, p1):
         Gi = G[i]
-        Glo = Gi if p == p0 else Gi + Wp[p, 0, 0] * K[a] + Wp[p, 0, 1] * K[a + 1] + Wp[p, 0, 2] * K[a + 2]
-        Gmid = Gi + Wp[p, 1, 0] * K[a] + Wp[p, 1, 1] * K[a + 1] + Wp[p, 1, 2] * K[a + 2]
-        Ghi = G[i + 1] if p == p1 - 1 else Gi + Wp[p, 2, 0] * K[a] + Wp[p, 2, 1] * K[a + 1] + Wp[p, 2, 2] * K[a + 2]
+        Glo = (Gi if p == p0
+               else Gi + partial[p, 0, 0] * K[a] + partial[p, 0, 1] * K[a + 1] + partial[p, 0, 2] * K[a + 2])
+        Gmid = Gi + partial[p, 1, 0] * K[a] + partial[p, 1, 1] * K[a + 1] + partial[p, 1, 2] * K[a + 2]
+        Ghi = (G[i + 1] if p == p1 - 1
+               else Gi + partial[p, 2, 0] * K[a] + partial[p, 2, 1] * K[a + 1] + partial[p, 2, 2] * K[a + 2])
         if not Ghi > Glo:
             continue
-        if Glo < Gmid < Ghi and _quadratic_ok(Glo, Ghi, Glo, Gmid, Ghi):
+        if Glo < Gmid < Ghi and _quadratic_ok(Glo, Gmid, Ghi):
             w0, w1, w2 = _interval_weights(Glo, Ghi, Glo, Gmid, Ghi, True, law, kind)
         else:
             w0, w2, _ = _interval_weights(Glo, Ghi, Glo, Ghi, 0.0, False, law, kind)
             w1 = 0.0
-        o0 += w0 * Lb[p, 0, 0] + w1 * Lb[p, 1, 0] + w2 * Lb[p, 2, 0]
-        o1 += w0 * Lb[p, 0, 1] + w1 * Lb[p, 1, 1] + w2 * Lb[p, 2, 1]
-        o2 += w0 * Lb[p, 0, 2] + w1 * Lb[p, 1, 2] + w2 * Lb[p, 2, 2]
+        o0 += w0 * basis[p, 0, 0] + w1 * basis[p, 1, 0] + w2 * basis[p, 2, 0]
+        o1 += w0 * basis[p, 0, 1] + w1 * basis[p, 1, 1] + w2 * basis[p, 2, 1]
+        o2 += w0 * basis[p, 0, 2] + w1 * basis[p, 1, 2] + w2 * basis[p, 2, 2]
     return a, o0, o1, o2
 
 
 @njit(cache=True)
-def friction_cumulative(G, K, R, q, quad, law, out):
-    r"""Cumulative hysteresis friction :math:`\int_0^{G(q_i)} R\, S(P) P\, dG` at every node (``out``) and,
-    returned, :math:`\int q^{-1} d\mu` over the whole range (the numerator of the excited-layer thickness),
-    both with the node weights of :func:`interval_node_weights`."""
+def friction_cumulative(G, K, R, q, rule, law, out):
+    r"""Cumulative hysteresis friction :math:`\int_0^{G(q_i)} R\, S(P) P\, dG` at every node and
+    :math:`\int q^{-1} d\mu` over the whole range (the numerator of the excited-layer thickness), both with the
+    node weights of :func:`interval_node_weights`.
+
+    Parameters
+    ----------
+    G : ndarray (n_q,)
+        G at the nodes, 1.
+    K : ndarray (n_q,)
+        The angular factor A / 8 at the nodes, 1.
+    R : ndarray (n_q,)
+        The ratio 4 L / A at the nodes, 1.
+    q : ndarray (n_q,)
+        The nodes, rad/m.
+    rule : QuadratureRule
+        The quadrature on the nodes.
+    law : ContactLaw
+        The contact law.
+    out : ndarray (n_q,)
+        Filled with the friction of the scales q0..q_i (0 at the first node).
+
+    Returns
+    -------
+    float
+        int q^-1 d mu, m.
+    """
     n = G.shape[0]
     out[0] = 0.0
     layer = 0.0
     for i in range(n - 1):
-        a, w0, w1, w2 = interval_node_weights(G, K, i, quad, law, 0)
+        a, w0, w1, w2 = interval_node_weights(G, K, i, rule, law, 0)
         out[i + 1] = out[i] + w0 * R[a] + w1 * R[a + 1] + w2 * R[a + 2]
         layer += w0 * R[a] / q[a] + w1 * R[a + 1] / q[a + 1] + w2 * R[a + 2] / q[a + 2]
     return layer
@@ -304,94 +485,576 @@ def friction_cumulative(G, K, R, q, quad, law, out):
 
 # ==================================================================================================== friction
 @njit(cache=True)
-def _scales(iv, lq10, lv10, q4C, shift, vshift, fq, gq, lw0, inv_dlw, ln_are, ln_aim, ln_l, scale,
-            K, gG, R, L):
-    r"""Per node: the angular factor :math:`K = A/8` of the G integrand :math:`g = q^4 C K`, the ratio
-    R = 4 L / A and the loss integral L, with :math:`A = b_T^2 (f^2 A_{re} + g^2 A_{im}) / ((1-\nu^2)\sigma_0)^2`
-    and :math:`L = b_T\, g\, L / ((1-\nu^2)\sigma_0)` (``fq``, ``gq``: strain factors on E', E'')."""
+def scale_factors(lq10, lw_speed, q4C, shift, vshift, f, g, angular, scale, K, dG, R, loss):
+    r"""The factors of the integrands at every node: the angular factor :math:`K = A/8` of
+    :math:`dG/d\ln q = q^4 C K`, the ratio R = 4 L / A and the loss integral L, with
+    :math:`A = b_T^2 (f^2 A_{re} + g^2 A_{im}) / ((1-\nu^2)\sigma_0)^2` and
+    :math:`L = b_T\, g\, L / ((1-\nu^2)\sigma_0)`.
+
+    Parameters
+    ----------
+    lq10 : ndarray (n_q,)
+        log10 q.
+    lw_speed : float
+        log10 of the sliding speed, m/s (the reduced frequency at a node is q v a_T).
+    q4C : ndarray (n_q,)
+        q^4 C(q), 1.
+    shift, vshift : ndarray (n_q,)
+        log10 a_T and ln b_T at every node, relative to the table temperature.
+    f, g : ndarray (n_q,)
+        Strain factors on E' and E'' at every node.
+    angular : AngularTables
+        The angular integrals at the table temperature.
+    scale : float
+        1 / ((1 - nu^2) sigma0), 1/Pa.
+    K, dG, R, loss : ndarray (n_q,)
+        Filled with K, dG/d ln q, R and L (all dimensionless).
+    """
     nq = lq10.shape[0]
     for iq in range(nq):
-        are, aim, ll = angular_at(lq10[iq] + lv10[iv] + shift[iq], lw0, inv_dlw, ln_are, ln_aim, ln_l)
+        are, aim, ll = angular_at(lq10[iq] + lw_speed + shift[iq], angular)
         b = math.exp(vshift[iq])
-        f = fq[iq]
-        g = gq[iq]
-        A = b * b * (f * f * are + g * g * aim) * scale * scale
-        Lq = b * g * ll * scale
+        fi = f[iq]
+        gi = g[iq]
+        A = b * b * (fi * fi * are + gi * gi * aim) * scale * scale
+        Lq = b * gi * ll * scale
         K[iq] = 0.125 * A
-        gG[iq] = q4C[iq] * K[iq]
+        dG[iq] = q4C[iq] * K[iq]
         R[iq] = 4.0 * Lq / A
-        L[iq] = Lq
+        loss[iq] = Lq
 
 
 @njit(cache=True)
-def _solve_speed(iv, q, lq10, lv10, q4C, quad, shift, vshift, fq, gq, lw0, inv_dlw, ln_are, ln_aim, ln_l, scale,
-                 law, coarse, quad_c, coarser, quad_cc, G_out, P_out, dmu_out, cum_out, gG_out, R_out, L_out,
-                 layer_out):
-    """One speed: G(q), P(q), d mu/d ln q and the cumulative hysteresis friction on the nodes; returns
-    (mu, mu on the coarse sub-grid ``coarse`` of node indices with its quadrature rule ``quad_c``, mu on the
-    coarser sub-grid ``coarser`` with ``quad_cc``)."""
-    nq = lq10.shape[0]
-    gG = gG_out[iv]
-    R = R_out[iv]
-    K = np.empty(nq)
-    _scales(iv, lq10, lv10, q4C, shift, vshift, fq, gq, lw0, inv_dlw, ln_are, ln_aim, ln_l, scale, K, gG, R,
-            L_out[iv])
-    G = G_out[iv]
-    cumulative_weighted(K, quad[0], quad[1], G)
+def contact_and_friction(iv, nodes, rule, law, K, out):
+    """Given G, R and the loss of speed ``iv`` in ``out``: P(q), d mu/d ln q, the cumulative friction and the
+    excited-layer numerator of that speed.
+
+    Parameters
+    ----------
+    iv : int
+        The speed (row of ``out``).
+    nodes : Nodes
+        The wavevector nodes.
+    rule : QuadratureRule
+        The quadrature on the nodes.
+    law : ContactLaw
+        The contact law.
+    K : ndarray (n_q,)
+        The angular factor A / 8 at the nodes, 1.
+    out : Outputs
+        Read: ``G``, ``ratio``, ``loss`` of row iv; filled: ``P``, ``dmu``, ``cum`` and ``layer`` of row iv.
+    """
+    nq = nodes.q.shape[0]
+    G = out.G[iv]
     for iq in range(nq):
         P = area(G[iq], law)
-        P_out[iv, iq] = P
-        dmu_out[iv, iq] = 0.5 * q4C[iq] * _weight_of_area(P, law) * L_out[iv, iq]
-    layer_out[iv] = friction_cumulative(G, K, R, q, quad, law, cum_out[iv])
-    return (cum_out[iv, nq - 1], _coarse_mu(q, K, R, law, coarse, quad_c),
-            _coarse_mu(q, K, R, law, coarser, quad_cc))
+        out.P[iv, iq] = P
+        out.dmu[iv, iq] = 0.5 * nodes.q4C[iq] * _weight_of_area(P, law) * out.loss[iv, iq]
+    out.layer[iv] = friction_cumulative(G, K, out.ratio[iv], nodes.q, rule, law, out.cum[iv])
 
 
 @njit(cache=True)
-def _coarse_mu(q, K, R, law, coarse, quad_c):
-    """The hysteresis friction on the sub-grid ``coarse`` (node indices): same rules, a larger step."""
-    m = coarse.shape[0]
+def _solve_speed(iv, nodes, rule, speeds, angular, law, coarse, coarse_rule, coarser, coarser_rule, out, mu_coarse,
+                 mu_coarser):
+    """One speed at its background temperature: G(q), P(q), d mu/d ln q and the cumulative hysteresis friction
+    on the nodes, and the friction on the two sub-grids of the error estimate.
+
+    Parameters
+    ----------
+    iv : int
+        The speed (row of ``speeds`` and ``out``).
+    nodes : Nodes
+        The wavevector nodes.
+    rule : QuadratureRule
+        The quadrature on the nodes.
+    speeds : SpeedFactors
+        Speeds, stress scales and modulus factors.
+    angular : AngularTables
+        The angular integrals at the table temperature.
+    law : ContactLaw
+        The contact law.
+    coarse : ndarray of int64 (m,)
+        Every other node (indices, with the last node).
+    coarse_rule : QuadratureRule
+        The quadrature on ``coarse``.
+    coarser : ndarray of int64 (m',)
+        Every fourth node (indices, with the last node).
+    coarser_rule : QuadratureRule
+        The quadrature on ``coarser``.
+    out : Outputs
+        Row iv is filled.
+    mu_coarse, mu_coarser : ndarray (n_speed,)
+        Element iv is filled with mu on ``coarse`` and on ``coarser``.
+    """
+    nq = nodes.q.shape[0]
+    K = np.empty(nq)
+    scale_factors(nodes.lq10, speeds.lv10[iv], nodes.q4C, speeds.shift[iv], speeds.vshift[iv], speeds.f[iv],
+                  speeds.g[iv], angular, speeds.scale[iv], K, out.dG[iv], out.ratio[iv], out.loss[iv])
+    cumulative_weighted(K, rule, out.G[iv])
+    contact_and_friction(iv, nodes, rule, law, K, out)
+    R = out.ratio[iv]
+    out.mu[iv] = out.cum[iv, nq - 1]
+    mu_coarse[iv] = _coarse_mu(nodes.q, K, R, law, coarse, coarse_rule)
+    mu_coarser[iv] = _coarse_mu(nodes.q, K, R, law, coarser, coarser_rule)
+
+
+@njit(cache=True)
+def _coarse_mu(q, K, R, law, index, rule):
+    """The hysteresis friction on a sub-grid of the nodes: the same rules with a larger step.
+
+    Parameters
+    ----------
+    q : ndarray (n_q,)
+        The nodes, rad/m.
+    K : ndarray (n_q,)
+        The angular factor A / 8 at the nodes, 1.
+    R : ndarray (n_q,)
+        The ratio 4 L / A at the nodes, 1.
+    law : ContactLaw
+        The contact law.
+    index : ndarray of int64 (m,)
+        The nodes of the sub-grid.
+    rule : QuadratureRule
+        The quadrature on the sub-grid.
+
+    Returns
+    -------
+    float
+        mu on the sub-grid.
+    """
+    idx = index
+    m = idx.shape[0]
     qc = np.empty(m)
     Kc = np.empty(m)
     Rc = np.empty(m)
     for k in range(m):
-        qc[k] = q[coarse[k]]
-        Kc[k] = K[coarse[k]]
-        Rc[k] = R[coarse[k]]
+        qc[k] = q[idx[k]]
+        Kc[k] = K[idx[k]]
+        Rc[k] = R[idx[k]]
     Gc = np.empty(m)
-    cumulative_weighted(Kc, quad_c[0], quad_c[1], Gc)
+    cumulative_weighted(Kc, rule, Gc)
     cc = np.empty(m)
-    friction_cumulative(Gc, Kc, Rc, qc, quad_c, law, cc)
+    friction_cumulative(Gc, Kc, Rc, qc, rule, law, cc)
     return cc[m - 1]
 
 
-def _friction_all(q, lq10, lv10, q4C, quad, shift, vshift, fq, gq, lw0, inv_dlw, ln_are, ln_aim, ln_l, scale,
-                  law, coarse, quad_c, coarser, quad_cc, G_out, P_out, dmu_out, cum_out, gG_out, R_out, L_out,
-                  layer_out, mu_out, mu_coarse, mu_coarser):
-    for iv in prange(lv10.shape[0]):
-        mu, mc, mcc = _solve_speed(iv, q, lq10, lv10, q4C, quad, shift[iv], vshift[iv], fq[iv], gq[iv], lw0,
-                                   inv_dlw, ln_are, ln_aim, ln_l, scale[iv], law, coarse, quad_c, coarser, quad_cc,
-                                   G_out, P_out, dmu_out, cum_out, gG_out, R_out, L_out, layer_out)
-        mu_out[iv] = mu
-        mu_coarse[iv] = mc
-        mu_coarser[iv] = mcc
+def _friction_all(nodes, rule, speeds, angular, law, coarse, coarse_rule, coarser, coarser_rule, out, mu_coarse,
+                  mu_coarser):
+    """Hysteresis friction and contact area of every speed at its background temperature, one speed per
+    iteration of a ``prange`` loop (see :func:`_solve_speed`; the loop body only calls it: numba's parallel loops
+    lose writes made through a named tuple's field in the body itself).
+
+    Parameters
+    ----------
+    nodes : Nodes
+        The wavevector nodes.
+    rule : QuadratureRule
+        The quadrature on the nodes.
+    speeds : SpeedFactors
+        Speeds, stress scales and modulus factors.
+    angular : AngularTables
+        The angular integrals at the table temperature.
+    law : ContactLaw
+        The contact law.
+    coarse : ndarray of int64 (m,)
+        Every other node (indices, with the last node).
+    coarse_rule : QuadratureRule
+        The quadrature on ``coarse``.
+    coarser : ndarray of int64 (m',)
+        Every fourth node (indices, with the last node).
+    coarser_rule : QuadratureRule
+        The quadrature on ``coarser``.
+    out : Outputs
+        Filled for every speed.
+    mu_coarse, mu_coarser : ndarray (n_speed,)
+        Filled with mu on ``coarse`` and on ``coarser``.
+    """
+    for iv in prange(speeds.lv10.shape[0]):
+        _solve_speed(iv, nodes, rule, speeds, angular, law, coarse, coarse_rule, coarser, coarser_rule, out,
+                     mu_coarse, mu_coarser)
 
 
-#: Hysteresis friction and contact area for every speed, in parallel over speeds (prange). Arguments: nodes
-#: ``q`` and ``lq10`` = log10 q (n_q,), ``lv10`` (n_speed,), ``q4C`` = q^4 C(q) (n_q,), the quadrature rule
-#: ``quad`` of :func:`persson.engine.solver.quadrature_rule`, ``shift`` and ``vshift`` (n_speed, n_q), strain factors
-#: ``fq``, ``gq`` (n_speed, n_q), the log tables, ``scale`` = 1/((1-nu^2) sigma0) per speed, the contact law
-#: (:func:`area`), the coarse
-#: and coarser node indices with their quadrature rules, outputs (n_speed, n_q) and (n_speed,).
+#: Hysteresis friction and contact area of every speed, in parallel over the speeds (see :func:`_friction_all`).
 friction_parallel = njit(cache=True, parallel=True)(_friction_all)
 #: The same on one thread, for calls with few speeds (no thread start-up).
 friction_serial = njit(cache=True)(_friction_all)
 
 
-# ==================================================================================================== flash
+# ==================================================================================================== flash temperature
+# The temperature at scale q (Persson, J. Phys.: Condens. Matter 18, 7789 (2006)):
+#   T_q = T0 + int_{q0}^{q} dq' g(q, q') f(q') = T0 + v sigma0 / (rho c_p P(q_m)) int_0^{G(q)} g(q, q'(G)) 2 q' R P dG
+# since f dq' = v sigma0 / (rho c_p) P / P(q_m) L q'^4 C dq' and q'^4 C dq' = 8 q' dG / A (g the heat kernel,
+# heat_kernel below). The weight P dG is integrated exactly on each interval (interval_node_weights, kind 1)
+# against the quadratic in G of g(q, q') 2 q' R, as the friction integral is. The modulus at each scale is taken
+# at that scale's temperature, so T_q is a fixed point, found per speed by _flash_speed in named steps: the
+# heat-kernel matrix (heat_matrix), the integrands at a temperature profile (integrands_at), the temperature that
+# profile's heat gives (heated_temperature), and the relaxation of the iteration (_aitken, _relax_step).
+#: Smallest relaxation factor of the flash iteration (Aitken's factor is clamped to [_MIN_RELAX, 1]).
+_MIN_RELAX = 1e-4
+
+
+def _flash_all(nodes, rule, speeds, angular, law, temperature, heat, iteration, out, T_out, it_out, res_out):
+    """The self-consistent flash temperature and the friction of every speed, one speed per iteration of a
+    ``prange`` loop (see :func:`_flash_speed`; the loop body only calls it: numba's parallel loops lose writes
+    made through a named tuple's field in the body itself).
+
+    Parameters
+    ----------
+    nodes : Nodes
+        The wavevector nodes.
+    rule : QuadratureRule
+        The quadrature on the nodes.
+    speeds : FlashSpeeds
+        Speeds, stress scales, background temperatures and starting profiles.
+    angular : AngularTables
+        The angular integrals at the table temperature.
+    law : ContactLaw
+        The contact law.
+    temperature : TemperatureTables
+        Shift and strain-factor tables.
+    heat : HeatSource
+        The heat kernel and source.
+    iteration : FixedPoint
+        Tolerance and iteration limit.
+    out : Outputs
+        Filled for every speed.
+    T_out : ndarray (n_speed, n_q)
+        Filled with the temperature at every scale, deg C.
+    it_out : ndarray of int64 (n_speed,)
+        Filled with the iterations used.
+    res_out : ndarray (n_speed,)
+        Filled with the last max |T_new - T|, K.
+    """
+    for iv in prange(speeds.lv10.shape[0]):
+        _flash_speed(iv, nodes, rule, speeds, angular, law, temperature, heat, iteration, out, T_out, it_out, res_out)
+
+
+#: Flash-temperature solver for every speed, in parallel over the speeds (see :func:`_flash_all`).
+flash_parallel = njit(cache=True, parallel=True)(_flash_all)
+#: The same on one thread, for calls with few speeds.
+flash_serial = njit(cache=True)(_flash_all)
+
+
+@njit(cache=True)
+def _flash_speed(iv, nodes, rule, speeds, angular, law, temperature, heat, iteration, out, T_out, it_out, res_out):
+    """Self-consistent flash temperature for one speed on the nodes.
+
+    Fixed-point iteration from the starting profile, converged when max |T_new - T| < ``iteration.tol``:
+    under-relaxed by a factor that halves whenever the residual grows; where that fails within
+    ``iteration.max_iter`` iterations, again from T0 with Aitken's dynamic relaxation (B. M. Irons and
+    R. C. Tuck, Int. J. Numer. Meth. Eng. 1, 275 (1969)).
+
+    Parameters
+    ----------
+    iv : int
+        The speed (row of ``speeds``, ``out`` and ``T_out``).
+    nodes : Nodes
+        The wavevector nodes.
+    rule : QuadratureRule
+        The quadrature on the nodes.
+    speeds : FlashSpeeds
+        Speeds, stress scales, background temperatures and starting profiles.
+    angular : AngularTables
+        The angular integrals at the table temperature.
+    law : ContactLaw
+        The contact law.
+    temperature : TemperatureTables
+        Shift and strain-factor tables.
+    heat : HeatSource
+        The heat kernel and source.
+    iteration : FixedPoint
+        Tolerance and iteration limit.
+    out : Outputs
+        Row iv is filled.
+    T_out : ndarray (n_speed, n_q)
+        Row iv is filled with the temperature profile, deg C.
+    it_out : ndarray of int64 (n_speed,)
+        Element iv is filled with the iterations used.
+    res_out : ndarray (n_speed,)
+        Element iv is filled with the last max |T_new - T|, K.
+    """
+    nq = nodes.q.shape[0]
+    max_iter = iteration.max_iter
+    T0 = speeds.T0[iv]
+    H = heat_matrix(nodes.q, heat.erfcx[iv], heat.S1, heat.S2, heat.a_t0[iv], heat.D)
+    T = speeds.T_start[iv].copy()
+    T_new = np.empty(nq)
+    K = np.empty(nq)
+    factors = np.empty((4, nq))
+    first = np.empty(nq, dtype=np.int64)
+    weights = np.empty((nq, 3))
+    r_prev = np.zeros(nq)
+    relax = 1.0
+    res_prev = 1e300
+    res = 0.0
+    it = 0
+    for it in range(1, 2 * max_iter + 1):
+        if it == max_iter + 1:  # the residual-growth rule failed: start again with Aitken's relaxation
+            for i in range(nq):
+                T[i] = T0
+            relax = 1.0
+        integrands_at(iv, T, nodes, rule, speeds, angular, temperature, factors, K, out)
+        G = out.G[iv]
+        P_m = area(_at_G(G, nodes.x, heat.x_m), law)
+        source = speeds.v[iv] * heat.heat_factor[iv] / P_m
+        for k in range(nq - 1):
+            first[k], weights[k, 0], weights[k, 1], weights[k, 2] = interval_node_weights(G, K, k, rule, law, 1)
+        res = heated_temperature(T, T0, source, H, out.ratio[iv], first, weights, T_new)
+        if res < iteration.tol:
+            for i in range(nq):
+                T[i] = T_new[i]
+            break
+        if it <= max_iter:
+            # under-relaxation halved whenever the residual grows, recovering slowly while it falls
+            if res > res_prev:
+                relax = max(0.5 * relax, 1.0 / 64.0)
+            else:
+                relax = min(1.0, 1.25 * relax)
+            res_prev = res
+        elif it > max_iter + 1:
+            relax = _aitken(T_new, T, r_prev, relax)
+        _relax_step(T_new, T, r_prev, relax)
+    for i in range(nq):
+        T_out[iv, i] = T[i]
+    integrands_at(iv, T, nodes, rule, speeds, angular, temperature, factors, K, out)
+    contact_and_friction(iv, nodes, rule, law, K, out)
+    out.mu[iv] = out.cum[iv, nq - 1]
+    it_out[iv] = it
+    res_out[iv] = res
+
+
+@njit(cache=True)
+def heat_matrix(q, erfcx_q, S1, S2, a_t0, D):
+    """g(q_i, q_j) 2 q_j for the nodes any interval below q_i can reach (j <= i + 1), from the speed-independent
+    partial-fraction factors; near-diagonal pairs (S1 = S2 = 0) by the closed form of
+    :func:`heat_kernel`.
+
+    Parameters
+    ----------
+    q : ndarray (n_q,)
+        The nodes, rad/m.
+    erfcx_q : ndarray (n_q,)
+        erfcx(2 q sqrt(a_t0)) at the nodes.
+    S1, S2 : ndarray (n_q, n_q)
+        The partial-fraction factors (:func:`heat_kernel_factors`).
+    a_t0 : float
+        D t0, m^2.
+    D : float
+        Thermal diffusivity, m^2/s.
+
+    Returns
+    -------
+    ndarray (n_q, n_q)
+        g(q_i, q_j) 2 q_j, s/m; zero for j > i + 1.
+    """
+    nq = q.shape[0]
+    H = np.zeros((nq, nq))
+    c0 = 2.0 / math.pi * math.sqrt(math.pi * a_t0) / D
+    for i in range(nq):
+        for j in range(min(i + 2, nq)):
+            if S1[i, j] == 0.0 and S2[i, j] == 0.0:
+                H[i, j] = heat_kernel(q[i], q[j], a_t0, D, erfcx_q[i], erfcx_q[j]) * 2.0 * q[j]
+            else:
+                H[i, j] = c0 + ((1.0 - erfcx_q[j]) * S1[i, j] + (1.0 - erfcx_q[i]) * S2[i, j]) / D
+    return H
+
+
+@njit(cache=True)
+def integrands_at(iv, T, nodes, rule, speeds, angular, temperature, factors, K, out):
+    """The integrands of speed ``iv`` with the modulus of every scale at that scale's temperature: K, dG/d ln q,
+    R and the loss at the nodes, and G(q).
+
+    Parameters
+    ----------
+    iv : int
+        The speed (row of ``speeds`` and ``out``).
+    T : ndarray (n_q,)
+        The temperature profile, deg C.
+    nodes : Nodes
+        The wavevector nodes.
+    rule : QuadratureRule
+        The quadrature on the nodes.
+    speeds : FlashSpeeds
+        Speeds and stress scales.
+    angular : AngularTables
+        The angular integrals at the table temperature.
+    temperature : TemperatureTables
+        Shift and strain-factor tables.
+    factors : ndarray (4, n_q)
+        Scratch, filled with log10 a_T, ln b_T and the strain factors f, g at every node.
+    K : ndarray (n_q,)
+        Filled with the angular factor A / 8.
+    out : Outputs
+        Filled: ``dG``, ``ratio``, ``loss`` and ``G`` of row iv.
+    """
+    _temperature_factors(T, temperature, factors[0], factors[1], factors[2], factors[3])
+    scale_factors(nodes.lq10, speeds.lv10[iv], nodes.q4C, factors[0], factors[1], factors[2], factors[3], angular,
+                  speeds.scale[iv], K, out.dG[iv], out.ratio[iv], out.loss[iv])
+    cumulative_weighted(K, rule, out.G[iv])
+
+
+@njit(cache=True)
+def heated_temperature(T, T0, source, H, R, first, weights, T_new):
+    """One application of the fixed-point map: the temperature at every node from the heat the integrands of
+    ``T`` produce at the scales below it.
+
+    Parameters
+    ----------
+    T : ndarray (n_q,)
+        The current profile, deg C.
+    T0 : float
+        Background temperature, deg C.
+    source : float
+        v sigma0 / (rho c_p P(q_m)), K m/s.
+    H : ndarray (n_q, n_q)
+        g(q_i, q_j) 2 q_j (:func:`heat_matrix`).
+    R : ndarray (n_q,)
+        The ratio 4 L / A at the nodes.
+    first : ndarray of int64 (n_q,)
+        First stencil node of every interval (:func:`interval_node_weights`).
+    weights : ndarray (n_q, 3)
+        The weights of P dG on every interval at its three stencil nodes.
+    T_new : ndarray (n_q,)
+        Filled with the new profile, deg C.
+
+    Returns
+    -------
+    float
+        max |T_new - T| over the nodes, K.
+    """
+    nq = T.shape[0]
+    res = 0.0
+    for i in range(nq):
+        acc = 0.0
+        for k in range(i):
+            a = first[k]
+            acc += (weights[k, 0] * H[i, a] * R[a] + weights[k, 1] * H[i, a + 1] * R[a + 1]
+                    + weights[k, 2] * H[i, a + 2] * R[a + 2])
+        T_new[i] = T0 + source * acc
+        d = abs(T_new[i] - T[i])
+        if d > res:
+            res = d
+    return res
+
+
+@njit(cache=True)
+def _at_G(G, x, xm):
+    """G at ln q = ``xm`` by the quadratic through the three nearest nodes (G is smooth in ln q).
+
+    Parameters
+    ----------
+    G : ndarray (n_q,)
+        G at the nodes.
+    x : ndarray (n_q,)
+        ln q of the nodes.
+    xm : float
+        ln q where G is wanted (clamped to the nodes' range).
+
+    Returns
+    -------
+    float
+    """
+    n = x.shape[0]
+    if xm <= x[0]:
+        return G[0]
+    if xm >= x[n - 1]:
+        return G[n - 1]
+    i = 0
+    while i < n - 2 and x[i + 1] < xm:
+        i += 1
+    if n < 3:
+        t = (xm - x[i]) / (x[i + 1] - x[i])
+        return G[i] + t * (G[i + 1] - G[i])
+    a = i if i + 2 < n else i - 1
+    x0, x1, x2 = x[a], x[a + 1], x[a + 2]
+    return (G[a] * (xm - x1) * (xm - x2) / ((x0 - x1) * (x0 - x2))
+            + G[a + 1] * (xm - x0) * (xm - x2) / ((x1 - x0) * (x1 - x2))
+            + G[a + 2] * (xm - x0) * (xm - x1) / ((x2 - x0) * (x2 - x1)))
+
+
+@njit(cache=True)
+def _aitken(T_new, T, r_prev, relax):
+    """Aitken's dynamic relaxation factor (Irons & Tuck 1969): the factor that cancels the dominant mode of the
+    last two residual vectors, clamped to [_MIN_RELAX, 1]. It rescues a hot contact whose map is strongly
+    non-contractive (a cold profile heats to 10^4 K, a hot one barely heats: a period-2 oscillation whose residual
+    hardly changes, so a residual-growth rule keeps the factor near 1).
+
+    Parameters
+    ----------
+    T_new : ndarray (n_q,)
+        The map's image of ``T``, deg C.
+    T : ndarray (n_q,)
+        The current profile, deg C.
+    r_prev : ndarray (n_q,)
+        The previous residual T_new - T, K.
+    relax : float
+        The previous factor.
+
+    Returns
+    -------
+    float
+        The new factor.
+    """
+    num = 0.0
+    den = 0.0
+    for i in range(T.shape[0]):
+        dr = (T_new[i] - T[i]) - r_prev[i]
+        num += r_prev[i] * dr
+        den += dr * dr
+    if den > 0.0:
+        return min(1.0, max(_MIN_RELAX, -relax * num / den))
+    return relax
+
+
+@njit(cache=True)
+def _relax_step(T_new, T, r_prev, relax):
+    """T += relax (T_new - T), keeping the residual T_new - T in ``r_prev``.
+
+    Parameters
+    ----------
+    T_new : ndarray (n_q,)
+        The map's image of ``T``, deg C.
+    T : ndarray (n_q,)
+        The current profile, updated in place, deg C.
+    r_prev : ndarray (n_q,)
+        Filled with the residual T_new - T, K.
+    relax : float
+        The relaxation factor, in (0, 1].
+    """
+    for i in range(T.shape[0]):
+        r_prev[i] = T_new[i] - T[i]
+        T[i] = T[i] + relax * r_prev[i]
+
+
+@njit(cache=True)
+def _temperature_factors(T, temperature, shift, vshift, f, g):
+    """Shift, vertical shift and strain factors at the temperature of every node, interpolated linearly in the
+    tables.
+
+    Parameters
+    ----------
+    T : ndarray (n_q,)
+        The temperature profile, deg C.
+    temperature : TemperatureTables
+        The tables.
+    shift, vshift, f, g : ndarray (n_q,)
+        Filled with log10 a_T, ln b_T (relative to the table temperature) and the strain factors on E', E''.
+    """
+    nq = T.shape[0]
+    per_node = temperature.f.shape[0] == nq
+    for i in range(nq):
+        xT = (T[i] - temperature.T_lo) * temperature.inv_dT
+        shift[i] = linear_at(temperature.shift, xT)
+        vshift[i] = linear_at(temperature.vshift, xT)
+        r = i if per_node else 0
+        f[i] = linear_at(temperature.f[r], xT)
+        g[i] = linear_at(temperature.g[r], xT)
+
+
+# ==================================================================================================== heat kernel
 @njit(cache=True)
 def heat_kernel(qi, qj, a, D, ex_i, ex_j):
-    r"""Closed form of Persson's heat kernel g(q_i, q_j), s.
+    r"""Closed form of Persson's heat kernel g(q_i, q_j), s (Persson, J. Phys.: Condens. Matter 18, 7789 (2006)).
 
     .. math::
         g(q, q') = \frac{1}{\pi}\int_0^\infty dk\, \frac{1 - e^{-D k^2 t_0}}{D k^2}
@@ -401,10 +1064,27 @@ def heat_kernel(qi, qj, a, D, ex_i, ex_j):
     :math:`1/(k^2 (k^2+\alpha^2)(k^2+\beta^2))`, using
     :math:`\int_0^\infty (1-e^{-ak^2})k^{-2} dk = \sqrt{\pi a}` and
     :math:`\int_0^\infty (1-e^{-ak^2})(k^2+c^2)^{-1} dk = \frac{\pi}{2c}(1 - \mathrm{erfcx}(c\sqrt a))`.
-    ``ex_i`` = erfcx(2 q_i sqrt(a)), ``ex_j`` = erfcx(2 q_j sqrt(a)) are precomputed (scipy.special.erfcx).
     For alpha = beta (the diagonal) the double pole gives
     :math:`\int_0^\infty (1-e^{-ak^2})(k^2+c^2)^{-2}dk = \frac{\pi}{4c^3}(1-\mathrm{erfcx}(x))
     + \frac{\pi\sqrt a}{4c^2}(2x\,\mathrm{erfcx}(x) - 2/\sqrt\pi)`, :math:`x = c\sqrt a`.
+
+    Parameters
+    ----------
+    qi : float
+        q, the scale where the temperature is taken, rad/m.
+    qj : float
+        q', the scale where the heat is produced, rad/m.
+    a : float
+        D t0, m^2 (t0 the contact time of a macro-asperity contact region).
+    D : float
+        Thermal diffusivity, m^2/s.
+    ex_i, ex_j : float
+        erfcx(2 q_i sqrt(a)) and erfcx(2 q_j sqrt(a)), precomputed (scipy.special.erfcx).
+
+    Returns
+    -------
+    float
+        g(q_i, q_j), s.
     """
     al = 2.0 * qj
     be = 2.0 * qi
@@ -427,27 +1107,6 @@ def heat_kernel(qi, qj, a, D, ex_i, ex_j):
     return pre * I1
 
 
-@njit(cache=True)
-def _at_G(G, x, xm):
-    """G at ln q = ``xm`` by the quadratic through the three nearest nodes (G is smooth in ln q)."""
-    n = x.shape[0]
-    if xm <= x[0]:
-        return G[0]
-    if xm >= x[n - 1]:
-        return G[n - 1]
-    i = 0
-    while i < n - 2 and x[i + 1] < xm:
-        i += 1
-    if n < 3:
-        t = (xm - x[i]) / (x[i + 1] - x[i])
-        return G[i] + t * (G[i + 1] - G[i])
-    a = i if i + 2 < n else i - 1
-    x0, x1, x2 = x[a], x[a + 1], x[a + 2]
-    return (G[a] * (xm - x1) * (xm - x2) / ((x0 - x1) * (x0 - x2))
-            + G[a + 1] * (xm - x0) * (xm - x2) / ((x1 - x0) * (x1 - x2))
-            + G[a + 2] * (xm - x0) * (xm - x1) / ((x2 - x0) * (x2 - x1)))
-
-
 def heat_kernel_factors(q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     r"""Speed-independent factors of :func:`heat_kernel`: with :math:`\alpha = 2q_j`, :math:`\beta = 2q_i`,
 
@@ -466,167 +1125,3 @@ def heat_kernel_factors(q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         S1 = np.where(near, 0.0, be * be * al / (al * al * (al * al - be * be)))
         S2 = np.where(near, 0.0, al * al / (be * (be * be - al * al)))
     return np.ascontiguousarray(S1), np.ascontiguousarray(S2)
-
-
-@njit(cache=True)
-def _flash_speed(iv, q, x, lq10, lv10, v, q4C, quad, lw0, inv_dlw, ln_are, ln_aim, ln_l, scale, law, T0, T_start,
-                 T_lo, inv_dT, shift_tab, vshift_tab, f_tab, g_tab, EX, S1, S2, a_t0, D, heat_factor, x_m, tol,
-                 max_iter, G_out, P_out, dmu_out, cum_out, gG_out, R_out, L_out, T_out, layer_out):
-    r"""Self-consistent flash temperature for one speed on the nodes ``q``; returns (mu, iterations, residual).
-
-    .. math::
-        T_q = T_0 + \int_{q_0}^{q} dq'\, g(q, q') f(q')
-            = T_0 + \frac{v\,\sigma_0}{\rho c_p P(q_m)} \int_0^{G(q)} g(q, q'(G))\, 2 q'\, R\, P\, dG
-
-    since :math:`f\,dq' = \frac{v \sigma_0}{\rho c_p}\frac{P}{P(q_m)} L\, q'^4 C\, dq'` and
-    :math:`q'^4 C dq' = 8 q' dG / A`. The weight P dG is integrated exactly on each interval
-    (:func:`interval_weights`, ``kind`` 1) against the quadratic in G of :math:`g(q, q') 2 q' R`.
-    Fixed-point iteration from ``T_start`` (T0 at every node, or a solution of the same problem on other nodes),
-    converged when max |T_new - T| < ``tol``: under-relaxed by a factor that halves whenever the residual grows;
-    where that fails within ``max_iter`` iterations, again from T0 with Aitken's dynamic relaxation
-    (B. M. Irons and R. C. Tuck, Int. J. Numer. Meth. Eng. 1, 275 (1969)).
-    """
-    nq = q.shape[0]
-    # g(q_i, q_j) 2 q_j for the nodes any interval below q_i can reach (j <= i + 1), from the speed-independent
-    # partial-fraction factors S1, S2 (:func:`heat_kernel_factors`); near-diagonal pairs by the closed form
-    H = np.zeros((nq, nq))
-    c0 = 2.0 / math.pi * math.sqrt(math.pi * a_t0) / D
-    for i in range(nq):
-        for j in range(min(i + 2, nq)):
-            if S1[i, j] == 0.0 and S2[i, j] == 0.0:
-                H[i, j] = heat_kernel(q[i], q[j], a_t0, D, EX[i], EX[j]) * 2.0 * q[j]
-            else:
-                H[i, j] = c0 + ((1.0 - EX[j]) * S1[i, j] + (1.0 - EX[i]) * S2[i, j]) / D
-    T = T_start.copy()
-    Tn = np.empty(nq)
-    shift = np.empty(nq)
-    vshift = np.empty(nq)
-    fq = np.empty(nq)
-    gq = np.empty(nq)
-    wts = np.empty((nq, 4))
-    K = np.empty(nq)
-    G = G_out[iv]
-    R = R_out[iv]
-    r_prev = np.zeros(nq)
-    relax = 1.0
-    res_prev = 1e300
-    res = 0.0
-    it = 0
-    for it in range(1, 2 * max_iter + 1):
-        if it == max_iter + 1:  # the residual-growth rule failed: start again with Aitken's relaxation
-            for i in range(nq):
-                T[i] = T0
-            relax = 1.0
-        _temperature_factors(T, T_lo, inv_dT, shift_tab, vshift_tab, f_tab, g_tab, shift, vshift, fq, gq)
-        _scales(iv, lq10, lv10, q4C, shift, vshift, fq, gq, lw0, inv_dlw, ln_are, ln_aim, ln_l, scale,
-                K, gG_out[iv], R, L_out[iv])
-        cumulative_weighted(K, quad[0], quad[1], G)
-        Gm = _at_G(G, x, x_m)
-        Pm = area(Gm, law)
-        pre = v * heat_factor / Pm
-        for k in range(nq - 1):
-            a, w0, w1, w2 = interval_node_weights(G, K, k, quad, law, 1)
-            wts[k, 0] = a
-            wts[k, 1] = w0
-            wts[k, 2] = w1
-            wts[k, 3] = w2
-        res = 0.0
-        for i in range(nq):
-            acc = 0.0
-            for k in range(i):
-                a = int(wts[k, 0])
-                acc += (wts[k, 1] * H[i, a] * R[a] + wts[k, 2] * H[i, a + 1] * R[a + 1]
-                        + wts[k, 3] * H[i, a + 2] * R[a + 2])
-            Tn[i] = T0 + pre * acc
-            d = abs(Tn[i] - T[i])
-            if d > res:
-                res = d
-        if res < tol:
-            for i in range(nq):
-                T[i] = Tn[i]
-            break
-        if it <= max_iter:
-            # under-relaxation halved whenever the residual grows, recovering slowly while it falls
-            if res > res_prev:
-                relax = max(0.5 * relax, 1.0 / 64.0)
-            else:
-                relax = min(1.0, 1.25 * relax)
-            res_prev = res
-        elif it > max_iter + 1:
-            relax = _aitken(Tn, T, r_prev, relax)
-        _relax_step(Tn, T, r_prev, relax)
-    _temperature_factors(T, T_lo, inv_dT, shift_tab, vshift_tab, f_tab, g_tab, shift, vshift, fq, gq)
-    for i in range(nq):
-        T_out[iv, i] = T[i]
-    _scales(iv, lq10, lv10, q4C, shift, vshift, fq, gq, lw0, inv_dlw, ln_are, ln_aim, ln_l, scale, K,
-            gG_out[iv], R, L_out[iv])
-    cumulative_weighted(K, quad[0], quad[1], G)
-    for iq in range(nq):
-        P = area(G[iq], law)
-        P_out[iv, iq] = P
-        dmu_out[iv, iq] = 0.5 * q4C[iq] * _weight_of_area(P, law) * L_out[iv, iq]
-    layer_out[iv] = friction_cumulative(G, K, R, q, quad, law, cum_out[iv])
-    return cum_out[iv, nq - 1], it, res
-
-
-@njit(cache=True)
-def _aitken(Tn, T, r_prev, relax):
-    """Aitken's dynamic relaxation factor (Irons & Tuck 1969): the factor that cancels the dominant mode of the
-    last two residual vectors r = Tn - T (``r_prev`` the previous one), clamped to [_MIN_RELAX, 1]. It rescues a
-    hot contact whose map is strongly non-contractive (a cold profile heats to 10^4 K, a hot one barely heats: a
-    period-2 oscillation whose residual hardly changes, so a residual-growth rule keeps the factor near 1)."""
-    num = 0.0
-    den = 0.0
-    for i in range(T.shape[0]):
-        dr = (Tn[i] - T[i]) - r_prev[i]
-        num += r_prev[i] * dr
-        den += dr * dr
-    if den > 0.0:
-        return min(1.0, max(_MIN_RELAX, -relax * num / den))
-    return relax
-
-
-@njit(cache=True)
-def _relax_step(Tn, T, r_prev, relax):
-    """T += relax (Tn - T), keeping the residual Tn - T in ``r_prev``."""
-    for i in range(T.shape[0]):
-        r_prev[i] = Tn[i] - T[i]
-        T[i] = T[i] + relax * r_prev[i]
-
-
-#: Smallest relaxation factor of the flash iteration (Aitken's factor is clamped to [_MIN_RELAX, 1]).
-_MIN_RELAX = 1e-4
-
-
-@njit(cache=True)
-def _temperature_factors(T, T_lo, inv_dT, shift_tab, vshift_tab, f_tab, g_tab, shift, vshift, fq, gq):
-    """Shift, vertical shift and strain factors at the temperature of every node (tables on a uniform T grid;
-    ``f_tab``/``g_tab`` have one row per node, or a single row shared by all)."""
-    nq = T.shape[0]
-    per_node = f_tab.shape[0] == nq
-    for i in range(nq):
-        xT = (T[i] - T_lo) * inv_dT
-        shift[i] = _linear(shift_tab, xT)
-        vshift[i] = _linear(vshift_tab, xT)
-        r = i if per_node else 0
-        fq[i] = _linear(f_tab[r], xT)
-        gq[i] = _linear(g_tab[r], xT)
-
-
-def _flash_all(q, x, lq10, lv10, v, q4C, quad, lw0, inv_dlw, ln_are, ln_aim, ln_l, scale, law, T0, T_start, T_lo,
-               inv_dT, shift_tab, vshift_tab, f_tab, g_tab, EX, S1, S2, a_t0, D, heat_factor, x_m, tol, max_iter,
-               G_out, P_out, dmu_out, cum_out, gG_out, R_out, L_out, T_out, layer_out, mu_out, it_out, res_out):
-    for iv in prange(lv10.shape[0]):
-        mu, it, res = _flash_speed(iv, q, x, lq10, lv10, v[iv], q4C, quad, lw0, inv_dlw, ln_are, ln_aim, ln_l,
-                                   scale[iv], law, T0[iv], T_start[iv], T_lo, inv_dT, shift_tab, vshift_tab, f_tab,
-                                   g_tab, EX[iv], S1, S2, a_t0[iv], D, heat_factor[iv], x_m, tol, max_iter, G_out,
-                                   P_out, dmu_out, cum_out, gG_out, R_out, L_out, T_out, layer_out)
-        mu_out[iv] = mu
-        it_out[iv] = it
-        res_out[iv] = res
-
-
-#: Flash-temperature solver for every speed, in parallel over speeds (see :func:`_flash_speed`).
-flash_parallel = njit(cache=True, parallel=True)(_flash_all)
-#: The same on one thread, for calls with few speeds.
-flash_serial = njit(cache=True)(_flash_all)

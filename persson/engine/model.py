@@ -34,6 +34,7 @@ from .conditions import Conditions, SolverState
 from ..effects.base import Effect
 from ..errors import AccuracyWarning, ConvergenceWarning, InputError, PhysicsWarning
 from .grid import GridSettings
+from ..notes import Note
 from .results import FrictionResult
 
 __all__ = ["Model"]
@@ -222,16 +223,16 @@ class Model:
         # rubber temperatures (background + flash) beyond where the shift law was fitted: one note per call
         msg = extrapolated_shift_note(self.material, float(np.min(solved.T_q)), float(np.max(solved.T_q)))
         if msg is not None:
-            notes.append(msg)
+            notes.append(Note(msg, "extrapolated"))
             warnings.warn(msg, PhysicsWarning, stacklevel=3)
         for msg in unit_slip_notes(surface, mu_total, solved.P[:, -1]):
-            notes.append(msg)
+            notes.append(Note(msg, "input"))
             warnings.warn(msg, UnitWarning, stacklevel=3)
         if not solved.converged:
             bad = np.flatnonzero(~solved.converged_each)
             msg = (f"flash temperature did not converge at {bad.size} of {v.size} speeds "
                    f"(max residual {np.max(solved.residual):.3g} K)")
-            notes.append(msg)
+            notes.append(Note(msg, "convergence"))
             warnings.warn(msg, ConvergenceWarning, stacklevel=3)
         coarse_grid = solved.error_estimate > self.grid.tolerance
         if np.any(coarse_grid):
@@ -239,7 +240,7 @@ class Model:
             msg = (f"estimated quadrature error above the tolerance {self.grid.tolerance:g} at {bad.size} of "
                    f"{v.size} speeds (largest {np.max(solved.error_estimate):.2g}, at v = "
                    f"{v[bad[np.argmax(solved.error_estimate[bad])]]:.3g} m/s): raise GridSettings.q_per_decade")
-            notes.append(msg)
+            notes.append(Note(msg, "accuracy"))
             warnings.warn(msg, AccuracyWarning, stacklevel=3)
         out = _shape
         C_nodes = np.asarray(surface.C(solved.q), dtype=float)
@@ -325,20 +326,20 @@ def _physics_notes(original, surface, solved, mu, effects):
     effect, a surface without roughness."""
     slope = math.sqrt(max(solver.psd_moment(surface, solved.q, 3), 0.0))
     if slope == 0.0:
-        yield ("the surface has no roughness over its q range (C(q) = 0): full contact, no hysteresis friction; "
-               "check the profile or PSD")
+        yield Note("the surface has no roughness over its q range (C(q) = 0): full contact, no hysteresis "
+                   "friction; check the profile or PSD", "physics")
     elif slope > _MAX_SLOPE:
-        yield (f"rms slope {slope:.3g} over q = {solved.q[0]:.3g}..{solved.q[-1]:.3g} rad/m is far above 1: "
-               "Persson's theory assumes small slopes; check the short-wavelength cut-off q1 (an extrapolated "
-               "tail or an instrument noise floor often causes this)")
+        yield Note(f"rms slope {slope:.3g} over q = {solved.q[0]:.3g}..{solved.q[-1]:.3g} rad/m is far above 1: "
+                   "Persson's theory assumes small slopes; check the short-wavelength cut-off q1 (an extrapolated "
+                   "tail or an instrument noise floor often causes this)", "physics")
     if np.any(np.asarray(mu) > _MAX_MU):
-        yield (f"friction coefficient up to {float(np.max(mu)):.3g} (> {_MAX_MU:g}): physically implausible for "
-               "rubber; check the surface's q1, the modulus units and the pressure")
+        yield Note(f"friction coefficient up to {float(np.max(mu)):.3g} (> {_MAX_MU:g}): physically implausible "
+                   "for rubber; check the surface's q1, the modulus units and the pressure", "physics")
     q_hi, q_hi0 = float(surface.q_range[1]), float(original.q_range[1])
     if q_hi < q_hi0 * (1 - 1e-9) and not any(getattr(e, "cuts_psd_on_purpose", False) for e in effects):
         names = [e.name for e in effects if hasattr(e, "q1")] or [e.name for e in effects]
-        yield (f"the effects ({', '.join(names)}) cut the PSD at q1 = {q_hi:.4g} rad/m, below the surface's own "
-               f"q1 = {q_hi0:.4g} rad/m: the roughness between them is ignored")
+        yield Note(f"the effects ({', '.join(names)}) cut the PSD at q1 = {q_hi:.4g} rad/m, below the surface's "
+                   f"own q1 = {q_hi0:.4g} rad/m: the roughness between them is ignored", "input")
 
 
 #: Above these the result carries a PhysicsWarning (small-slope theory; friction of rubber).
@@ -350,8 +351,8 @@ def _surface_notes(surface):
     q_r = getattr(surface, "q_r", None)
     q_hi = float(surface.q_range[1])
     if getattr(surface, "extrapolated", False) or (q_r is not None and q_hi > q_r * (1 + 1e-9)):
-        yield (f"PSD tail extrapolated past the instrument reliability limit q_r = {q_r:g} rad/m "
-               f"to q1 = {q_hi:g} rad/m" if q_r is not None else "PSD tail extrapolated")
+        yield Note(f"PSD tail extrapolated past the instrument reliability limit q_r = {q_r:g} rad/m "
+                   f"to q1 = {q_hi:g} rad/m" if q_r is not None else "PSD tail extrapolated", "extrapolated")
 
 
 def _shape(a: np.ndarray, scalar: bool):

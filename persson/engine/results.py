@@ -6,6 +6,7 @@ import dataclasses
 from dataclasses import dataclass, field
 
 import numpy as np
+from ..notes import kinds
 
 __all__ = ["FrictionResult"]
 
@@ -114,6 +115,11 @@ class FrictionResult:
         notes = f", {len(self.notes)} note(s)" if self.notes else ""
         return (f"FrictionResult({speeds}, {mus}, A/A0 {area.min():.3g}..{area.max():.3g}, "
                 f"{self.q.size} q nodes{extra}{notes})")
+
+    @property
+    def note_kinds(self) -> tuple:
+        """The kind of every note (:data:`persson.notes.KINDS`; None for a plain-text note)."""
+        return kinds(self.notes)
 
     def replace(self, **changes) -> "FrictionResult":
         """Copy with fields changed (for effects' ``transform_result``)."""

@@ -4,7 +4,9 @@ r"""The numerical core behind :meth:`persson.Model.friction`: grids, tables and 
 friction, the temperature at each scale and a quadrature-error estimate per speed. The method
 (:mod:`persson.engine.kernels`): angular integrals tabulated once per call on the modulus table (exact product
 integration in log frequency), the contact weight S(P) P dG integrated exactly in G, and an embedded coarse-grid
-estimate of the q-quadrature error.
+estimate of the q-quadrature error. With a temperature effect the solver asks the effect for its settings
+(``temperature_solver_options``, a :class:`~persson.engine.conditions.TemperatureSolverOptions`) and runs the
+self-consistent flash temperature itself (:func:`run_temperature`, :func:`persson.engine.kernels.flash_parallel`).
 """
 
 from __future__ import annotations
@@ -12,19 +14,21 @@ from __future__ import annotations
 import functools
 import math
 import warnings
-import weakref
 from dataclasses import dataclass, replace
 
 import numpy as np
 from scipy.special import erfcx
 
 from . import kernels as _kernels
-from .conditions import Conditions
+from .conditions import Conditions, TemperatureSolverOptions
 from ..errors import ConvergenceWarning, InputError
 from .grid import GridSettings
+from ..notes import Note
+from .quadrature import cumulative_moment, psd_breakpoints, psd_moment, quadrature_rule  # noqa: F401 (public here too)
 from .tabulate import angular_table, relative_shifts, shift_table
 
-__all__ = ["Solved", "Prepared", "solve", "prepare", "run_plain", "run_flash"]
+__all__ = ["Solved", "Prepared", "solve", "prepare", "run_plain", "run_flash", "run_temperature",
+           "temperature_options"]
 
 #: Speeds below which a call runs on one thread (thread start-up costs more than it saves). The flash solver
 #: costs milliseconds per speed, so it goes parallel from two speeds.
@@ -90,11 +94,11 @@ class Prepared:
     lq10: np.ndarray
     C: np.ndarray
     q4C: np.ndarray
-    quad: tuple
+    quad: _kernels.QuadratureRule
     coarse: np.ndarray
-    quad_coarse: tuple
+    quad_coarse: _kernels.QuadratureRule
     coarser: np.ndarray | None  # None with the flash temperature
-    quad_coarser: tuple | None
+    quad_coarser: _kernels.QuadratureRule | None
     surface: object
     v: np.ndarray
     lv10: np.ndarray
@@ -109,7 +113,7 @@ class Prepared:
     gq: np.ndarray
     f_tab: np.ndarray
     g_tab: np.ndarray
-    law: tuple
+    law: _kernels.ContactLaw
     modulus: object = None
     s_v: np.ndarray | None = None
     b_v: np.ndarray | None = None
@@ -117,6 +121,16 @@ class Prepared:
     @property
     def n_speed(self) -> int:
         return self.v.size
+
+    @functools.cached_property
+    def kernel_nodes(self) -> _kernels.Nodes:
+        """The nodes and the PSD on them, as the kernels take them (the rule is ``quad``)."""
+        return _kernels.Nodes(q=self.q, x=self.x, lq10=self.lq10, q4C=self.q4C)
+
+    @functools.cached_property
+    def kernel_angular(self) -> _kernels.AngularTables:
+        """The angular integrals of the modulus table, as the kernels take them."""
+        return _angular_arrays(self.table)
 
     def nodes(self, idx: np.ndarray) -> "Prepared":
         """The same problem on the sub-grid of node indices ``idx`` (for the coarse-grid error estimate)."""
@@ -207,7 +221,8 @@ def _solve_once(surface, material, cond, grid, nu, gamma, thermal, correction, m
                    flash=thermal is not None, modulus=modulus, refine=refine, nodes=q_base)
     if thermal is None:
         return run_plain(prep)
-    solved = thermal.solve_temperature(prep=prep, conditions=cond, material=material)
+    options = temperature_options(thermal, prep, material)
+    solved = run_temperature(prep, options)
     T0 = prep.T0
     limit = _RISE_WIDENING * grid.max_temperature_rise
     prep_top = np.full(T0.size, float(T0.max()) + grid.max_temperature_rise)  # the table of the settings
@@ -221,21 +236,21 @@ def _solve_once(surface, material, cond, grid, nu, gamma, thermal, correction, m
         # on the first solve's nodes, so that the results merge node by node
         prep = prepare(surface, material, sub, replace(grid, max_temperature_rise=rise), nu, gamma=gamma,
                        correction=correction, flash=True, modulus=modulus, nodes=solved.q)
-        solved = _merge(solved, hot, thermal.solve_temperature(prep=prep, conditions=sub, material=material), 1)
+        solved = _merge(solved, hot, run_temperature(prep, options), 1)
         top[hot] = prep.shift_table.T_hi
     widened = (top > prep_top) & (solved.T_q.max(axis=1) > prep_top)
     if np.any(widened):
-        solved = replace(solved, notes=solved.notes + (
+        solved = replace(solved, notes=solved.notes + (Note(
             f"flash temperature up to {float(solved.T_q.max()):.4g} C at {int(widened.sum())} of {widened.size} "
             f"speeds, above the {grid.max_temperature_rise:g} K rise the shift table covers at first (widened): far "
-            "above any measured isotherm, the modulus there is the shift law's extrapolation",))
+            "above any measured isotherm, the modulus there is the shift law's extrapolation", "extrapolated"),))
     over = solved.T_q.max(axis=1) > top
     if np.any(over):
         msg = (f"flash temperature exceeds the tabulated range at {int(over.sum())} of {over.size} speeds "
                f"(T > {float(top[over].min()):g} C); the modulus is clamped there: raise "
                "GridSettings.max_temperature_rise")
         warnings.warn(msg, ConvergenceWarning, stacklevel=5)
-        solved = replace(solved, notes=solved.notes + (msg,))
+        solved = replace(solved, notes=solved.notes + (Note(msg, "convergence"),))
     return solved
 
 
@@ -383,9 +398,9 @@ def _graded_nodes(q: np.ndarray, surface, table, lw_speed: np.ndarray, ln_b: np.
     x0, h = math.log(q[0]), math.log(q[1] / q[0])
     c0 = q[0] ** 4 * float(np.asarray(surface.C(q[0]), dtype=float))
     g0 = 0.0
+    angular = _angular_arrays(table)
     for lw, lb, sc in zip(lw_speed, ln_b, scale):
-        are, aim, _ = _kernels.angular_at(math.log10(q[0]) + lw, table.lw0, 1.0 / table.dlw, table.ln_are,
-                                          table.ln_aim, table.ln_l)
+        are, aim, _ = _kernels.angular_at(math.log10(q[0]) + lw, angular)
         g0 = max(g0, 0.125 * c0 * math.exp(2.0 * lb) * (are + aim) * sc * sc)
     levels = int(min(_MAX_GRADING, max(0.0, math.ceil(math.log2(max(g0 * h, 1.0))) + 1)))
     if levels == 0:
@@ -394,26 +409,56 @@ def _graded_nodes(q: np.ndarray, surface, table, lw_speed: np.ndarray, ln_b: np.
 
 
 def run_plain(prep: Prepared) -> Solved:
-    """Hysteresis friction and contact area at the background temperature of each speed."""
+    """Hysteresis friction and contact area at the background temperature of each speed
+    (:func:`persson.engine.kernels.friction_parallel`), with the three-level error estimate."""
     nv, nq = prep.n_speed, prep.q.size
     out = _outputs(nv, nq)
     mu_c = np.empty(nv)
     mu_cc = np.empty(nv)
     kern = _kernels.friction_parallel if nv >= _PARALLEL_MIN_SPEEDS else _kernels.friction_serial
-    t = prep.table
-    kern(prep.q, prep.lq10, prep.lv10, prep.q4C, prep.quad, prep.shift, prep.vshift, prep.fq, prep.gq,
-         t.lw0, 1.0 / t.dlw, t.ln_are, t.ln_aim, t.ln_l, prep.scale, prep.law, prep.coarse, prep.quad_coarse,
-         prep.coarser, prep.quad_coarser, out["G"], out["P"], out["dmu"], out["cum"], out["dG"], out["ratio"],
-         out["loss"], out["layer"], out["mu"], mu_c, mu_cc)
+    kern(nodes=prep.kernel_nodes, rule=prep.quad,
+         speeds=_kernels.SpeedFactors(lv10=prep.lv10, scale=prep.scale, shift=prep.shift, vshift=prep.vshift,
+                                      f=prep.fq, g=prep.gq),
+         angular=prep.kernel_angular, law=prep.law, coarse=prep.coarse, coarse_rule=prep.quad_coarse,
+         coarser=prep.coarser, coarser_rule=prep.quad_coarser, out=out, mu_coarse=mu_c, mu_coarser=mu_cc)
     T_q = np.repeat(prep.T0[:, None], nq, axis=1)
     ok = np.ones(nv, dtype=bool)
-    return _solved(prep, out, T_q, _relative_error(out["mu"], mu_c, mu_cc), ok, np.zeros(nv, dtype=np.int64),
+    return _solved(prep, out, T_q, _relative_error(out.mu, mu_c, mu_cc), ok, np.zeros(nv, dtype=np.int64),
                    np.zeros(nv))
+
+
+def temperature_options(effect, prep: Prepared, material) -> TemperatureSolverOptions:
+    """The flash-temperature settings of the temperature effect ``effect`` for the problem ``prep``
+    (its ``temperature_solver_options`` hook, given the surface and the material after the transform hooks and
+    the nodes of ``prep``).
+
+    Raises
+    ------
+    InputError
+        If the effect gives no :class:`~persson.engine.conditions.TemperatureSolverOptions`.
+    """
+    options = effect.temperature_solver_options(surface=prep.surface, material=material, q=prep.q)
+    if not isinstance(options, TemperatureSolverOptions):
+        raise InputError(f"effect {getattr(effect, 'name', effect)!r}: an effect with solver_role = 'temperature' "
+                         "must return persson.effects.TemperatureSolverOptions from temperature_solver_options(), "
+                         f"got {options!r}")
+    return options
+
+
+def run_temperature(prep: Prepared, options: TemperatureSolverOptions) -> Solved:
+    """The self-consistent flash temperature of every speed of ``prep`` with the settings ``options``
+    (:func:`run_flash`): per speed the contact time d / v and the heat factor sigma0 / (rho c_p); the result
+    carries the options' notes."""
+    solved = run_flash(prep, q_m=options.q_m, a_t0=options.diffusivity * options.contact_diameter / prep.v,
+                       diffusivity=options.diffusivity, heat_factor=prep.pressure / options.heat_capacity,
+                       tol=options.tol, max_iter=int(options.max_iter))
+    return replace(solved, notes=solved.notes + options.notes) if options.notes else solved
 
 
 def run_flash(prep: Prepared, *, q_m: float, a_t0: np.ndarray, diffusivity: float,
               heat_factor: np.ndarray, tol: float, max_iter: int) -> Solved:
-    """The self-consistent flash temperature (:func:`persson.engine.kernels._flash_speed`) for every speed.
+    """The self-consistent flash temperature (:func:`persson.engine.kernels._flash_speed`) for every speed,
+    with its nodes refined where a temperature front is steep and its two-grid error estimate.
 
     Parameters
     ----------
@@ -430,10 +475,11 @@ def run_flash(prep: Prepared, *, q_m: float, a_t0: np.ndarray, diffusivity: floa
     tol : float
         Convergence tolerance on max |Delta T|, K.
     max_iter : int
+        Iterations per start of the fixed point.
     """
     args = (q_m, a_t0, diffusivity, heat_factor, tol, max_iter)
     out, T_q, it, res = _flash(prep, *args)
-    err = _flash_error(prep, out["mu"], np.where((res < tol)[:, None], T_q, prep.T0[:, None]), args)
+    err = _flash_error(prep, out.mu, np.where((res < tol)[:, None], T_q, prep.T0[:, None]), args)
     budget = _FRONT_STEP * float(np.max(np.diff(prep.lq10)))
     # one vectorised test for all speeds; only the few with a steep front pay for the per-speed solves
     jump = np.abs(np.diff(_reduced_frequency(prep, prep.x, T_q), axis=-1))
@@ -501,10 +547,10 @@ def _resolve_front(prep, s, args, budget, out, T_q, it, res, err):
             break
     at = np.searchsorted(x, prep.x)  # the base nodes are kept exactly (ln q values copied, not recomputed)
     for name in _SCALE_KEYS:
-        out[name][s] = o[name][0, at]
-    out["mu"][s], out["layer"][s] = o["mu"][0], o["layer"][0]
+        getattr(out, name)[s] = getattr(o, name)[0, at]
+    out.mu[s], out.layer[s] = o.mu[0], o.layer[0]
     T_q[s], it[s], res[s] = Ts[0, at], its[0], rs[0]
-    err[s] = _flash_error(sub, o["mu"], Ts if rs[0] < tol else np.full_like(Ts, sub.T0[0]), sub_args)[0]
+    err[s] = _flash_error(sub, o.mu, Ts if rs[0] < tol else np.full_like(Ts, sub.T0[0]), sub_args)[0]
 
 
 def _flash_error(prep: Prepared, mu: np.ndarray, T_start: np.ndarray, args: tuple) -> np.ndarray:
@@ -532,9 +578,9 @@ def _flash_error(prep: Prepared, mu: np.ndarray, T_start: np.ndarray, args: tupl
     for idx in (prep.coarse, _odd_indices(prep.q.size)):
         sub = prep.nodes(idx)
         out, _, _, res = _flash(sub, *args, T_start=T_start[:, idx])
-        mu_c = out["mu"]
+        mu_c = out.mu
         if np.any(res >= tol):  # rare: a warm start that did not converge; again from T0, as the fine solve
-            mu_c = np.where(res < tol, mu_c, _flash(sub, *args)[0]["mu"])
+            mu_c = np.where(res < tol, mu_c, _flash(sub, *args)[0].mu)
         err.append(_relative_error(mu, mu_c))
     return np.sqrt(0.5 * (err[0] ** 2 + err[1] ** 2))
 
@@ -551,132 +597,34 @@ def _flash(prep, q_m, a_t0, D, heat_factor, tol, max_iter, T_start=None):
     res = np.zeros(nv)
     EX = erfcx(2.0 * prep.q[None, :] * np.sqrt(a_t0)[:, None])
     st = prep.shift_table
-    t = prep.table
+    S1, S2 = _kernels.heat_kernel_factors(prep.q)
     kern = _kernels.flash_parallel if nv >= _PARALLEL_MIN_SPEEDS_FLASH else _kernels.flash_serial
-    kern(prep.q, prep.x, prep.lq10, prep.lv10, prep.v, prep.q4C, prep.quad, t.lw0, 1.0 / t.dlw, t.ln_are, t.ln_aim,
-         t.ln_l, prep.scale, prep.law, prep.T0, np.ascontiguousarray(T_start, dtype=float), st.T_lo, 1.0 / st.dT,
-         st.shift, st.vshift, prep.f_tab, prep.g_tab, np.ascontiguousarray(EX), *_kernels.heat_kernel_factors(prep.q),
-         np.ascontiguousarray(a_t0, dtype=float), float(D), np.ascontiguousarray(heat_factor, dtype=float),
-         math.log(q_m), float(tol), int(max_iter), out["G"], out["P"], out["dmu"], out["cum"], out["dG"], out["ratio"],
-         out["loss"], T_q, out["layer"], out["mu"], it, res)
+    kern(nodes=prep.kernel_nodes, rule=prep.quad,
+         speeds=_kernels.FlashSpeeds(lv10=prep.lv10, v=prep.v, scale=prep.scale, T0=prep.T0,
+                                           T_start=np.ascontiguousarray(T_start, dtype=float)),
+         angular=prep.kernel_angular, law=prep.law,
+         temperature=_kernels.TemperatureTables(T_lo=st.T_lo, inv_dT=1.0 / st.dT, shift=st.shift,
+                                                      vshift=st.vshift, f=prep.f_tab, g=prep.g_tab),
+         heat=_kernels.HeatSource(erfcx=np.ascontiguousarray(EX), S1=S1, S2=S2,
+                                        a_t0=np.ascontiguousarray(a_t0, dtype=float), D=float(D),
+                                        heat_factor=np.ascontiguousarray(heat_factor, dtype=float),
+                                        x_m=math.log(q_m)),
+         iteration=_kernels.FixedPoint(tol=float(tol), max_iter=int(max_iter)),
+         out=out, T_out=T_q, it_out=it, res_out=res)
     return out, T_q, it, res
 
 
-def contact_law(gamma: float, correction: str | None = None) -> tuple:
+def contact_law(gamma: float, correction: str | None = None) -> _kernels.ContactLaw:
     """The contact law the kernels take (:func:`persson.engine.kernels.area`): gamma and, for an area correction of
     :mod:`persson.contact.corrections`, its table of ln P_c on a uniform grid of ln G."""
     if correction is None or (float(gamma) == 1.0 and correction != "wang-muser"):
-        return (float(gamma), np.empty(0), 0.0, 1.0)
+        return _kernels.ContactLaw(gamma=float(gamma), ln_P=np.empty(0), ln_G0=0.0, per_ln_G=1.0)
     from ..contact.corrections import _table, check_correction
 
     correction, gamma = check_correction(correction, gamma)
     tab = _table(correction, gamma)
-    return (float(gamma), np.ascontiguousarray(tab.lnP), float(tab.lnG[0]), float(tab.inv_step))
-
-
-def quadrature_rule(surface, x: np.ndarray, n_gauss: int = 6) -> tuple:
-    """:func:`_quadrature_rule`, memoised per surface object and nodes (a pure function of both: repeated calls
-    on one surface, as in fits and sweeps, skip the PSD quadrature)."""
-    return _per_surface(surface, ("rule", x.tobytes(), n_gauss), lambda: _quadrature_rule(surface, x, n_gauss))
-
-
-def _per_surface(surface, key, compute):
-    """``compute()``, memoised under ``key`` for ``surface`` (for pure functions of the surface and the key)."""
-    try:
-        memo = _RULES.setdefault(surface, {})
-    except TypeError:  # not weak-referenceable: no memo
-        return compute()
-    value = memo.get(key)
-    if value is None:
-        if len(memo) > 32:
-            memo.clear()
-        value = memo[key] = compute()
-    return value
-
-
-#: Quadrature rules and PSD moments by surface (weakly: they live as long as their surface) and nodes.
-_RULES: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
-
-
-def _quadrature_rule(surface, x: np.ndarray, n_gauss: int = 6) -> tuple:
-    r"""The wavevector quadrature on the nodes ``x`` = ln q: (W, stencil, piece_start, Lb, Wp).
-
-    The rough factor :math:`c = q^4 C(q)` of the G integrand is integrated exactly (Gauss-Legendre, ``n_gauss``
-    points, between the PSD's breakpoints: a tabulated PSD is a power law between its rows, a roll-off has a kink)
-    against the Lagrange basis :math:`\ell_m` of the quadratic in ln q through the nodes ``stencil[i] + m``
-    (i, i+1, i+2; i-1, i, i+1 for the last interval):
-
-    * ``W[i, m]`` = :math:`\int_{x_i}^{x_{i+1}} \ell_m c\, dx`, the weights of G (see
-      :func:`persson.engine.kernels.cumulative_weighted`);
-    * the intervals are cut at the PSD's breakpoints into pieces (``piece_start[i]`` .. ``piece_start[i+1]`` - 1 are
-      interval i's); for each piece p and its start, middle and end point k, ``Wp[p, k, m]`` =
-      :math:`\int_{x_i}^{x_k} \ell_m c\, dx` (G there) and ``Lb[p, k, m]`` = :math:`\ell_m(x_k)`, used by
-      :func:`persson.engine.kernels.interval_node_weights`.
-
-    So G is exact for any PSD to the interpolation of the smooth angular factor, and the friction integrand is
-    never interpolated across a kink of the PSD.
-    """
-    n = x.size
-    st = np.where(np.arange(n - 1) + 2 < n, np.arange(n - 1), np.arange(n - 1) - 1).astype(np.int64)
-    br = np.log(psd_breakpoints(surface))
-    br = br[(br > x[0]) & (br < x[-1])]
-    edges = np.unique(np.concatenate([x, br]))
-    edges = edges[np.concatenate([[True], np.diff(edges) > 1e-12 * np.abs(edges[1:]).clip(1.0)])]
-    lo, hi = edges[:-1], edges[1:]
-    mid = 0.5 * (lo + hi)
-    interval = np.clip(np.searchsorted(x, mid) - 1, 0, n - 2)
-    a = st[interval]
-    x0, x1, x2 = x[a], x[a + 1], x[a + 2]
-
-    def basis(pts):  # (..., 3): the quadratic's Lagrange basis of each piece's interval at pts
-        b0 = (pts - x1[..., None]) * (pts - x2[..., None]) / ((x0 - x1) * (x0 - x2))[..., None]
-        b1 = (pts - x0[..., None]) * (pts - x2[..., None]) / ((x1 - x0) * (x1 - x2))[..., None]
-        b2 = (pts - x0[..., None]) * (pts - x1[..., None]) / ((x2 - x0) * (x2 - x1))[..., None]
-        return np.stack([b0, b1, b2], axis=-1)
-
-    g, w = _gauss_legendre(n_gauss)
-    seg = np.stack([np.stack([lo, mid], -1), np.stack([mid, hi], -1)], axis=1)  # (np, 2 halves, [from, to])
-    pts = 0.5 * (seg[..., 0] + seg[..., 1])[..., None] + 0.5 * (seg[..., 1] - seg[..., 0])[..., None] * g
-    wts = 0.5 * (seg[..., 1] - seg[..., 0])[..., None] * w                 # (np, 2, n_gauss)
-    qq = np.exp(pts)
-    c = qq**4 * np.asarray(surface.C(qq.ravel()), dtype=float).reshape(qq.shape)
-    # integral of l_m c over each half piece, (np, 2, 3)
-    half = np.stack([np.sum((wts[:, k, :] * c[:, k, :])[..., None] * basis(pts[:, k, :]), axis=1)
-                     for k in range(2)], axis=1)
-    piece = half.sum(axis=1)                                                # (np, 3)
-    cum = np.cumsum(piece, axis=0) - piece                                  # before each piece, all intervals
-    start = np.searchsorted(interval, np.arange(n))                         # first piece of each interval
-    before = cum - cum[start[interval]]                                     # before each piece, its interval
-    Wp = np.stack([before, before + half[:, 0], before + piece], axis=1)    # (np, 3 points, 3)
-    Lb = basis(np.stack([lo, mid, hi], axis=-1))                            # (np, 3 points, 3)
-    W = np.zeros((n - 1, 3))
-    np.add.at(W, interval, piece)
-    return (np.ascontiguousarray(W), st, np.ascontiguousarray(start, dtype=np.int64), np.ascontiguousarray(Lb),
-            np.ascontiguousarray(Wp))
-
-
-def psd_moment(surface, q: np.ndarray, n: int) -> float:
-    """Spectral moment 2 pi int_{q0}^{q1} q^n C(q) dq over the nodes' range (see :func:`cumulative_moment`),
-    memoised per surface object and nodes like :func:`quadrature_rule`."""
-    q = np.asarray(q, dtype=float)
-    return _per_surface(surface, ("moment", q.tobytes(), int(n)),
-                        lambda: float(cumulative_moment(surface, q, n)[-1]))
-
-
-def cumulative_moment(surface, q: np.ndarray, n: int, n_gauss: int = 6) -> np.ndarray:
-    """2 pi int_{q0}^{q_i} q^n C(q) dq at every node (the rms slope squared up to q_i for n = 3), by
-    Gauss-Legendre between the nodes and the PSD's breakpoints (exact to rounding for power-law pieces)."""
-    x = np.log(np.asarray(q, dtype=float))
-    br = np.log(psd_breakpoints(surface))
-    edges = np.unique(np.concatenate([x, br[(br > x[0]) & (br < x[-1])]]))
-    g, w = _gauss_legendre(n_gauss)
-    lo, hi = edges[:-1, None], edges[1:, None]
-    pts = 0.5 * (lo + hi) + 0.5 * (hi - lo) * g
-    qq = np.exp(pts)
-    f = qq ** (n + 1) * np.asarray(surface.C(qq.ravel()), dtype=float).reshape(qq.shape)
-    piece = 2.0 * math.pi * np.sum(0.5 * (hi - lo) * w * f, axis=1)
-    cum = np.concatenate([[0.0], np.cumsum(piece)])
-    return cum[np.searchsorted(edges, x)]
+    return _kernels.ContactLaw(gamma=float(gamma), ln_P=np.ascontiguousarray(tab.lnP), ln_G0=float(tab.lnG[0]),
+                               per_ln_G=float(tab.inv_step))
 
 
 def _factors(effect, slope, T, shape):
@@ -690,29 +638,26 @@ def _factors(effect, slope, T, shape):
     return f, g
 
 
-def psd_breakpoints(surface) -> np.ndarray:
-    """Wavevectors (rad/m) where the PSD or its log-log slope jumps: ``surface.breakpoints()`` when the surface
-    provides it (tabulated PSDs: their rows; a self-affine PSD with a plateau: its roll-off), else none."""
-    f = getattr(surface, "breakpoints", None)
-    if f is None:
-        return np.empty(0)
-    b = np.asarray(f() if callable(f) else f, dtype=float).ravel()
-    return b[np.isfinite(b) & (b > 0)]
-
-
 # ---------------------------------------------------------------------------------------------------------
-def _outputs(nv: int, nq: int) -> dict:
-    return {k: np.empty((nv, nq)) for k in _SCALE_KEYS} | {"mu": np.empty(nv), "layer": np.empty(nv)}
+def _outputs(nv: int, nq: int) -> _kernels.Outputs:
+    """Empty output arrays of the kernels for ``nv`` speeds on ``nq`` nodes."""
+    return _kernels.Outputs(**{k: np.empty((nv, nq)) for k in _SCALE_KEYS}, mu=np.empty(nv), layer=np.empty(nv))
 
 
 #: The kernels' per-scale outputs (see :func:`_outputs`).
 _SCALE_KEYS = ("G", "P", "dmu", "cum", "dG", "ratio", "loss")
 
 
+def _angular_arrays(table) -> _kernels.AngularTables:
+    """The angular integrals of a :class:`~persson.engine.tabulate.AngularTable` as the kernels take them."""
+    return _kernels.AngularTables(lw0=table.lw0, inv_dlw=1.0 / table.dlw, ln_are=table.ln_are,
+                                  ln_aim=table.ln_aim, ln_l=table.ln_l)
+
+
 def _solved(prep, out, T_q, err, ok, it, res) -> Solved:
-    return Solved(q=prep.q, G=out["G"], P=out["P"], T_q=T_q, dmu=out["dmu"], loss=out["loss"], dG=out["dG"],
-                  ratio=out["ratio"], mu_cumulative=out["cum"], mu=out["mu"], error_estimate=err,
-                  excited_layer=np.where(out["mu"] > 0, out["layer"] / np.where(out["mu"] > 0, out["mu"], 1.0),
+    return Solved(q=prep.q, G=out.G, P=out.P, T_q=T_q, dmu=out.dmu, loss=out.loss, dG=out.dG,
+                  ratio=out.ratio, mu_cumulative=out.cum, mu=out.mu, error_estimate=err,
+                  excited_layer=np.where(out.mu > 0, out.layer / np.where(out.mu > 0, out.mu, 1.0),
                                          1.0 / prep.q[0]),
                   converged=bool(np.all(ok)), converged_each=np.asarray(ok, dtype=bool), iterations=it,
                   residual=res)
@@ -744,15 +689,6 @@ def _relative_error(mu: np.ndarray, mu_coarse: np.ndarray, mu_coarser: np.ndarra
 
 _PER_HALVING_MAX = 16.0
 _RICHARDSON = math.sqrt(21.0)
-
-
-@functools.lru_cache(maxsize=4)
-def _gauss_legendre(n: int) -> tuple[np.ndarray, np.ndarray]:
-    # pure function of n, cached (leggauss costs a millisecond at every call otherwise)
-    g, w = np.polynomial.legendre.leggauss(n)
-    g.setflags(write=False)
-    w.setflags(write=False)
-    return g, w
 
 
 def _coarser_indices(n: int) -> np.ndarray:

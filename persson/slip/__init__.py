@@ -8,7 +8,8 @@ The wing reads bottom-up:
   pressure; :mod:`~persson.slip.brush_fit`: the Stribeck brush fitted to a measured curve alone;
   :mod:`~persson.slip.brush_identify`: the two-coefficient brush identified from a Magic Formula;
 * :mod:`~persson.slip.heating` (with :mod:`~persson.slip.heating_tables` and the numba kernels of
-  :mod:`~persson.slip.heating_kernels`): the :class:`PatchHeating` effect, temperature and pressure along the patch;
+  :mod:`~persson.slip.heating_kernels` with the named tuples they take, :mod:`~persson.slip.heating_arrays`): the
+  :class:`PatchHeating` effect, temperature and pressure along the patch;
 * :mod:`~persson.slip.curve`: :func:`mu_slip` and :func:`predict_slip` from a :class:`persson.Model`;
   :mod:`~persson.slip.road`: :func:`road_model`, the model with both kinds of frictional heating for road speeds,
   and the published reference curves (Magic Formula, Burckhardt);

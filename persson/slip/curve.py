@@ -13,6 +13,7 @@ from materials.shift import SHIFT_RANGE_NOTE
 
 from .._checks import finite_array, number, positive
 from ..errors import InputError, PhysicsWarning
+from ..notes import kinds
 from ._arrays import _broadcast, _slip_array, _speed_array
 from .brush import _a_of, _brush
 from .contact import Contact
@@ -86,6 +87,11 @@ class SlipResult:
     notes: tuple = ()
     citations: tuple = ()
     patch: object = None
+
+    @property
+    def note_kinds(self) -> tuple:
+        """The kind of every note (:data:`persson.notes.KINDS`; None for a plain-text note)."""
+        return kinds(self.notes)
 
     @property
     def slide_fraction(self):

@@ -62,6 +62,8 @@ from frictioncite import doi
 
 from ..effects.base import Effect, Parameter
 from ..errors import InputError
+from ..notes import Note, kinds
+from .heating_arrays import Patch, PatchRows
 from .heating_kernels import _march_parallel, _march_serial
 from .heating_tables import _Tables, _speed_nodes, _unit_weights
 from .references import BLOK_1937, CARSLAW_JAEGER, JAEGER_1942, PERSSON_TREAD_2026
@@ -184,8 +186,8 @@ class PatchHeating(Effect):
         return a / (a + self.counter_effusivity * np.sqrt(V))
 
     def transform_result(self, result):
-        note = ("patch_heating acts on the contact patch (persson.slip.mu_slip, validation.predict); this result "
-                "is the local friction at the given temperature and pressure")
+        note = Note("patch_heating acts on the contact patch (persson.slip.mu_slip, validation.predict); this "
+                    "result is the local friction at the given temperature and pressure", "input")
         if note in result.notes:
             return result
         return result.replace(notes=tuple(result.notes) + (note,))
@@ -235,6 +237,11 @@ class PatchSolution:
     engine_calls: int
     converged: bool
     notes: tuple
+
+    @property
+    def note_kinds(self) -> tuple:
+        """The kind of every note (:data:`persson.notes.KINDS`; None for a plain-text note)."""
+        return kinds(self.notes)
 
 
 # =========================================================================================================
@@ -346,18 +353,17 @@ def patch_friction(model, heating: PatchHeating, contact, slip, speed, temperatu
             tables.update(engine=ekey, key=cache_key, value=tab, model=model)
     xi = np.ascontiguousarray(contact._xi)
     gg = np.ascontiguousarray(contact._g)
-    W = _unit_weights(xi.size)
-    rows = sweep.astype(np.int64)
-    lvs = np.log(vs)
+    rows = PatchRows(sweep=sweep.astype(np.int64), log_speed=np.log(vs), stick_slope=a, heat_factor=lam)
+    patch = Patch(xi=xi, g=gg, abel=_unit_weights(xi.size))
     # each row costs about N^2 operations (the Abel sums): threads pay off from a few rows on
     march = _march_parallel if n >= _PARALLEL_MIN_ROWS else _march_serial
     if heated and not tab.has_heated():
         # the heating with the friction held at T0 bounds the temperature range the rows need (a kept table
         # with heated nodes goes straight to the march below, which grows it if the patch is hotter)
-        pre = march(rows, lvs, a, lam, xi, gg, W, *tab.args(), *tab.targs(), False)
-        tab.fill(pre[2], vs, sweep)
+        pre = march(rows=rows, patch=patch, lattice=tab.args(), axis=tab.targs(), profiles=False)
+        tab.fill(pre.rise, vs, sweep)
     for _ in range(6):
-        out = march(rows, lvs, a, lam, xi, gg, W, *tab.args(), *tab.targs(), bool(profiles))
+        out = march(rows=rows, patch=patch, lattice=tab.args(), axis=tab.targs(), profiles=bool(profiles))
         mu, xc, rise, umax, Tprof, shear, muprof = out
         over = np.zeros(keys.shape[0], dtype=bool)
         for c in range(keys.shape[0]):
@@ -369,12 +375,12 @@ def patch_friction(model, heating: PatchHeating, contact, slip, speed, temperatu
     converged = tab.converged
     if over.any():
         converged = False
-        notes.append(f"patch_heating: the friction table did not reach the patch temperature at {int(over.sum())} "
-                     f"condition(s); evaluated at the table's top")
+        notes.append(Note(f"patch_heating: the friction table did not reach the patch temperature at "
+                          f"{int(over.sum())} condition(s); evaluated at the table's top", "accuracy"))
     hot = [c for c in range(keys.shape[0]) if float(np.max(rise[sweep == c])) > heating.max_rise * (1 + 1e-9)]
     if hot:
-        notes.append(f"patch_heating: background temperature rise above the table ({heating.max_rise:g} K cap) at "
-                     f"{len(hot)} condition(s); evaluated at the cap")
+        notes.append(Note(f"patch_heating: background temperature rise above the table ({heating.max_rise:g} K cap) "
+                          f"at {len(hot)} condition(s); evaluated at the cap", "accuracy"))
     mu_loc = tab.mu_at_sigma0(vs, sweep)
     # the engine's warnings, recorded while the table was filled, reach the caller as warnings (once each) as
     # well as in the notes

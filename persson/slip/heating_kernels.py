@@ -1,11 +1,612 @@
-"""Numba kernels of the patch-heating march (interpolation in the friction lattice and the march along the patch)."""
+r"""numba kernels of patch heating: the march along the contact patch and the friction lattice it reads.
+
+The march (:func:`_march_row`, one row of :func:`persson.slip.patch_friction`) takes named steps: the speed
+stencil of the row in the lattice (:func:`_speed_stencil`) and the top of its temperature table
+(:func:`_table_top`), the friction at T0 along the patch (:func:`_stick_limit`), the end of the stick zone
+(:func:`_stick_edge`), the points that slide (:func:`_slide_points`), and for each of them the known part of the
+Abel integral (:func:`_abel_known_part`) and the temperature there, the root of the implicit heat balance
+(:func:`_node_temperature`); then the wheel's friction (:func:`_wheel_friction`) and the profiles. The friction at
+a (speed, pressure, temperature) point is interpolated in the tables of :class:`persson.slip.heating_tables._Tables`
+(tensor-product Lagrange interpolation, :func:`_mu_at`). The arrays come grouped in named tuples, each field
+documented there (:mod:`persson.slip.heating_arrays`): :class:`~persson.slip.heating_arrays.PatchRows`,
+:class:`~persson.slip.heating_arrays.Patch`, :class:`~persson.slip.heating_arrays.FrictionLattice`,
+:class:`~persson.slip.heating_arrays.TemperatureAxis`. The kernels that call one another live in this one file:
+numba caches a kernel by its own source file only. The helpers the march calls at every patch node take their
+arrays out of the tuples once per row and are inlined into it (``inline="always"``): numba counts references at
+every access to a tuple's field, which in the loop over the nodes cost a fifth of the march's time.
+"""
 
 from __future__ import annotations
 
 import numpy as np
 from numba import njit, prange
 
+from .heating_arrays import MarchOutputs
 
+
+# ==================================================================================================== march
+def _march_all(rows, patch, lattice, axis, profiles):
+    """March along the patch for every row (see :func:`persson.slip.patch_friction`), one row per iteration of a
+    ``prange`` loop whose body only calls :func:`_march_row` (numba's parallel loops lose writes made through a
+    named tuple's field in the body itself).
+
+    Parameters
+    ----------
+    rows : PatchRows
+        The rows.
+    patch : Patch
+        The patch nodes and pressure.
+    lattice : FrictionLattice
+        The friction tables.
+    axis : TemperatureAxis
+        Their temperature coordinate.
+    profiles : bool
+        Whether to fill the per-node profiles.
+
+    Returns
+    -------
+    MarchOutputs
+    """
+    n = rows.sweep.size
+    N = patch.xi.size
+    m = n if profiles else 1
+    out = MarchOutputs(np.empty(n), np.empty(n), np.zeros(n), np.zeros(n), np.zeros((m, N)), np.zeros((m, N)),
+                       np.zeros((m, N)))
+    g_first, g_weights = _pressure_stencils(patch.g, lattice.g_nodes)
+    for r in prange(n):
+        _march_row(r, rows, patch, lattice, axis, profiles, g_first, g_weights, out)
+    return out
+
+
+#: The march on every row in parallel (prange over the rows), and on one thread for few rows.
+_march_parallel = njit(cache=True, parallel=True)(_march_all)
+_march_serial = njit(cache=True)(_march_all)
+
+
+@njit(cache=True)
+def _march_row(r, rows, patch, lattice, axis, profiles, g_first, g_weights, out):
+    """March along the patch for row r: the stick zone, then the temperature and shear at every sliding point,
+    solved point by point from the leading edge; writes the row's outputs.
+
+    Parameters
+    ----------
+    r : int
+        The row.
+    rows : PatchRows
+        The rows.
+    patch : Patch
+        The patch nodes and pressure.
+    lattice : FrictionLattice
+        The friction tables.
+    axis : TemperatureAxis
+        Their temperature coordinate.
+    profiles : bool
+        Whether to fill the per-node profiles.
+    g_first : ndarray of int64 (N,)
+        First pressure node of the stencil of every patch node (:func:`_pressure_stencils`).
+    g_weights : ndarray (N + 1, 4)
+        Its interpolation weights.
+    out : MarchOutputs
+        Row r is filled.
+    """
+    xi = patch.xi
+    g = patch.g
+    N = xi.size
+    h = xi[1] - xi[0]
+    w_speed = np.empty(4)
+    w_temperature = np.empty(4)
+    mu_T0 = np.empty(N)
+    c = rows.sweep[r]
+    a = rows.stick_slope[r]
+    T0 = axis.T0[c]
+    iv, mv = _speed_stencil(lattice, c, rows.log_speed[r], w_speed)
+    mg = min(4, lattice.g_nodes.size)
+    y_top = _table_top(lattice.n_temperature, iv, mv, axis.h)
+    _stick_limit(iv, w_speed, mv, g_first, g_weights, mg, lattice, w_temperature, mu_T0)
+    pure = not np.isfinite(a)
+    i, t = _stick_edge(mu_T0, g, xi, a, pure)
+    if i < 0:  # the whole patch sticks
+        out.mu[r] = 0.5 * a
+        out.stick_fraction[r] = 1.0
+        if profiles:
+            _write_profiles(r, T0, a, xi, mu_T0, N, 0, np.empty(0), np.empty(0), np.empty(0), out)
+        return
+    xc = 0.0 if pure else xi[i - 1] + t * h
+    # the sliding points: x_c when it lies between nodes, then the nodes behind it
+    y = np.empty(N + 1)
+    g_slide = np.empty(N + 1)
+    shear = np.empty(N + 1)
+    T_slide = np.empty(N + 1)
+    n_slide, first_node, edge_point = _slide_points(i, t, xc, pure, iv, w_speed, mv, mg, lattice, w_temperature,
+                                                    mu_T0, xi, g, y, g_slide, shear)
+    T_slide[0] = T0
+    h_first = y[1] - y[0] if n_slide > 1 else h
+    sqrt_h = np.sqrt(h)
+    top_use = 0.0
+    lam = rows.heat_factor[r]
+    abel = patch.abel
+    # the arrays out of the tuples once, not at every point (numba counts references at every access)
+    values, value_offset, n_temperature = lattice.values, lattice.value_offset, lattice.n_temperature
+    y_fine, cap, dT_fine, h_y, mu_max = axis.y_fine, axis.cap, axis.dT_fine, axis.h, axis.mu_max[c]
+    for k in range(1, n_slide):
+        known, own_weight = _abel_known_part(k, y, shear, abel, sqrt_h, edge_point, h_first)
+        # the temperature at point k solves T = T0 + lam (known + own_weight g mu(T))
+        j = k + first_node - (1 if edge_point else 0)  # the patch node of point k
+        base = T0 + lam * known
+        coef = lam * own_weight * g_slide[k]
+        T = _node_temperature(base, coef, T_slide[k - 1], T0, mu_max, c, iv, w_speed, mv, g_first[j], g_weights[j],
+                              mg, values, value_offset, n_temperature, y_fine, cap, dT_fine, h_y, w_temperature)
+        x = _x_at(y_fine, c, T - T0, cap, dT_fine, h_y)
+        mu = _mu_at(iv, w_speed, mv, g_first[j], g_weights[j], mg, x, values, value_offset, n_temperature,
+                    w_temperature)
+        use = _table_use(x, h_y, y_top)
+        if use > top_use:
+            top_use = use
+        T_slide[k] = T
+        shear[k] = mu * g_slide[k]
+    out.mu[r] = _wheel_friction(y, shear, n_slide, a, xc, pure)
+    out.stick_fraction[r] = xc
+    rise = 0.0
+    for k in range(n_slide):
+        if T_slide[k] - T0 > rise:
+            rise = T_slide[k] - T0
+    out.rise[r] = rise
+    out.table_use[r] = top_use
+    if profiles:
+        _write_profiles(r, T0, a, xi, mu_T0, first_node, first_node - (1 if edge_point else 0), T_slide, shear,
+                        g_slide, out)
+
+
+@njit(cache=True)
+def _pressure_stencils(g, g_nodes):
+    """The pressure interpolation stencil of every patch node (pressures below the first node taken there).
+
+    Parameters
+    ----------
+    g : ndarray (N,)
+        p / sigma0 at the patch nodes.
+    g_nodes : ndarray (n_g,)
+        The lattice's pressure nodes.
+
+    Returns
+    -------
+    (ndarray of int64 (N,), ndarray (N + 1, 4))
+        First stencil node and weights of every patch node.
+    """
+    N = g.size
+    glo = g_nodes[0]
+    ng = g_nodes.size
+    first = np.empty(N, dtype=np.int64)
+    weights = np.empty((N + 1, 4))
+    for j in range(N):
+        gj = g[j] if g[j] > glo else glo
+        first[j] = _lagrange(g_nodes, 0, ng, gj, weights[j])
+    return first, weights
+
+
+@njit(cache=True)
+def _speed_stencil(lattice, c, log_speed, w_speed):
+    """The speed nodes of sweep c around the row's speed and their Lagrange weights.
+
+    Parameters
+    ----------
+    lattice : FrictionLattice
+        The friction tables.
+    c : int
+        The sweep.
+    log_speed : float
+        ln v_s of the row, m/s.
+    w_speed : ndarray (4,)
+        Filled with the weights.
+
+    Returns
+    -------
+    (int, int)
+        The first speed node (global index) and the number of nodes (4, or fewer in a short sweep).
+    """
+    nv = lattice.v_offset[c + 1] - lattice.v_offset[c]
+    iv = _lagrange(lattice.log_speed, lattice.v_offset[c], nv, log_speed, w_speed)
+    return iv, (4 if nv >= 4 else nv)
+
+
+@njit(cache=True)
+def _table_top(n_temperature, iv, mv, h):
+    """The top of the temperature table at a row's speed: the lowest over its speed nodes, in y.
+
+    Parameters
+    ----------
+    n_temperature : ndarray of int64 (n_v,)
+        Temperature nodes of every speed node.
+    iv : int
+        First speed node of the stencil.
+    mv : int
+        Speed nodes in the stencil.
+    h : float
+        Spacing of the lattice in y, decades.
+
+    Returns
+    -------
+    float
+        y of the top, decades (0: only the T0 slice).
+    """
+    y_top = (n_temperature[iv] - 1) * h
+    for k in range(1, mv):
+        yk = (n_temperature[iv + k] - 1) * h
+        if yk < y_top:
+            y_top = yk
+    return y_top
+
+
+@njit(cache=True)
+def _stick_limit(iv, w_speed, mv, g_first, g_weights, mg, lattice, w_temperature, mu_T0):
+    """The friction at T0 (the stick limit) at every patch node.
+
+    Parameters
+    ----------
+    iv : int
+        First speed node of the row's stencil.
+    w_speed : ndarray (4,)
+        Its weights.
+    mv : int
+        Speed nodes in the stencil.
+    g_first : ndarray of int64 (N,)
+        First pressure node of every patch node's stencil.
+    g_weights : ndarray (N + 1, 4)
+        Their weights.
+    mg : int
+        Pressure nodes in a stencil.
+    lattice : FrictionLattice
+        The friction tables.
+    w_temperature : ndarray (4,)
+        Scratch for the temperature weights.
+    mu_T0 : ndarray (N,)
+        Filled with the friction at T0.
+    """
+    # the arrays out of the tuple once, not at every node (numba counts references at every access)
+    values, value_offset, n_temperature = lattice.values, lattice.value_offset, lattice.n_temperature
+    for j in range(mu_T0.size):
+        mu_T0[j] = _mu_at(iv, w_speed, mv, g_first[j], g_weights[j], mg, 0.0, values, value_offset, n_temperature,
+                          w_temperature)
+
+
+@njit(cache=True)
+def _stick_edge(mu_T0, g, xi, a, pure):
+    """The end of the stick zone: the first node where the bristle stress a x / l reaches the friction limit
+    mu(T0) p / sigma0, and where between that node and the one before the difference changes sign (linear).
+
+    Parameters
+    ----------
+    mu_T0 : ndarray (N,)
+        Friction at T0 at the nodes.
+    g : ndarray (N,)
+        p / sigma0 at the nodes.
+    xi : ndarray (N,)
+        The nodes x / l.
+    a : float
+        The bristle stress slope (:class:`~persson.slip.heating_arrays.PatchRows`).
+    pure : bool
+        Pure sliding: no stick zone.
+
+    Returns
+    -------
+    (int, float)
+        The first sliding node i (0 for pure sliding, -1 when the whole patch sticks) and the fraction t in
+        [0, 1] of the interval (i - 1, i) where the stick zone ends.
+    """
+    if pure:
+        return 0, 0.0
+    N = xi.size
+    d = np.empty(N)
+    for j in range(N):
+        d[j] = mu_T0[j] * g[j] - a * xi[j]
+    i = -1
+    for j in range(1, N):
+        if d[j] <= 0.0:
+            i = j
+            break
+    if i < 0:
+        return -1, 0.0
+    t = 0.0
+    den = d[i - 1] - d[i]
+    if den > 0.0:
+        t = d[i - 1] / den
+    return i, min(max(t, 0.0), 1.0)
+
+
+@njit(cache=True)
+def _slide_points(i, t, xc, pure, iv, w_speed, mv, mg, lattice, w_temperature, mu_T0, xi, g, y, g_slide, shear):
+    """The sliding points: the stick edge x_c when it lies between nodes, then the nodes from i on, with their
+    pressure and the shear of the first point (at T0: no heat has been produced ahead of it).
+
+    Parameters
+    ----------
+    i : int
+        The first sliding node.
+    t : float
+        Fraction of the interval (i - 1, i) where the stick zone ends.
+    xc : float
+        x_c / l.
+    pure : bool
+        Pure sliding.
+    iv : int
+        First speed node of the row's stencil.
+    w_speed : ndarray (4,)
+        Its weights.
+    mv : int
+        Speed nodes in the stencil.
+    mg : int
+        Pressure nodes in a stencil.
+    lattice : FrictionLattice
+        The friction tables.
+    w_temperature : ndarray (4,)
+        Scratch for the temperature weights.
+    mu_T0 : ndarray (N,)
+        Friction at T0 at the nodes.
+    xi : ndarray (N,)
+        The nodes x / l.
+    g : ndarray (N,)
+        p / sigma0 at the nodes.
+    y : ndarray (N + 1,)
+        Filled with x / l of the sliding points.
+    g_slide : ndarray (N + 1,)
+        Filled with p / sigma0 at them.
+    shear : ndarray (N + 1,)
+        Element 0 is filled with the shear / sigma0 of the first point.
+
+    Returns
+    -------
+    (int, int, bool)
+        The number of sliding points, the first sliding node and whether point 0 is the stick edge between nodes.
+    """
+    N = xi.size
+    edge_point = (not pure) and xi[i] - xc > 1e-12
+    n_slide = 0
+    if edge_point:
+        gc = g[i - 1] + t * (g[i] - g[i - 1])
+        y[0] = xc
+        g_slide[0] = gc
+        n_slide = 1
+        glo = lattice.g_nodes[0]
+        w_edge = np.empty(4)
+        ig = _lagrange(lattice.g_nodes, 0, lattice.g_nodes.size, gc if gc > glo else glo, w_edge)
+        shear[0] = _mu_at(iv, w_speed, mv, ig, w_edge, mg, 0.0, lattice.values, lattice.value_offset,
+                          lattice.n_temperature, w_temperature) * gc
+    first_node = 0 if pure else i
+    for j in range(first_node, N):
+        y[n_slide] = xi[j]
+        g_slide[n_slide] = g[j]
+        n_slide += 1
+    if not edge_point:
+        shear[0] = mu_T0[first_node] * g_slide[0]
+    return n_slide, first_node, edge_point
+
+
+@njit(cache=True, inline="always")
+def _abel_known_part(k, y, shear, abel, sqrt_h, edge_point, h_first):
+    r"""The Abel integral :math:`\int_{y_0}^{y_k} \tau(y')/\sqrt{y_k - y'}\,dy'` at sliding point k, split into
+    the part of the points before k (known) and the weight of the unknown shear at k itself; the shear is linear
+    between points, the kernel integrated exactly (:func:`_segment_weights`).
+
+    Parameters
+    ----------
+    k : int
+        The sliding point, >= 1.
+    y : ndarray (N + 1,)
+        x / l of the sliding points (uniform after point 0 or 1).
+    shear : ndarray (N + 1,)
+        Shear / sigma0 at the points before k.
+    abel : ndarray (2, N)
+        The unit Abel weights of the uniform spacing (:class:`~persson.slip.heating_arrays.Patch`).
+    sqrt_h : float
+        sqrt of the node spacing.
+    edge_point : bool
+        Whether point 0 is the stick edge between nodes (its segment is shorter).
+    h_first : float
+        Length of the first segment, y[1] - y[0].
+
+    Returns
+    -------
+    (float, float)
+        The known part and the weight of the shear at k.
+    """
+    known = 0.0
+    own = 0.0
+    start = 0
+    if edge_point:
+        wl, wr = _segment_weights(y[k] - y[0], y[k] - y[1], h_first)
+        if k == 1:
+            known += wl * shear[0]
+            own = wr
+        else:
+            known += wl * shear[0] + wr * shear[1]
+        start = 1
+    for jj in range(start, k):
+        dd = k - jj
+        if jj + 1 == k:
+            known += sqrt_h * abel[0, dd] * shear[jj]
+            own = sqrt_h * abel[1, dd]
+        else:
+            known += sqrt_h * (abel[0, dd] * shear[jj] + abel[1, dd] * shear[jj + 1])
+    return known, own
+
+
+@njit(cache=True, inline="always")
+def _node_temperature(base, coef, T_prev, T0, mu_max, c, iv, w_speed, mv, ig, w_pressure, mg, values, value_offset,
+                      n_temperature, y_fine, cap, dT_fine, h, w_temperature):
+    """The temperature at a sliding point: the root of F(T) = T - base - coef mu(T), by the secant method from
+    the previous point's temperature, with bisection on [base, base + 1.5 coef mu_max] where the secant fails.
+
+    Parameters
+    ----------
+    base : float
+        T0 + Lambda (known part of the Abel integral), deg C.
+    coef : float
+        Lambda times the weight of the point's own shear times p / sigma0 there, K.
+    T_prev : float
+        The temperature of the previous point, deg C (the first guess).
+    T0 : float
+        Background temperature of the sweep, deg C.
+    mu_max : float
+        Largest friction in the sweep's table (bounds the bisection).
+    c : int
+        The sweep.
+    iv : int
+        First speed node of the row's stencil.
+    w_speed : ndarray (4,)
+        Its weights.
+    mv : int
+        Speed nodes in the stencil.
+    ig : int
+        First pressure node of the point's stencil.
+    w_pressure : ndarray (4,)
+        Its weights.
+    mg : int
+        Pressure nodes in a stencil.
+    values, value_offset, n_temperature : ndarray
+        The friction lattice (:class:`~persson.slip.heating_arrays.FrictionLattice`).
+    y_fine : ndarray (n_sweeps, n_fine)
+        Its temperature coordinate y at T0 + k ``dT_fine`` (:class:`~persson.slip.heating_arrays.TemperatureAxis`).
+    cap : float
+        Largest rise tabulated, K.
+    dT_fine : float
+        Step of ``y_fine``, K.
+    h : float
+        Spacing of the lattice in y, decades.
+    w_temperature : ndarray (4,)
+        Scratch for the temperature weights.
+
+    Returns
+    -------
+    float
+        The temperature, deg C.
+    """
+    Ta = T_prev if T_prev > base else base
+    ma = _mu_at(iv, w_speed, mv, ig, w_pressure, mg, _x_at(y_fine, c, Ta - T0, cap, dT_fine, h), values,
+                value_offset, n_temperature, w_temperature)
+    Fa = Ta - base - coef * ma
+    Tb = base + coef * ma
+    if abs(Fa) <= 1e-10 * (1.0 + abs(Ta)):
+        return Ta
+    for _ in range(40):
+        mb = _mu_at(iv, w_speed, mv, ig, w_pressure, mg, _x_at(y_fine, c, Tb - T0, cap, dT_fine, h), values,
+                    value_offset, n_temperature, w_temperature)
+        Fb = Tb - base - coef * mb
+        if abs(Fb) <= 1e-10 * (1.0 + abs(Tb)):
+            return Tb
+        if Fb == Fa:
+            break
+        Tn = Tb - Fb * (Tb - Ta) / (Fb - Fa)
+        Ta, Fa = Tb, Fb
+        Tb = Tn
+    # bisection on F, F(base) <= 0 <= F(base + coef mu_max)
+    lo = base
+    hi = base + coef * mu_max * 1.5 + 1e-12
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        mm = _mu_at(iv, w_speed, mv, ig, w_pressure, mg, _x_at(y_fine, c, mid - T0, cap, dT_fine, h), values,
+                    value_offset, n_temperature, w_temperature)
+        if mid - base - coef * mm > 0.0:
+            hi = mid
+        else:
+            lo = mid
+        if hi - lo < 1e-10 * (1.0 + abs(mid)):
+            break
+    return 0.5 * (lo + hi)
+
+
+@njit(cache=True, inline="always")
+def _table_use(x, h, y_top):
+    """How far up its temperature table a point reached: y / y_top (> 1: above the top).
+
+    Parameters
+    ----------
+    x : float
+        The point's lattice coordinate y / h.
+    h : float
+        Spacing of the lattice in y, decades.
+    y_top : float
+        The table's top at the row's speed, decades.
+
+    Returns
+    -------
+    float
+        y / y_top; 2 when heated with only the T0 slice tabulated, 0 when not heated.
+    """
+    if y_top > 0.0:
+        return x * h / y_top
+    if x > 0.0:
+        return 2.0  # heated, but the table has only the T0 slice here
+    return 0.0
+
+
+@njit(cache=True)
+def _wheel_friction(y, shear, n_slide, a, xc, pure):
+    """The wheel's friction coefficient: the stick part a x_c^2 / 2 exactly, the slide part by the trapezoid rule.
+
+    Parameters
+    ----------
+    y : ndarray (N + 1,)
+        x / l of the sliding points.
+    shear : ndarray (N + 1,)
+        Shear / sigma0 at them.
+    n_slide : int
+        The number of sliding points.
+    a : float
+        The bristle stress slope (:class:`~persson.slip.heating_arrays.PatchRows`).
+    xc : float
+        x_c / l.
+    pure : bool
+        Pure sliding: no stick part.
+
+    Returns
+    -------
+    float
+    """
+    tot = 0.0 if pure else 0.5 * a * xc * xc
+    for k in range(1, n_slide):
+        tot += 0.5 * (y[k] - y[k - 1]) * (shear[k] + shear[k - 1])
+    return tot
+
+
+@njit(cache=True)
+def _write_profiles(r, T0, a, xi, mu_T0, first_node, offset, T_slide, shear, g_slide, out):
+    """Row r of the profiles: T0, the bristle stress and the stick limit in the stick zone (nodes before
+    ``first_node``), the marched values behind it.
+
+    Parameters
+    ----------
+    r : int
+        The row.
+    T0 : float
+        Background temperature, deg C.
+    a : float
+        The bristle stress slope (:class:`~persson.slip.heating_arrays.PatchRows`).
+    xi : ndarray (N,)
+        The nodes x / l.
+    mu_T0 : ndarray (N,)
+        Friction at T0 at the nodes.
+    first_node : int
+        The first sliding node (N: the whole patch sticks).
+    offset : int
+        first_node minus the index of its sliding point (1 when point 0 is the stick edge between nodes, else 0).
+    T_slide, shear, g_slide : ndarray (N + 1,)
+        Temperature (deg C), shear / sigma0 and p / sigma0 at the sliding points.
+    out : MarchOutputs
+        Row r of ``temperature``, ``shear`` and ``mu_profile`` is filled.
+    """
+    for j in range(xi.size):
+        if j < first_node:
+            out.temperature[r, j] = T0
+            out.shear[r, j] = a * xi[j]
+            out.mu_profile[r, j] = mu_T0[j]
+        else:
+            k = j - offset
+            out.temperature[r, j] = T_slide[k]
+            out.shear[r, j] = shear[k]
+            out.mu_profile[r, j] = shear[k] / g_slide[k] if g_slide[k] > 0.0 else mu_T0[j]
+
+
+# ==================================================================================================== lattice
 @njit(cache=True)
 def _segment_weights(A, B, hs):
     r"""Weights (w_l, w_r) of :math:`\int_{x_k-A}^{x_k-B} f(x')/\sqrt{x_k - x'}\,dx'` for f linear on the
@@ -15,6 +616,20 @@ def _segment_weights(A, B, hs):
     \tfrac23(A^{3/2} - B^{3/2})`, :math:`w_r = I_1/h_s`, :math:`w_l = I_0 - w_r`; written without cancellation
     as :math:`w_l = h_s(2\sqrt A + 4\sqrt B)/(3(\sqrt A + \sqrt B)^2)`,
     :math:`w_r = h_s(4\sqrt A + 2\sqrt B)/(3(\sqrt A + \sqrt B)^2)`.
+
+    Parameters
+    ----------
+    A : float
+        Distance from the segment's left end to x_k.
+    B : float
+        Distance from its right end to x_k (>= 0).
+    hs : float
+        Length of the segment, A - B.
+
+    Returns
+    -------
+    (float, float)
+        w_l, w_r.
     """
     ra = np.sqrt(A)
     rb = np.sqrt(B)
@@ -24,7 +639,26 @@ def _segment_weights(A, B, hs):
 
 @njit(cache=True)
 def _lagrange(nodes, start, n, x, w):
-    """Four-point (or n-point when n < 4) Lagrange weights at x (clamped into the node range); returns k0."""
+    """Four-point (or n-point when n < 4) Lagrange weights at x on increasing nodes (x clamped into their range).
+
+    Parameters
+    ----------
+    nodes : ndarray
+        Node coordinates; the n nodes used are ``nodes[start:start + n]``.
+    start : int
+        First node.
+    n : int
+        Number of nodes, >= 1.
+    x : float
+        Where to interpolate.
+    w : ndarray (4,)
+        Filled with the weights (first min(4, n)).
+
+    Returns
+    -------
+    int
+        Index (into ``nodes``) of the first node of the stencil.
+    """
     m = 4 if n >= 4 else n
     if n == 1:
         w[0] = 1.0
@@ -36,7 +670,6 @@ def _lagrange(nodes, start, n, x, w):
     elif x > hi:
         x = hi
     # interval j with nodes[j] <= x < nodes[j+1]
-    j = 0
     a, b = 0, n - 1
     while b - a > 1:
         mid = (a + b) // 2
@@ -44,8 +677,7 @@ def _lagrange(nodes, start, n, x, w):
             a = mid
         else:
             b = mid
-    j = a
-    k0 = j - 1
+    k0 = a - 1
     if k0 < 0:
         k0 = 0
     if k0 > n - m:
@@ -63,8 +695,23 @@ def _lagrange(nodes, start, n, x, w):
 
 @njit(cache=True)
 def _lagrange_uniform(n, x, w):
-    """Lagrange weights at x on the n uniform nodes 0, 1, .., n - 1 (four nearest; n when n < 4; x clamped into
-    [0, n - 1]); returns k0."""
+    """Lagrange weights at x on the n uniform nodes 0, 1, .., n - 1 (the four nearest; n when n < 4; x clamped into
+    [0, n - 1]).
+
+    Parameters
+    ----------
+    n : int
+        Number of nodes, >= 1.
+    x : float
+        Where to interpolate, in node units.
+    w : ndarray (4,)
+        Filled with the weights.
+
+    Returns
+    -------
+    int
+        The first node of the stencil.
+    """
     if n == 1:
         w[0] = 1.0
         return 0
@@ -91,60 +738,158 @@ def _lagrange_uniform(n, x, w):
 
 
 @njit(cache=True)
-def _interp(c, lv, gq, x, lvn, voff, gnodes, values, vtoff, nu, wv, wg, wu):
-    """mu of sweep c at (ln v, g, x = y/h) by tensor-product Lagrange interpolation (clamped at 0)."""
-    nv = voff[c + 1] - voff[c]
-    ng = gnodes.size
-    iv = _lagrange(lvn, voff[c], nv, lv, wv)
-    ig = _lagrange(gnodes, 0, ng, gq, wg)
+def _interp(c, lv, gq, x, lattice, wv, wg, wu):
+    """mu of sweep c at (ln v_s, g, x = y / h) by tensor-product Lagrange interpolation (clamped at 0).
+
+    Parameters
+    ----------
+    c : int
+        The sweep.
+    lv : float
+        ln v_s, m/s.
+    gq : float
+        p / sigma0.
+    x : float
+        Lattice coordinate y / h of the temperature.
+    lattice : FrictionLattice
+        The friction tables.
+    wv, wg, wu : ndarray (4,)
+        Scratch for the speed, pressure and temperature weights.
+
+    Returns
+    -------
+    float
+    """
+    nv = lattice.v_offset[c + 1] - lattice.v_offset[c]
+    ng = lattice.g_nodes.size
+    iv = _lagrange(lattice.log_speed, lattice.v_offset[c], nv, lv, wv)
+    ig = _lagrange(lattice.g_nodes, 0, ng, gq, wg)
     mv = 4 if nv >= 4 else nv
     mg = 4 if ng >= 4 else ng
-    return _mu_at(iv, wv, mv, ig, wg, mg, x, values, vtoff, nu, wu)
+    return _mu_at(iv, wv, mv, ig, wg, mg, x, lattice.values, lattice.value_offset, lattice.n_temperature, wu)
 
 
 @njit(cache=True)
-def _interp_rows(sweep, lvs, lvn, voff, gnodes, values, vtoff, nu):
-    """mu at (v_s, p = sigma0, T0) for every row."""
+def _interp_rows(sweep, log_speed, lattice):
+    """mu at (v_s, p = sigma0, T0) of every row.
+
+    Parameters
+    ----------
+    sweep : ndarray of int64 (n,)
+        The sweep of each row.
+    log_speed : ndarray (n,)
+        ln v_s of each row, m/s.
+    lattice : FrictionLattice
+        The friction tables.
+
+    Returns
+    -------
+    ndarray (n,)
+    """
     out = np.empty(sweep.size)
     wv = np.empty(4)
     wg = np.empty(4)
     wu = np.empty(4)
     for r in range(sweep.size):
-        out[r] = _interp(sweep[r], lvs[r], 1.0, 0.0, lvn, voff, gnodes, values, vtoff, nu, wv, wg, wu)
+        out[r] = _interp(sweep[r], log_speed[r], 1.0, 0.0, lattice, wv, wg, wu)
     return out
 
 
 @njit(cache=True)
-def _y_at(yT, c, dT, dTf):
-    """y(T0 + dT) of sweep c by linear interpolation in its fine table (clamped to the table)."""
-    n = yT.shape[1]
-    x = dT / dTf
+def _y_at(y_fine, c, dT, dT_fine):
+    """y(T0 + dT) of sweep c by linear interpolation in its fine table (clamped to the table).
+
+    Parameters
+    ----------
+    y_fine : ndarray (n_sweeps, n_fine)
+        y at T0 + k ``dT_fine`` (:class:`~persson.slip.heating_arrays.TemperatureAxis`).
+    c : int
+        The sweep.
+    dT : float
+        Temperature rise, K.
+    dT_fine : float
+        Step of the fine table, K.
+
+    Returns
+    -------
+    float
+        y, decades.
+    """
+    n = y_fine.shape[1]
+    x = dT / dT_fine
     if x <= 0.0:
-        return yT[c, 0]
+        return y_fine[c, 0]
     j = int(x)
     if j >= n - 1:
-        return yT[c, n - 1]
+        return y_fine[c, n - 1]
     t = x - j
-    return yT[c, j] + t * (yT[c, j + 1] - yT[c, j])
+    return y_fine[c, j] + t * (y_fine[c, j + 1] - y_fine[c, j])
 
 
 @njit(cache=True)
-def _x_at(yT, c, dT, cap, dTf, hy):
-    """Lattice coordinate y(T0 + dT)/h of sweep c, the rise taken at the cap above it."""
-    return _y_at(yT, c, dT if dT < cap else cap, dTf) / hy
+def _x_at(y_fine, c, dT, cap, dT_fine, h):
+    """Lattice coordinate y(T0 + dT) / h of sweep c, a rise above the cap taken at the cap.
+
+    Parameters
+    ----------
+    y_fine : ndarray (n_sweeps, n_fine)
+        y at T0 + k ``dT_fine`` (:class:`~persson.slip.heating_arrays.TemperatureAxis`).
+    c : int
+        The sweep.
+    dT : float
+        Temperature rise, K.
+    cap : float
+        Largest rise tabulated, K.
+    dT_fine : float
+        Step of ``y_fine``, K.
+    h : float
+        Spacing of the lattice in y, decades.
+
+    Returns
+    -------
+    float
+    """
+    return _y_at(y_fine, c, dT if dT < cap else cap, dT_fine) / h
 
 
 @njit(cache=True)
-def _mu_at(iv, wv, mv, ig, wg, mg, x, values, vtoff, nu, wu):
-    """Interpolated mu at the temperature lattice coordinate x = y/h, with the speed weights (iv, wv) and the
-    pressure weights (ig, wg) already known."""
+def _mu_at(iv, wv, mv, ig, wg, mg, x, values, value_offset, n_temperature, wu):
+    """Interpolated mu at the temperature lattice coordinate x = y / h, with the speed weights (iv, wv) and the
+    pressure weights (ig, wg) already known (clamped at 0).
+
+    Parameters
+    ----------
+    iv : int
+        First speed node of the stencil (global index).
+    wv : ndarray (4,)
+        Its weights.
+    mv : int
+        Speed nodes in the stencil.
+    ig : int
+        First pressure node of the stencil.
+    wg : ndarray (4,)
+        Its weights.
+    mg : int
+        Pressure nodes in the stencil.
+    x : float
+        Lattice coordinate y / h of the temperature.
+    values, value_offset, n_temperature : ndarray
+        The friction values, the offsets of the speed nodes' blocks and their temperature nodes
+        (:class:`~persson.slip.heating_arrays.FrictionLattice`; passed as arrays: this is the innermost kernel).
+    wu : ndarray (4,)
+        Scratch for the temperature weights.
+
+    Returns
+    -------
+    float
+    """
     out = 0.0
     for a in range(mv):
         node = iv + a
-        n_u = nu[node]
+        n_u = n_temperature[node]
         ku = _lagrange_uniform(n_u, x, wu)
         m_u = 4 if n_u >= 4 else n_u
-        base = vtoff[node]
+        base = value_offset[node]
         acc_g = 0.0
         for b in range(mg):
             row = base + (ig + b) * n_u + ku
@@ -154,223 +899,3 @@ def _mu_at(iv, wv, mv, ig, wg, mg, x, values, vtoff, nu, wu):
             acc_g += wg[b] * acc
         out += wv[a] * acc_g
     return out if out > 0.0 else 0.0
-
-
-def _march_all(sweep, lvs, a_all, lam_all, xi, g, W, lvn, voff, gnodes, values, vtoff, nu, T0s, hy, cap, mu_max,
-               yT, dTf, profiles):
-    """March along the patch for every row (see :func:`patch_friction`), in parallel over the rows. ``umax`` of a
-    row: its highest y over the top of the table at its speed (> 1: the table must grow; temperatures above
-    T0 + cap are taken at the cap)."""
-    n = sweep.size
-    N = xi.size
-    mu_out = np.empty(n)
-    xc_out = np.empty(n)
-    rise = np.zeros(n)
-    umax = np.zeros(n)
-    Tprof = np.zeros((n if profiles else 1, N))
-    shear = np.zeros((n if profiles else 1, N))
-    muprof = np.zeros((n if profiles else 1, N))
-    glo = gnodes[0]
-    ng = gnodes.size
-    # pressure weights of every patch node (those of the stick/slide boundary are computed per row)
-    IG = np.empty(N, dtype=np.int64)
-    WG = np.empty((N + 1, 4))
-    for j in range(N):
-        gj = g[j] if g[j] > glo else glo
-        IG[j] = _lagrange(gnodes, 0, ng, gj, WG[j])
-    for r in prange(n):
-        _march_row(r, sweep, lvs, a_all, lam_all, xi, g, W, lvn, voff, gnodes, values, vtoff, nu, T0s, hy, cap,
-                   mu_max, yT, dTf, profiles, IG, WG, mu_out, xc_out, rise, umax, Tprof, shear, muprof)
-    return mu_out, xc_out, rise, umax, Tprof, shear, muprof
-
-
-#: The march on every row in parallel (prange over the rows), and on one thread for few rows.
-_march_parallel = njit(cache=True, parallel=True)(_march_all)
-
-
-_march_serial = njit(cache=True)(_march_all)
-
-
-@njit(cache=True)
-def _march_row(r, sweep, lvs, a_all, lam_all, xi, g, W, lvn, voff, gnodes, values, vtoff, nu, T0s, hy, cap, mu_max,
-               yT, dTf, profiles, IG, WG, mu_out, xc_out, rise, umax, Tprof, shear, muprof):
-    """March along the patch for row r (see :func:`patch_friction`); writes the row's outputs."""
-    N = xi.size
-    h = xi[1] - xi[0]
-    sh = np.sqrt(h)
-    wv = np.empty(4)
-    wu = np.empty(4)
-    wgc = np.empty(4)
-    y = np.empty(N + 1)
-    gy = np.empty(N + 1)
-    f = np.empty(N + 1)
-    Ty = np.empty(N + 1)
-    d = np.empty(N)
-    mu0 = np.empty(N)
-    glo = gnodes[0]
-    ng = gnodes.size
-    mg = 4 if ng >= 4 else ng
-    c = sweep[r]
-    lv = lvs[r]
-    a = a_all[r]
-    lam = lam_all[r]
-    T0 = T0s[c]
-    v = np.exp(lv)
-    nv = voff[c + 1] - voff[c]
-    iv = _lagrange(lvn, voff[c], nv, lv, wv)
-    mv = 4 if nv >= 4 else nv
-    ytop = (nu[iv] - 1) * hy  # the table's top at this speed: the lowest over the four speed nodes
-    for k in range(1, mv):
-        yk = (nu[iv + k] - 1) * hy
-        if yk < ytop:
-            ytop = yk
-    # stick limit at T0 (u = 0)
-    for j in range(N):
-        mu0[j] = _mu_at(iv, wv, mv, IG[j], WG[j], mg, 0.0, values, vtoff, nu, wu)
-    pure = not np.isfinite(a)
-    i = -1
-    xc = 0.0
-    if pure:
-        i = 0
-    else:
-        for j in range(N):
-            d[j] = mu0[j] * g[j] - a * xi[j]
-        for j in range(1, N):
-            if d[j] <= 0.0:
-                i = j
-                break
-    if i < 0:  # the whole patch sticks
-        mu_out[r] = 0.5 * a
-        xc_out[r] = 1.0
-        if profiles:
-            for j in range(N):
-                Tprof[r, j] = T0
-                shear[r, j] = a * xi[j]
-                muprof[r, j] = mu0[j]
-        return
-    # slide points: y[0] = x_c (when between nodes), then the nodes behind it; node of slide point k: jk
-    first_special = False
-    if pure:
-        j0 = 0
-    else:
-        t = 0.0
-        den = d[i - 1] - d[i]
-        if den > 0.0:
-            t = d[i - 1] / den
-        t = min(max(t, 0.0), 1.0)
-        xc = xi[i - 1] + t * h
-        j0 = i
-        if xi[i] - xc > 1e-12:
-            first_special = True
-    M = 0
-    if first_special:
-        gc = g[i - 1] + t * (g[i] - g[i - 1])
-        y[0] = xc
-        gy[0] = gc
-        M = 1
-        igc = _lagrange(gnodes, 0, ng, gc if gc > glo else glo, wgc)
-        f[0] = _mu_at(iv, wv, mv, igc, wgc, mg, 0.0, values, vtoff, nu, wu) * gc
-    off = M - j0  # slide index of node j is j + off
-    for j in range(j0, N):
-        y[M] = xi[j]
-        gy[M] = g[j]
-        M += 1
-    if not first_special:
-        f[0] = mu0[j0] * gy[0]
-    Ty[0] = T0
-    hs = y[1] - y[0] if M > 1 else h
-    ru = 0.0
-    for k in range(1, M):
-        # known part of the Abel integral at y[k]; ck multiplies the unknown f[k]
-        S = 0.0
-        ck = 0.0
-        jstart = 0
-        if first_special:
-            wl, wr = _segment_weights(y[k] - y[0], y[k] - y[1], hs)
-            if k == 1:
-                S += wl * f[0]
-                ck = wr
-            else:
-                S += wl * f[0] + wr * f[1]
-            jstart = 1
-        for jj in range(jstart, k):
-            dd = k - jj
-            if jj + 1 == k:
-                S += sh * W[0, dd] * f[jj]
-                ck = sh * W[1, dd]
-            else:
-                S += sh * (W[0, dd] * f[jj] + W[1, dd] * f[jj + 1])
-        # solve F(T) = T - T0 - lam (S + ck g mu(T)) = 0 (secant from the previous node, bisection fallback)
-        jn = k - off
-        ig = IG[jn]
-        base = T0 + lam * S
-        coef = lam * ck * gy[k]
-        Ta = Ty[k - 1] if Ty[k - 1] > base else base
-        ma = _mu_at(iv, wv, mv, ig, WG[jn], mg, _x_at(yT, c, Ta - T0, cap, dTf, hy), values, vtoff, nu, wu)
-        Fa = Ta - base - coef * ma
-        Tb = base + coef * ma
-        ok = abs(Fa) <= 1e-10 * (1.0 + abs(Ta))
-        T = Ta
-        if not ok:
-            for it in range(40):
-                mb = _mu_at(iv, wv, mv, ig, WG[jn], mg, _x_at(yT, c, Tb - T0, cap, dTf, hy), values, vtoff,
-                            nu, wu)
-                Fb = Tb - base - coef * mb
-                if abs(Fb) <= 1e-10 * (1.0 + abs(Tb)):
-                    T = Tb
-                    ok = True
-                    break
-                if Fb == Fa:
-                    break
-                Tn = Tb - Fb * (Tb - Ta) / (Fb - Fa)
-                Ta, Fa = Tb, Fb
-                Tb = Tn
-        if not ok:  # bisection on F, F(base) <= 0 <= F(base + coef mu_max)
-            lo_ = base
-            hi_ = base + coef * mu_max[c] * 1.5 + 1e-12
-            for it in range(200):
-                mid = 0.5 * (lo_ + hi_)
-                mm = _mu_at(iv, wv, mv, ig, WG[jn], mg, _x_at(yT, c, mid - T0, cap, dTf, hy), values, vtoff,
-                            nu, wu)
-                if mid - base - coef * mm > 0.0:
-                    hi_ = mid
-                else:
-                    lo_ = mid
-                if hi_ - lo_ < 1e-10 * (1.0 + abs(mid)):
-                    break
-            T = 0.5 * (lo_ + hi_)
-        x = _x_at(yT, c, T - T0, cap, dTf, hy)
-        m = _mu_at(iv, wv, mv, ig, WG[jn], mg, x, values, vtoff, nu, wu)
-        if ytop > 0.0:
-            u = x * hy / ytop
-        elif x > 0.0:
-            u = 2.0  # heated, but the table has only the T0 slice here
-        else:
-            u = 0.0
-        if u > ru:
-            ru = u
-        Ty[k] = T
-        f[k] = m * gy[k]
-    # wheel friction: stick part exactly, slide part by the trapezoid rule
-    tot = 0.0 if pure else 0.5 * a * xc * xc
-    for k in range(1, M):
-        tot += 0.5 * (y[k] - y[k - 1]) * (f[k] + f[k - 1])
-    mu_out[r] = tot
-    xc_out[r] = xc
-    mx = 0.0
-    for k in range(M):
-        if Ty[k] - T0 > mx:
-            mx = Ty[k] - T0
-    rise[r] = mx
-    umax[r] = ru
-    if profiles:
-        for j in range(N):
-            if j < j0:
-                Tprof[r, j] = T0
-                shear[r, j] = a * xi[j]
-                muprof[r, j] = mu0[j]
-            else:
-                k = j + off
-                Tprof[r, j] = Ty[k]
-                shear[r, j] = f[k]
-                muprof[r, j] = f[k] / gy[k] if gy[k] > 0.0 else mu0[j]

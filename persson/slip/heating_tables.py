@@ -7,7 +7,9 @@ import math
 import numpy as np
 
 from ..errors import InputError
+from ..notes import Note, kind_of_warning
 
+from .heating_arrays import FrictionLattice, TemperatureAxis
 from .heating_kernels import _interp_rows, _segment_weights
 
 _NY = 1025  # nodes of the fine y(T) table per sweep from T0 to T0 + max_rise (and as many again above)
@@ -153,9 +155,10 @@ class _Tables:
             self.mu_max[c] = max(self.mu_max[c], float(np.max(self.blocks[c])))
         self._layout()
 
-    def targs(self):
-        """The temperature arguments of the march kernel."""
-        return (self.T0, self.hy, self.cap, self.mu_max, self.yT, self.dTf)
+    def targs(self) -> TemperatureAxis:
+        """The temperature coordinate of the lattice, as the march kernel takes it."""
+        return TemperatureAxis(T0=self.T0, h=self.hy, cap=self.cap, mu_max=self.mu_max, y_fine=self.yT,
+                               dT_fine=self.dTf)
 
     def has_heated(self) -> bool:
         """Whether every sweep has temperature nodes above T0."""
@@ -186,7 +189,7 @@ class _Tables:
             msg = str(w.message)
             self.warned[(w.category, msg)] = None
             if msg not in self.notes:  # the engine's warnings are among its notes already: once each
-                self.notes.append(msg)
+                self.notes.append(Note(msg, kind_of_warning(w.category)))
         self.converged = self.converged and bool(getattr(r, "converged", True))
         self.points += v.size
         self.calls += 1
@@ -200,13 +203,14 @@ class _Tables:
                              f"p = {p[j]:g} Pa; expected a finite value >= 0")
         return mu
 
-    def args(self):
-        """The table arguments of the kernels."""
-        return (self.lv, self.voff, self.gnodes, self.values, self.vtoff, self.nu)
+    def args(self) -> FrictionLattice:
+        """The friction lattice, as the kernels take it."""
+        return FrictionLattice(log_speed=self.lv, v_offset=self.voff, g_nodes=self.gnodes, values=self.values,
+                               value_offset=self.vtoff, n_temperature=self.nu)
 
     def mu_at_sigma0(self, vs, sweep):
         """mu(v_s, sigma0, T0) of every row, interpolated in the T0 slice of the table."""
-        return _interp_rows(sweep.astype(np.int64), np.log(vs), *self.args())
+        return _interp_rows(sweep=sweep.astype(np.int64), log_speed=np.log(vs), lattice=self.args())
 
 
 def _shift_coordinate(log10_aT, T0: float, T: np.ndarray) -> np.ndarray:

@@ -4,8 +4,13 @@ Which wavelengths of the road carry the friction, and how friction moves with pr
 model parameter. Every function returns a :class:`Table` (one row per point, inputs and outputs as columns)
 that saves to CSV; ``persson sweep CASE ...`` writes the same table.
 
->>> from persson import sweeps                                              # doctest: +SKIP
->>> t = sweeps.bands(model, "decades", speed=1.0, pressure=0.3e6)           # doctest: +SKIP
+>>> import surfaces, materials, persson
+>>> from persson import sweeps
+>>> model = persson.Model(surfaces.SelfAffine(hurst=0.8, q0=1e3, q1=1e7, hrms=20e-6),
+...                       materials.ConstantModulus(5e6, 2e6))
+>>> t = sweeps.bands(model, "decades", speed=1.0, pressure=0.3e6)
+>>> t.where(mode="restrict")["mu_hysteresis"].round(3)    # one row per decade of q: 1e3..1e4, .., 1e6..1e7
+array([0.006, 0.01 , 0.014, 0.019])
 >>> t = sweeps.grid(model, {"pressure": "0.1e6:0.9e6:5", "surface.q1": [1e5, 1e6, 1e7]},
 ...                 speed=[0.01, 0.1, 1.0], scheduler="tcp://scheduler:8786")  # doctest: +SKIP
 >>> t.to_csv("results.csv")                                                 # doctest: +SKIP

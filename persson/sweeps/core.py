@@ -204,7 +204,7 @@ def bands(model, kind="decades", n: int | None = None, mode: str | None = None, 
     ...                   materials.ConstantModulus(5e6, 2e6), gamma=1.0)
     >>> t = sweeps.bands(m, "decades", mode="restrict", speed=1.0)
     >>> a = t.where(mode="restrict")["mu_hysteresis"].sum(); total = t.where(mode="total")["mu_hysteresis"][0]
-    >>> abs(a / total - 1) < 1e-12
+    >>> bool(abs(a / total - 1) < 1e-12)
     True
     """
     return grid(model, params, speed=speed, temperature=temperature, pressure=pressure, bands=kind, n_bands=n,

@@ -489,7 +489,24 @@ def block_mean(x, n_blocks):
 
 @njit(cache=True)
 def _table(values, x0, inv_dx, x):
-    """Linear interpolation of ``values`` on the uniform grid x0 + i / inv_dx; clamped at its ends."""
+    """Linear interpolation of ``values`` on the uniform grid x0 + i / inv_dx; clamped at its ends.
+
+    Parameters
+    ----------
+    values : ndarray (n,)
+        Tabulated values (the local friction on its pressure grid).
+    x0 : float
+        Abscissa of the first node (same unit as ``x``).
+    inv_dx : float
+        Nodes per unit of the abscissa (1 / node spacing).
+    x : float
+        Where to interpolate.
+
+    Returns
+    -------
+    float
+        The interpolated value; the end values outside the grid.
+    """
     n = values.shape[0]
     s = (x - x0) * inv_dx
     if s <= 0.0:
