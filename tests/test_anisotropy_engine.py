@@ -250,27 +250,44 @@ def test_a_case_file_carries_the_stretch_and_the_sliding_direction(tmp_path):
         read_case(case)
 
 
-def test_the_flash_temperature_is_refused_on_an_anisotropic_surface():
-    model = persson.Model(surfaces.stretched(BASE, 2.0), TREAD, effects=[persson.effects.FlashTemperature()])
-    with pytest.raises(persson.InputError, match="flash_temperature.*anisotropic"):
-        model.friction(1.0, direction_deg=0.0)
+# --- the flash temperature against the sliding direction ------------------------------------------------------
+@pytest.mark.parametrize("surface", [surfaces.stretched(BASE, 1.0, 30.0), Isotropic2D(BASE)],
+                         ids=["stretched by 1", "general 2-D"])
+def test_an_isotropic_psd_in_2d_reproduces_the_isotropic_flash_temperature_in_every_direction(surface):
+    v = np.array([1e-3, 0.3, 10.0])
+    effects = [persson.effects.FlashTemperature(tol=1e-8)]
+    iso = persson.Model(BASE, TREAD, effects=effects).friction(v, temperature=10.0, pressure=0.2e6)
+    r = persson.Model(surface, TREAD, effects=effects).friction(v, temperature=10.0, pressure=0.2e6,
+                                                                 direction_deg=[0.0, 17.0, 90.0])
+    assert iso.max_flash_temperature[-1] > 1.0  # the flash temperature does something here
+    for res in r.results:
+        np.testing.assert_allclose(res.mu, iso.mu, rtol=1e-6)
+        np.testing.assert_allclose(res.max_flash_temperature, iso.max_flash_temperature, rtol=1e-6)
 
 
-def test_every_kernel_parameter_is_documented():
-    import inspect
-    import re
+@pytest.mark.slow
+def test_the_flash_temperature_across_ridges_matches_an_independent_fixed_point_iteration():
+    """A rough road stretched 3x along x, 1 m/s, 20 C: sliding across the ridges heats the rubber by ~25 K, three
+    times more than sliding along them. The brute-force reference (Cartesian C2d, plain fixed point, trapezoid heat
+    integral) converges at second order in its node spacing: extrapolated from 20 and 40 nodes per decade."""
+    from persson.engine.anisotropic_reference import reference_directional_flash_friction
 
-    from persson.engine import anisotropic_kernels as ak
-
-    for kern in (ak.basis_convolution, ak.basis_lookup, ak.problem_factors, ak.unidirectional_factors,
-                 ak.friction_problems, ak.friction_mu):
-        fn = kern.py_func
-        doc = inspect.getdoc(fn)
-        section = doc.split("Parameters\n----------\n", 1)[1]
-        documented = {n.strip() for line in section.splitlines() if line and not line.startswith(" ")
-                      for n in re.split(r"[:,]", line.split(" : ")[0])}
-        missing = set(inspect.signature(fn).parameters) - documented
-        assert not missing, f"{fn.__name__}: undocumented parameters {sorted(missing)}"
+    base = surfaces.SelfAffine(hurst=0.8, q0=2 * math.pi / 5e-3, q1=1e6, hrms=0.2e-3)
+    s = surfaces.stretched(base, 3.0, 0.0)
+    kw = dict(temperature=20.0, pressure=0.3e6)
+    r = persson.Model(s, TREAD, effects=[persson.effects.FlashTemperature(tol=1e-7)]).friction(
+        1.0, direction_deg=[0.0, 90.0], **kw)
+    across = r.at(90.0)
+    along = r.at(0.0)
+    assert across.mu_hysteresis > 2.0 * along.mu_hysteresis
+    assert across.max_flash_temperature > 2.0 * along.max_flash_temperature
+    coarse, fine = (reference_directional_flash_friction(s, TREAD, 1.0, 90.0, nodes_per_decade=n, tol=1e-4, **kw)
+                    for n in (20, 40))
+    mu_ref = fine.mu[0] + (fine.mu[0] - coarse.mu[0]) / 3.0
+    dT_ref = np.max(fine.temperature_q) - 20.0
+    assert abs(fine.mu[0] / coarse.mu[0] - 1) < 1e-2  # the extrapolation is a small correction
+    assert across.mu_hysteresis == pytest.approx(mu_ref, rel=1e-3)
+    assert across.max_flash_temperature == pytest.approx(dT_ref, rel=1e-3)
 
 
 def test_the_estimate_covers_the_error_where_the_shape_has_kinks_in_angle():

@@ -1,7 +1,6 @@
 """Specification of the effects: flash temperature, adhesion, wet, microtexture, strain softening, separation."""
 
 import math
-import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -13,7 +12,7 @@ import persson
 import surfaces
 from persson.engine import kernels as _kernels
 from persson.effects import Adhesion, Effect, FlashTemperature, Microtexture, Parameter, StrainSoftening, Wet
-from persson.contact.separation import mean_separation, separation_decay_length
+from persson.contact.separation import separation_decay_length
 
 ROAD = surfaces.SelfAffine(hurst=0.8, q0=2 * np.pi / 5e-3, q1=1e6, hrms=0.3e-3, qL=2 * np.pi / 0.05)
 TREAD = materials.example_tread()

@@ -39,9 +39,12 @@ import numpy as np
 from frictioncite import doi
 
 from . import anisotropic_kernels as _ak
+from . import solver as _solver
 from .conditions import Conditions
-from .solver import _SAFETY, Solved, _relative_error, _subset, prepare
+from .kernel_arrays import AngularShape
+from .solver import _SAFETY, Solved, _subset, prepare
 from ..errors import InputError
+from ..notes import Note
 
 __all__ = ["is_anisotropic", "solve_directions", "basis_weights", "angular_error_factor"]
 
@@ -77,7 +80,8 @@ def solve_directions(aniso, surface, material, cond: Conditions, grid, nu: float
     material, cond, grid, nu, gamma, correction, modulus
         As :func:`persson.engine.solver.solve`.
     thermal : Effect or None
-        A temperature-solver effect (flash temperature): not available on an anisotropic surface.
+        A temperature effect (the flash temperature): its settings (``temperature_solver_options``) drive the
+        self-consistent temperature of every direction and speed (:func:`_solve_flash`).
     theta_deg : ndarray (n_dir,)
         Sliding directions, degrees.
 
@@ -86,20 +90,16 @@ def solve_directions(aniso, surface, material, cond: Conditions, grid, nu: float
     list of Solved
         One per direction, per speed and wavevector node as the isotropic solver's.
     """
-    if thermal is not None:
-        raise InputError(f"effects: {thermal.name!r} (a temperature solver) is not available with an anisotropic "
-                         "surface yet; the flash temperature of a sliding direction needs the heat source of that "
-                         "direction: remove the effect, or use the surface's angular mean (surface.to_isotropic())")
     theta = np.radians(np.asarray(theta_deg, dtype=float).ravel())
     T = np.broadcast_to(np.asarray(cond.temperature, dtype=float), cond.speed.shape)
+    solve = _solve_group if thermal is None else functools.partial(_solve_flash, thermal=thermal)
     if np.all(T == T[0]) or hasattr(material, "log10_aT"):
-        return _solve_group(aniso, surface, material, cond, grid, nu, gamma, correction, modulus, theta)
+        return solve(aniso, surface, material, cond, grid, nu, gamma, correction, modulus, theta)
     # a material without a shift law: one modulus table per temperature, merged back speed by speed
     out = None
     for t in np.unique(T):
         idx = np.flatnonzero(T == t)
-        part = _solve_group(aniso, surface, material, _subset(cond, idx), grid, nu, gamma, correction, modulus,
-                            theta)
+        part = solve(aniso, surface, material, _subset(cond, idx), grid, nu, gamma, correction, modulus, theta)
         out = [_empty_like(p, T.size) for p in part] if out is None else out
         out = [_put(o, idx, p) for o, p in zip(out, part)]
     return out
@@ -107,69 +107,131 @@ def solve_directions(aniso, surface, material, cond: Conditions, grid, nu: float
 
 # ---------------------------------------------------------------------------------------------------------
 def _solve_group(aniso, surface, material, cond, grid, nu, gamma, correction, modulus, theta) -> list[Solved]:
-    """One modulus table for every speed; q refined per problem (direction, speed) where the estimate is high."""
+    """One modulus table for every problem (a direction at a speed: the "speeds" of the solver); q refined per
+    problem where the estimate is high, at the angular resolution the first pass chose."""
     nd, nv = theta.size, cond.speed.size
-    prep = prepare(surface, material, cond, grid, nu, gamma=gamma, correction=correction, modulus=modulus)
-    pd, ps = np.repeat(np.arange(nd), nv), np.tile(np.arange(nv), nd)
-    angular = _Angular(aniso, prep, material, theta, grid)
-    out = _run(prep, angular, pd, ps)
+    cond_p, angular = _problems(aniso, material, cond, theta, grid)
+    prep = prepare(surface, material, cond_p, grid, nu, gamma=gamma, correction=correction, modulus=modulus)
+    solved, err_a, n = _run(prep, angular)
     for level in range(1, grid.max_refinement + 1):
-        bad = np.flatnonzero(out["err_q"] > grid.tolerance / _SAFETY)
+        bad = np.flatnonzero(solved.error_estimate > grid.tolerance / _SAFETY)
         if bad.size == 0:
             break
-        speeds = np.unique(ps[bad])
-        sub = prepare(surface, material, _subset(cond, speeds), grid, nu, gamma=gamma, correction=correction,
+        sub = prepare(surface, material, _subset(cond_p, bad), grid, nu, gamma=gamma, correction=correction,
                       modulus=modulus, refine=level, nodes=prep.q)
-        where = np.searchsorted(speeds, ps[bad])
-        fine = _run(sub, angular.on(sub), pd[bad], where, n_basis=out["n"])
-        stride = 2**level
-        for name in _PER_SCALE:
-            out[name][bad] = fine[name][:, ::stride]
-        for name in ("mu", "layer", "err_q", "err_a"):
-            out[name][bad] = fine[name]
-    err = out["err_q"] + out["err_a"]
+        fine, err_a[bad], _ = _run(sub, angular.subset(bad), n_basis=n)
+        solved = _solver._merge(solved, bad, fine, 2**level)
     notes = []
-    if out["n"] and np.any(out["err_a"] > grid.tolerance / 10.0):
-        notes.append(f"angular resolution: {out['n']} intervals on [0, pi/2] (the most) leave an estimated angular "
-                     f"error up to {float(np.max(out['err_a'])):.2g}: the angular shape of the PSD is very narrow")
-    res = []
+    if n and np.any(err_a > grid.tolerance / 10.0):
+        notes.append(Note(f"angular resolution: {n} intervals on [0, pi/2] (the most) leave an estimated angular "
+                          f"error up to {float(np.max(err_a)):.2g}: the angular shape of the PSD is very narrow",
+                          "accuracy"))
+    return _by_direction(replace(solved, error_estimate=solved.error_estimate + err_a), nd, nv, notes)
+
+
+def _solve_flash(aniso, surface, material, cond, grid, nu, gamma, correction, modulus, theta, *,
+                 thermal) -> list[Solved]:
+    r"""The self-consistent flash temperature of every direction and speed (Persson, J. Phys.: Condens. Matter 18,
+    7789 (2006), Eqs. 20-27, with the heat source of the sliding direction):
+
+    .. math:: f(q) = \frac{v\,\sigma_0}{\rho c_p}\frac{P(q)}{P(q_m)}\, q^4\, \frac{1}{\sigma_0}
+              \int_0^{2\pi} d\phi\,\cos\phi\, C(q, \phi + \theta)\,\frac{\mathrm{Im}\,E(q v\cos\phi, T_q)}{1-\nu^2} ,
+
+    the isotropic source with :math:`C(q)` times the angular integral replaced by the integral over
+    :math:`C(q, \phi)`: the loss integral L of every node multiplied by its factor :math:`\rho_L` at that node's
+    temperature (and G(q), P(q) with theirs), so that the fixed point, its refinement where a temperature front is
+    steep, the widening of the shift table and the two-grid error estimate are the isotropic solver's
+    (:func:`persson.engine.solver._solve_group`), one problem (a direction at a speed) per row.
+
+    The angular resolution starts where the isothermal problem converges (:func:`_run`, cheap beside the fixed
+    point) and doubles while the angular estimate of the flash result (:func:`_flash_angular_error`) exceeds a
+    tenth of the tolerance.
+    """
+    nd, nv = theta.size, cond.speed.size
+    cond_p, angular = _problems(aniso, material, cond, theta, grid)
+    n = 0
+    if not angular.unidirectional:
+        plain = prepare(surface, material, cond_p, grid, nu, gamma=gamma, correction=correction, modulus=modulus)
+        n = _run(plain, angular)[2]
+    while True:
+        solved = _solver._solve_group(surface, material, cond_p, grid, nu, gamma, thermal, correction, modulus,
+                                      shape=angular.level(n))
+        if angular.unidirectional:
+            err_a = np.zeros(nd * nv)
+            break
+        err_a = _flash_angular_error(solved, angular, n, surface, material, cond_p, grid, nu, gamma, correction,
+                                     modulus, thermal)
+        if np.max(err_a) <= grid.tolerance / 10.0 or n >= _N_MAX:
+            break
+        n *= 2
+    notes = []
+    if n and np.any(err_a > grid.tolerance / 10.0):
+        notes.append(Note(f"angular resolution: {n} intervals on [0, pi/2] (the most) leave an estimated angular "
+                          f"error up to {float(np.max(err_a)):.2g} of the flash-temperature friction: the angular "
+                          "shape of the PSD is very narrow", "accuracy"))
+    return _by_direction(replace(solved, error_estimate=solved.error_estimate + err_a), nd, nv, notes)
+
+
+def _flash_angular_error(solved, angular, n, surface, material, cond_p, grid, nu, gamma, correction, modulus,
+                         thermal) -> np.ndarray:
+    """The angular estimate (:func:`_angular_error`) of the flash-temperature friction of every problem: the
+    fixed point on the base nodes with N, N/2 and N/4 angular intervals, each started from the solution (a few
+    iterations), so that the three differ by their angular rule alone (a speed refined in q or at a temperature
+    front has the same base-grid error in all three)."""
+    T0 = np.broadcast_to(np.asarray(cond_p.temperature, dtype=float), cond_p.speed.shape)
+    rise = _solver._rise(grid, solved.T_q, T0)
+    start = np.where(solved.converged_each[:, None], solved.T_q, T0[:, None])
+    mu = []
+    for m in (n, n // 2, n // 4):
+        prep = prepare(surface, material, cond_p, replace(grid, max_temperature_rise=rise), nu, gamma=gamma,
+                       correction=correction, flash=True, modulus=modulus, nodes=solved.q, shape=angular.level(m))
+        options = _solver.temperature_options(thermal, prep, material)
+        args = (options.q_m, options.diffusivity * options.contact_diameter / prep.v, options.diffusivity,
+                prep.pressure / options.heat_capacity, options.tol, int(options.max_iter))
+        out, _, _, res = _solver._flash(prep, *args, T_start=start)
+        m_mu = out.mu
+        if np.any(res >= options.tol):  # rare: a warm start that did not converge; again from T0
+            m_mu = np.where(res < options.tol, m_mu, _solver._flash(prep, *args)[0].mu)
+        mu.append(m_mu)
+    return _angular_error(mu[0], mu[1], mu[2] if n // 4 >= angular.start // 2 else None, angular.kinks)
+
+
+def _problems(aniso, material, cond, theta, grid):
+    """The conditions of every problem, direction k at speed s in row k n_speed + s, and their angular shape."""
+    nd, nv = theta.size, cond.speed.size
+    return (_subset(cond, np.tile(np.arange(nv), nd)),
+            _Angular(aniso, material, theta, np.repeat(np.arange(nd), nv), grid))
+
+
+def _by_direction(solved: Solved, nd: int, nv: int, notes: list) -> list[Solved]:
+    """The problems of ``solved`` as one :class:`Solved` per direction (speeds in rows), each with ``notes``."""
+    out = []
     for k in range(nd):
         p = slice(k * nv, (k + 1) * nv)
-        mu = out["mu"][p]
-        res.append(Solved(q=prep.q, G=out["G"][p], P=out["P"][p], T_q=np.repeat(prep.T0[:, None], prep.q.size, 1),
-                          dmu=out["dmu"][p], loss=out["L"][p], dG=out["dG"][p], ratio=out["R"][p],
-                          mu_cumulative=out["cum"][p], mu=mu, error_estimate=err[p],
-                          excited_layer=np.where(mu > 0, out["layer"][p] / np.where(mu > 0, mu, 1.0),
-                                                 1.0 / prep.q[0]),
-                          converged=True, converged_each=np.ones(nv, dtype=bool), iterations=np.zeros(nv, np.int64),
-                          residual=np.zeros(nv), notes=tuple(notes)))
-    return res
+        fields = {name: getattr(solved, name)[p] for name in _solver._PER_SCALE + _solver._PER_SPEED}
+        out.append(Solved(q=solved.q, converged=bool(np.all(fields["converged_each"])),
+                          notes=tuple(dict.fromkeys(solved.notes + tuple(notes))), **fields))
+    return out
 
 
-_PER_SCALE = ("G", "P", "dmu", "cum", "dG", "R", "L")
+def _run(prep, angular, n_basis=None) -> tuple[Solved, np.ndarray, int]:
+    """The friction of the problems of ``prep`` with the angular estimate: (solution, angular estimate, N).
 
-
-def _run(prep, angular, pd, ps, n_basis=None) -> dict:
-    """The friction of the problems (``pd[p]``, ``ps[p]``) on the nodes of ``prep``, with the angular estimate.
-
-    The angular grid doubles from its start until the estimate is below a tenth of the tolerance (or at
+    The angular grid doubles from its start until the estimate is below a tenth of the tolerance (or stays at
     ``n_basis`` when given: the refinement in q keeps the grid the first pass chose)."""
     if angular.unidirectional:
-        out = _solve_factors(prep, *angular.unidirectional_factors(pd, ps))
-        out.update(err_a=np.zeros(pd.size), n=0)
-        return out
+        return _solver.run_plain(replace(prep, shape=angular.level(0))), np.zeros(prep.n_speed), 0
     n = angular.start if n_basis is None else n_basis
-    angular.weights(n)  # the finest first: the coarser grids' weights are every other of its values
-    quarter = _mu_only(prep, *angular.factors(pd, ps, n // 4))
-    half = _mu_only(prep, *angular.factors(pd, ps, n // 2))
+    angular.weights_for(prep.q, n, angular.direction)  # the finest first: the coarser grids' are every other
+    quarter = _mu_only(prep, angular.level(n // 4))
+    half = _mu_only(prep, angular.level(n // 2))
     while True:
-        cur = _solve_factors(prep, *angular.factors(pd, ps, n))
+        cur = _solver.run_plain(replace(prep, shape=angular.level(n)))
         # the coarsest grid takes part once it resolves the shape's width (half the starting resolution)
-        err_a = _angular_error(cur["mu"], half, quarter if n // 4 >= angular.start // 2 else None, angular.kinks)
+        err_a = _angular_error(cur.mu, half, quarter if n // 4 >= angular.start // 2 else None, angular.kinks)
         if n_basis is not None or np.max(err_a) <= angular.tolerance / 10.0 or n >= _N_MAX:
-            cur.update(err_a=err_a, n=n)
-            return cur
-        quarter, half, n = half, cur["mu"], 2 * n
+            return cur, err_a, n
+        quarter, half, n = half, cur.mu, 2 * n
 
 
 def _angular_error(mu, mu_half, mu_quarter, kinks: bool) -> np.ndarray:
@@ -193,160 +255,151 @@ def _angular_error(mu, mu_half, mu_quarter, kinks: bool) -> np.ndarray:
     return np.where(np.abs(mu) > 0, e, 0.0)
 
 
-def _mu_only(prep, K, R, L) -> np.ndarray:
-    """The hysteresis friction of every problem from its angular factors, nothing else."""
-    mu = np.empty(K.shape[0])
-    _ak.friction_mu(prep.q, prep.quad, K, R, prep.law, mu)
-    return mu
+def _mu_only(prep, shape) -> np.ndarray:
+    """The hysteresis friction of every problem with the angular shape ``shape``, without the q estimate."""
+    return _solver.run_plain(replace(prep, shape=shape), estimate=False).mu
 
 
-def _solve_factors(prep, K, R, L) -> dict:
-    """The q integrals of every problem from its angular factors (n_problem, n_q)."""
-    n, nq = K.shape
-    out = {k: np.empty((n, nq)) for k in ("G", "P", "dmu", "cum", "dG")}
-    out.update(R=R, L=L, layer=np.empty(n), mu=np.empty(n))
-    mu_c, mu_cc = np.empty(n), np.empty(n)
-    _ak.friction_problems(prep.q, prep.q4C, prep.quad, K, R, L, prep.law, prep.coarse, prep.quad_coarse,
-                          prep.coarser, prep.quad_coarser, out["G"], out["P"], out["dmu"], out["cum"], out["dG"],
-                          out["layer"], out["mu"], mu_c, mu_cc)
-    out["err_q"] = _relative_error(out["mu"], mu_c, mu_cc)
-    return out
-
-
+# ---------------------------------------------------------------------------------------------------------
 class _Angular:
-    """The angular factors of one anisotropic surface on the nodes of a prepared problem, per direction and speed."""
+    """The angular shape of one anisotropic surface for the problems of a call (direction ``direction[p]`` of
+    ``theta`` for problem p): the weights of its cardinal functions at the nodes and their tables on the grid of
+    the angular tables, memoised, and :meth:`level` for the kernels at a given angular resolution."""
 
-    def __init__(self, aniso, prep, material, theta, grid, _tables=None):
-        self.aniso, self.prep, self.material, self.theta, self.grid = aniso, prep, material, theta, grid
+    def __init__(self, aniso, material, theta, direction, grid):
+        self.aniso, self.material, self.theta, self.direction = aniso, material, theta, direction
         self.tolerance = grid.tolerance
         self.unidirectional = hasattr(aniso, "wave_angle_deg")
-        t = prep.table
-        self.lw = t.lw0 + t.dlw * np.arange(t.ln_are.size)
-        # the modulus on the angular table's grid (shifted speeds read it as the isotropic tables are read)
-        self._tables = {} if _tables is None else _tables
+        self._tables = {}
+        self._weights = {}
+        self.kinks, self.start = False, 0
         if not self.unidirectional:
             # a surface that does not say otherwise may have kinks in angle: the safe estimate
             self.kinks = bool(getattr(aniso, "angular_kinks", True))
             width = getattr(aniso, "angular_width", None) or 0.25
             self.start = int(min(_N_MAX, max(_N_MIN, 2 ** math.ceil(math.log2(2.0 * math.pi / width)))))
-            self._shape = {}
 
-    def on(self, prep) -> "_Angular":
-        """The same surface and directions on the nodes of another prepared problem (same modulus table)."""
-        return _Angular(self.aniso, prep, self.material, self.theta, self.grid, self._tables)
+    def subset(self, problems) -> "_Angular":
+        """The same surface for the problems ``problems`` alone (sharing the memoised tables)."""
+        out = _Angular.__new__(_Angular)
+        out.__dict__.update(self.__dict__)
+        out.direction = self.direction[problems]
+        return out
+
+    def level(self, n: int) -> "_Shape":
+        """The shape with ``n`` angular intervals on [0, pi/2] (0: the unidirectional limit), for the solver."""
+        return _Shape(self, n, self.direction)
 
     # --- a PSD with a pointwise angular shape
-    def factors(self, pd, ps, n):
-        prep = self.prep
-        rho = self._rho(n)
-        K = np.empty((pd.size, prep.q.size))
-        R, L = np.empty_like(K), np.empty_like(K)
-        t = prep.table
-        _ak.problem_factors(pd, ps, prep.lq10, prep.lv10, prep.shift[:, 0].copy(), prep.vshift[:, 0].copy(),
-                            prep.fq, prep.gq, t.lw0, 1.0 / t.dlw, t.ln_are, t.ln_aim, t.ln_l, prep.scale, *rho, K, R, L)
-        return K, R, L
+    def weights_for(self, q: np.ndarray, n: int, direction: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """:meth:`weights` of the directions the problems ``direction`` slide in, and each problem's row of it."""
+        dirs, row = np.unique(direction, return_inverse=True)
+        W = self.weights(q, n, None if dirs.size == self.theta.size else dirs)
+        return W, np.ascontiguousarray(row, dtype=np.int64)
 
-    def _rho(self, n):
-        r""":math:`\rho` (n_q, n_dir, n_speed): the shape's weights times the cardinal tables at every node."""
-        prep = self.prep
-        v = self._cardinal(n)
-        nq, nv, nb = prep.q.size, prep.v.size, n + 1
-        V = [np.empty((nq, nb, nv)) for _ in range(3)]
-        t = prep.table
-        _ak.basis_lookup(prep.lq10, prep.lv10, prep.shift[:, 0].copy(), t.lw0, 1.0 / t.dlw, *v, *V)
-        W = self.weights(n)  # (n_q, n_dir, n_basis)
-        return [np.matmul(W, Vx) for Vx in V]
-
-    def weights(self, n) -> np.ndarray:
-        """(1/4) w_s(psi_j) at every node and direction: the mean of the shape at theta + psi_j and theta - psi_j."""
-        key = n
-        W = self._shape.get(key)
+    def weights(self, q: np.ndarray, n: int, dirs: np.ndarray | None = None) -> np.ndarray:
+        """(1/4) w_s(psi_j) at every direction of ``dirs`` (default all), node and angle, (n_dir, n_q, n + 1):
+        the mean of the shape at theta + psi_j and theta - psi_j."""
+        theta = self.theta if dirs is None else self.theta[dirs]
+        memo = self._weights.setdefault((q.tobytes(), None if dirs is None else dirs.tobytes()), {})
+        W = memo.get(n)
         if W is None:
-            fine = self._shape.get("fine")
+            fine = memo.get("fine")
             if fine is not None and fine[0] % n == 0:
                 W = np.ascontiguousarray(fine[1][:, :, :: fine[0] // n])
             else:
                 psi = np.arange(n + 1) * (0.5 * math.pi / n)
-                phi = np.concatenate([self.theta[:, None] + psi, self.theta[:, None] - psi], axis=1)
-                q = self.prep.q
-                w = self.aniso.angular_shape(q, np.broadcast_to(phi, (q.size,) + phi.shape))
-                w = np.asarray(w, dtype=float)
+                phi = np.concatenate([theta[:, None] + psi, theta[:, None] - psi], axis=1)
+                w = np.asarray(self.aniso.angular_shape(q, np.broadcast_to(phi, (q.size,) + phi.shape)), dtype=float)
                 if not np.all(np.isfinite(w)) or np.any(w < 0):
                     raise InputError("surface: the angular shape of the PSD must be finite and >= 0")
-                W = np.ascontiguousarray(0.5 * (w[..., : n + 1] + w[..., n + 1:]))
-                fine_n = self._shape.get("fine", (0,))[0]
-                if n > fine_n:
-                    self._shape["fine"] = (n, W)
-            self._shape[key] = W
+                W = np.ascontiguousarray((0.5 * (w[..., : n + 1] + w[..., n + 1:])).transpose(1, 0, 2))
+                if n > memo.get("fine", (0,))[0]:
+                    memo["fine"] = (n, W)
+            memo[n] = W
+        if len(self._weights) > 64:
+            self._weights.clear()
         return W
 
-    def _cardinal(self, n):
-        """The normalised cardinal tables v_j (3 arrays (n + 1, n_omega)) on the angular table's grid."""
-        t = self.prep.table
-        key = ("v", n, t.lw0, t.ln_are.size)
+    def cardinal(self, n: int, table) -> list[np.ndarray]:
+        """The normalised cardinal tables v_j, 3 arrays (1, n_omega, n + 1), on the grid of the angular table."""
+        key = ("v", n, table.lw0, table.ln_are.size)
         v = self._tables.get(key)
         if v is None:
-            E = self._modulus()
+            E = self._modulus(table)
             v = []
             for F, power in ((E.real**2, 0), (E.imag**2, 0), (E.imag, 1)):
-                c, lo, hi = basis_weights(n, int(round(1.0 / self.prep.table.dlw)), power)
+                c, lo, hi = basis_weights(n, int(round(1.0 / table.dlw)), power)
                 V = np.empty((n + 1, F.size))
                 _ak.basis_convolution(np.ascontiguousarray(F), c, lo, hi, V)
                 total = V.sum(axis=0)
                 good = total > 1e-300
-                v.append(np.ascontiguousarray(np.where(good, V / np.where(good, total, 1.0), 1.0 / (n + 1))))
+                V = np.where(good, V / np.where(good, total, 1.0), 1.0 / (n + 1))
+                v.append(np.ascontiguousarray(V.T)[None])
             self._tables[key] = v
         return v
 
-    def _modulus(self) -> np.ndarray:
-        t = self.prep.table
-        key = ("E", t.lw0, t.ln_are.size)
+    def _modulus(self, table) -> np.ndarray:
+        key = ("E", table.lw0, table.ln_are.size)
         E = self._tables.get(key)
         if E is None:
-            E = np.asarray(self.material.E(10.0**self.lw, t.T0), dtype=complex)
+            E = np.asarray(self.material.E(10.0**table.log10_omega, table.T0), dtype=complex)
             E = E.real + 1j * np.maximum(E.imag, 1e-30 * float(np.max(np.abs(E))))
             self._tables[key] = E
         return E
 
     # --- the unidirectional limit
-    def unidirectional_factors(self, pd, ps):
-        prep = self.prep
-        alpha = math.radians(float(self.aniso.wave_angle_deg))
-        c = np.abs(np.cos(alpha - self.theta))
-        c = np.where(c < 1e-15, 0.0, c)
-        lo, per_decade, ln_re, ln_im = self._modulus_uni(c)
-        K = np.empty((pd.size, prep.q.size))
-        R, L = np.empty_like(K), np.empty_like(K)
-        _ak.unidirectional_factors(np.ascontiguousarray(c[pd]), ps, prep.lq10, prep.lv10,
-                                   prep.shift[:, 0].copy(), prep.vshift[:, 0].copy(), prep.fq, prep.gq, lo,
-                                   per_decade, ln_re, ln_im, prep.scale, K, R, L)
-        return K, R, L
-
-    def _modulus_uni(self, c):
-        """ln E', ln E'' on a grid reaching the lowest frequency q v a_T |cos| of any direction (12 decades below
-        the slowest speed's at most: a direction along the ridges reads the relaxed modulus there)."""
-        prep = self.prep
-        t = prep.table
-        per_decade = int(round(1.0 / t.dlw))
-        lw_hi = t.lw0 + t.dlw * (t.ln_are.size - 1)
-        low = math.log10(prep.q[0]) + float(np.min(prep.lv10 + prep.shift[:, 0]))
-        cmin = float(np.min(c[c > 0])) if np.any(c > 0) else 1.0
-        lw_lo = low + max(math.log10(cmin), -12.0) - 0.5
-        if np.any(c == 0.0):  # sliding along the ridges: the relaxed modulus, 12 decades below any excitation
-            lw_lo = min(lw_lo, low - 12.0)
-        key = ("uni", round(lw_lo * per_decade), round(lw_hi * per_decade))
-        tab = self._tables.get(key)
-        if tab is None:
-            lo = math.floor(lw_lo * per_decade) / per_decade
-            lw = lo + np.arange(int(round((lw_hi - lo) * per_decade)) + 4) / per_decade
-            E = np.asarray(self.material.E(10.0**lw, t.T0), dtype=complex)
+    def ratios(self, table) -> list[np.ndarray]:
+        r"""The unidirectional limit's angular integrals, point values, over the isotropic ones on the grid of the
+        angular table, 3 arrays (n_dir, n_omega, 1):
+        :math:`2\pi E'(\omega c)^2 / A_{re}(\omega)`, :math:`2\pi E''(\omega c)^2 / A_{im}(\omega)` and
+        :math:`2\pi c\, E''(\omega c) / L(\omega)`, c = |cos(alpha - theta)| (sliding along the ridges, c = 0:
+        the relaxed modulus, 12 decades below the table)."""
+        key = ("uni", table.lw0, table.ln_are.size)
+        r = self._tables.get(key)
+        if r is None:
+            alpha = math.radians(float(self.aniso.wave_angle_deg))
+            c = np.abs(np.cos(alpha - self.theta))
+            c = np.where(c < 1e-15, 0.0, c)
+            lw = table.log10_omega
+            # the frequency read: omega c, at least 12 decades below the table (c -> 0 reads the relaxed modulus)
+            lw_c = np.maximum(lw[None, :] + np.log10(np.maximum(c, 1e-300))[:, None], lw[0] - 12.0)
+            E = np.asarray(self.material.E(10.0**lw_c, table.T0), dtype=complex)
             if not np.all(np.isfinite(E)) or np.any(E.real <= 0):
-                raise InputError(f"material: E(omega, T) must be finite with E' > 0 down to omega = {10**lo:.3g} "
-                                 "rad/s (read by sliding along the ridges of a unidirectional surface)")
-            floor = 1e-30 * float(np.max(np.abs(E)))
-            tab = (float(lo), float(per_decade), np.log(E.real), np.log(np.maximum(E.imag, floor)))
-            self._tables[key] = tab
-        return tab
+                raise InputError(f"material: E(omega, T) must be finite with E' > 0 down to omega = "
+                                 f"{10**float(lw_c.min()):.3g} rad/s (read by sliding along the ridges of a "
+                                 "unidirectional surface)")
+            loss = np.maximum(E.imag, 1e-30 * float(np.max(np.abs(E))))
+            two_pi = 2.0 * math.pi
+            r = [np.ascontiguousarray(x[:, :, None]) for x in
+                 (two_pi * E.real**2 / np.exp(table.ln_are), two_pi * loss**2 / np.exp(table.ln_aim),
+                  two_pi * c[:, None] * loss / np.exp(table.ln_l))]
+            self._tables[key] = r
+        return r
+
+
+class _Shape:
+    """The angular shape of the problems of a call at one angular resolution, as :class:`persson.engine.solver.
+    Prepared` takes it: :meth:`kernel` on any nodes, :meth:`subset` for some of the problems."""
+
+    def __init__(self, angular: _Angular, n: int, direction: np.ndarray):
+        self.angular, self.n, self.direction = angular, n, direction
+
+    def subset(self, problems) -> "_Shape":
+        return _Shape(self.angular, self.n, self.direction[problems])
+
+    def kernel(self, q: np.ndarray, table) -> AngularShape:
+        """The :class:`~persson.engine.kernel_arrays.AngularShape` on the nodes ``q`` and the grid of ``table``
+        (the weights of the directions these problems slide in alone)."""
+        a = self.angular
+        if a.unidirectional:
+            dirs, direction = np.unique(self.direction, return_inverse=True)
+            v = [np.ascontiguousarray(x[dirs]) for x in a.ratios(table)]
+            return AngularShape(direction=np.ascontiguousarray(direction, dtype=np.int64),
+                                weights=np.ones((1, q.size, 1)), v_re=v[0], v_im=v[1], v_l=v[2])
+        W, direction = a.weights_for(q, self.n, self.direction)
+        v = a.cardinal(self.n, table)
+        return AngularShape(direction=direction, weights=W, v_re=v[0], v_im=v[1], v_l=v[2])
 
 
 # ---------------------------------------------------------------------------------------------------------

@@ -35,7 +35,7 @@ from frictioncite import doi
 
 from .reference import ReferenceResult
 
-__all__ = ["reference_directional_friction"]
+__all__ = ["reference_directional_friction", "reference_directional_flash_friction"]
 
 
 @doi("10.1063/1.1388626", "10.1088/0953-8984/20/21/215214")
@@ -128,6 +128,124 @@ def reference_directional_friction(surface, material, speed, direction_deg, temp
         areas.append(float(special.erf(0.5 / math.sqrt(G1))) if G1 > 0 else 1.0)
         layers.append(layer / mu if mu > 0 else 1.0 / q0)
     return ReferenceResult(mu=np.array(mus), contact_area=np.array(areas), excited_layer=np.array(layers))
+
+
+@doi("10.1088/0953-8984/18/32/025")
+def reference_directional_flash_friction(surface, material, speed, direction_deg, temperature=20.0, pressure=0.3e6,
+                                         *, nu: float = 0.5, gamma: float = 0.5, macro_scale_ratio: float = 2.0,
+                                         contact_diameter: float = 0.0, nodes_per_decade: int = 100,
+                                         tol: float = 1e-6, max_iter: int = 200,
+                                         omega_per_decade: int = 20) -> ReferenceResult:
+    r"""Friction of ``surface`` sliding along ``direction_deg`` with Persson's flash temperature, by plain
+    fixed-point iteration: the anisotropic counterpart of :func:`persson.engine.reference.reference_flash_friction`.
+
+    .. math::
+        T_q = T_0 + \int_{q_0}^{q} dq'\, g(q, q') f(q'),\qquad
+        f(q) = \frac{v q^4}{\rho c_p} \frac{P(q)}{P(q_m)} \int_0^{2\pi} d\phi\,\cos(\phi - \theta)\,
+        C(q, \phi)\, \frac{\mathrm{Im}\,E(q v \cos(\phi - \theta), T_q)}{1-\nu^2}
+
+    (Persson, J. Phys.: Condens. Matter 18, 7789 (2006), with the isotropic PSD of its heat source replaced by the
+    angular integral over :math:`C(q, \phi)`, as in the friction itself). The angular integrals use this module's
+    Cartesian reading of ``C2d`` and composite rule, tabulated in log frequency at ``temperature`` and read at
+    :math:`\log_{10}(q v) + \log_{10} a_T(T_q) - \log_{10} a_T(T_0)` (the material's own shift law): valid for an
+    angular shape independent of q (a stretched power law), which is checked. G, P and mu come from an adaptive ODE
+    solve with the current T_q; the heat integral is the trapezoid rule on ``nodes_per_decade`` log-spaced nodes plus
+    nodes graded geometrically towards q0. The heat kernel g is the closed form
+    :func:`persson.engine.kernels.heat_kernel` (checked against quadrature in ``tests/test_effects.py``).
+    Seconds per speed: for verification only.
+
+    Returns
+    -------
+    ReferenceResult
+        With ``temperature_q`` on ``q_eval``.
+    """
+    from .kernels import heat_kernel
+
+    v = np.atleast_1d(np.asarray(speed, dtype=float))
+    theta = math.radians(float(direction_deg))
+    q0, q1 = (float(x) for x in surface.q_range)
+    psi, wpsi = _angular_rule()
+    cpsi = np.cos(psi)
+
+    def weights(q):
+        phis = (theta + psi, theta - psi, theta + math.pi - psi, theta + math.pi + psi)
+        return wpsi * sum(np.asarray(surface.C2d(q * np.cos(p), q * np.sin(p)), dtype=float) for p in phis)
+
+    shape = weights(q0)
+    for qq in (math.sqrt(q0 * q1), q1):
+        w_ = weights(qq)
+        if not np.allclose(w_ / w_.sum(), shape / shape.sum(), rtol=1e-9, atol=1e-14 * shape.max() / shape.sum()):
+            raise ValueError("reference_directional_flash_friction: the angular shape of the PSD changes with q")
+    k = int(np.argmax(shape))
+    phi_k = theta + psi[k]
+    c0 = float(surface.C2d(q0 * math.cos(phi_k), q0 * math.sin(phi_k)))
+    th = material.thermal
+    D, rc = th.diffusivity, th.heat_capacity
+    q_m = macro_scale_ratio * q0
+    d = contact_diameter if contact_diameter > 0 else math.pi / q_m
+    n = int(math.ceil(nodes_per_decade * math.log10(q1 / q0))) + 1
+    q = np.unique(np.concatenate([np.geomspace(q0, q1, n), q0 * (1.0 + np.geomspace(1e-12, 1e-2, 60))]))
+    x = np.log(q)
+    fq = np.array([float(surface.C2d(qi * math.cos(phi_k), qi * math.sin(phi_k))) for qi in q]) / c0
+    s = 1.0 / ((1.0 - nu * nu) * pressure)
+    # the hottest temperature is unknown in advance: tabulate down to 500 K above the background
+    lw_lo = math.log10(q0 * v.min()) - 0.1 + min(0.0, float(material.log10_aT(temperature + 500.0))
+                                                 - float(material.log10_aT(temperature)))
+    lw_hi = math.log10(q1 * v.max()) + 0.1
+    lw = np.linspace(lw_lo, lw_hi, max(8, int(math.ceil((lw_hi - lw_lo) * omega_per_decade)) + 1))
+    A, L = np.empty(lw.size), np.empty(lw.size)
+    for i in range(0, lw.size, 16):
+        E = np.asarray(material.E(10.0 ** lw[i:i + 16, None] * cpsi, temperature), dtype=complex)
+        A[i:i + 16] = np.abs(E) ** 2 @ shape
+        L[i:i + 16] = E.imag @ (shape * cpsi)
+    # one spline of both logarithms: a single evaluation per ODE step
+    ln_al = interpolate.CubicSpline(lw, np.column_stack([np.log(A), np.log(np.maximum(L, 1e-300))]))
+    mus, areas, layers, Ts = [], [], [], []
+    for vi in v:
+        a = D * d / vi
+        ex = special.erfcx(2.0 * q * math.sqrt(a))
+        g = np.zeros((q.size, q.size))
+        for i in range(q.size):
+            for j in range(i + 1):
+                g[i, j] = heat_kernel(q[i], q[j], a, D, ex[i], ex[j])
+        T = np.full(q.size, float(temperature))
+        lv = math.log10(vi)
+        relax, res_prev = 1.0, np.inf
+        for _ in range(max_iter):
+            shift = np.asarray(material.log10_aT(T) - material.log10_aT(temperature), dtype=float)
+
+            def rhs(xx, y, shift=shift):
+                qq = math.exp(xx)
+                f = float(np.interp(xx, x, fq))
+                w = xx / math.log(10.0) + lv + float(np.interp(xx, x, shift))
+                P = float(special.erf(0.5 / math.sqrt(y[0]))) if y[0] > 0 else 1.0
+                a_w, l_w = np.exp(ln_al(w))
+                dmu = 0.5 * qq**4 * f * (gamma + (1.0 - gamma) * P * P) * P * l_w * s
+                return [0.125 * qq**4 * f * a_w * s * s, dmu, dmu / qq]
+
+            sol = integrate.solve_ivp(rhs, (x[0], x[-1]), [0.0, 0.0, 0.0], method="DOP853", rtol=1e-10,
+                                      atol=1e-300, first_step=1e-12, dense_output=True)
+            G = sol.sol(x)[0]
+            P = special.erf(0.5 / np.sqrt(np.maximum(G, 1e-300)))
+            Gm = float(sol.sol(math.log(q_m))[0])
+            Pm = float(special.erf(0.5 / math.sqrt(Gm))) if Gm > 0 else 1.0
+            w = x / math.log(10.0) + lv + shift
+            f = vi * q**4 * fq / rc * P / Pm * np.exp(ln_al(w)[:, 1]) / (1.0 - nu * nu)
+            T_new = float(temperature) + np.array([integrate.trapezoid(g[i, :i + 1] * f[:i + 1], q[:i + 1])
+                                                   if i else 0.0 for i in range(q.size)])
+            res = np.max(np.abs(T_new - T))
+            if res < tol:
+                T = T_new
+                break
+            relax = 0.5 * relax if res > res_prev else min(1.0, 1.25 * relax)
+            res_prev = res
+            T = T + relax * (T_new - T)
+        mus.append(sol.y[1, -1])
+        areas.append(float(special.erf(0.5 / math.sqrt(sol.y[0, -1]))) if sol.y[0, -1] > 0 else 1.0)
+        layers.append(sol.y[2, -1] / sol.y[1, -1])
+        Ts.append(T)
+    return ReferenceResult(mu=np.array(mus), contact_area=np.array(areas), excited_layer=np.array(layers),
+                           q_eval=q, temperature_q=np.array(Ts))
 
 
 def _angular_rule(n_psi_panels: int = 32, n_gauss: int = 8, t_split: float = 1.0, t_max: float = 24.0):

@@ -12,8 +12,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-__all__ = ["QuadratureRule", "ContactLaw", "AngularTables", "Nodes", "SpeedFactors", "Outputs", "FlashSpeeds",
-           "TemperatureTables", "HeatSource", "FixedPoint"]
+__all__ = ["QuadratureRule", "ContactLaw", "AngularTables", "AngularShape", "Nodes", "SpeedFactors", "Outputs",
+           "FlashSpeeds", "TemperatureTables", "HeatSource", "FixedPoint"]
 
 
 class QuadratureRule(NamedTuple):
@@ -87,6 +87,34 @@ class AngularTables(NamedTuple):
     ln_are: np.ndarray
     ln_aim: np.ndarray
     ln_l: np.ndarray
+
+
+class AngularShape(NamedTuple):
+    r"""The angular shape of an anisotropic PSD for the problems of a call (:mod:`persson.engine.anisotropic`): the
+    factors :math:`\rho(q, \theta, \omega) = \sum_j W_j(q, \theta)\, v_j(\omega)` that multiply the isotropic
+    angular integrals (:class:`AngularTables`). Each problem is one sliding direction at one speed (a row of the
+    per-speed tuples). No basis functions (``n_basis`` = 0): an isotropic PSD, rho = 1.
+
+    Parameters
+    ----------
+    direction : ndarray of int64 (n_problem,)
+        The sliding direction of each problem: its row of ``weights`` and, with one table per direction, of the
+        tables (empty for an isotropic PSD).
+    weights : ndarray (n_dir, n_q, n_basis) or (1, n_q, n_basis)
+        ``W[d, i, j]``: the weight of basis function j at node i for direction d ((1/4) w_s(q_i, psi_j) for a
+        pointwise shape, 1 for the unidirectional limit), 1; one row shared by all directions when the first axis
+        is 1.
+    v_re, v_im, v_l : ndarray (n_table, n_omega, n_basis)
+        The basis functions on the log-frequency grid of the angular tables (the normalised cardinal tables of the
+        A_re, A_im and L integrals, 1; or, for the unidirectional limit, the ratio of its point value to the
+        isotropic integral), one table per direction (``n_table`` = n_dir) or one shared (``n_table`` = 1).
+    """
+
+    direction: np.ndarray
+    weights: np.ndarray
+    v_re: np.ndarray
+    v_im: np.ndarray
+    v_l: np.ndarray
 
 
 class Nodes(NamedTuple):

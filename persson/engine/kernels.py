@@ -33,13 +33,20 @@ the solver accurate from soft to glassy rubber:
    instead, each a self-consistent solve of its own (:func:`persson.engine.solver._flash_error`).
 
 The kernels take their arrays grouped in named tuples built once per call (:class:`Nodes`, :class:`QuadratureRule`,
-:class:`AngularTables`, :class:`ContactLaw`, :class:`SpeedFactors`, :class:`Outputs` and, for the flash
-temperature, :class:`FlashSpeeds`, :class:`TemperatureTables`, :class:`HeatSource`, :class:`FixedPoint`, defined in
-:mod:`persson.engine.kernel_arrays`), each field documented there, and are called with keyword arguments.
+:class:`AngularTables`, :class:`AngularShape`, :class:`ContactLaw`, :class:`SpeedFactors`, :class:`Outputs` and,
+for the flash temperature, :class:`FlashSpeeds`, :class:`TemperatureTables`, :class:`HeatSource`,
+:class:`FixedPoint`, defined in :mod:`persson.engine.kernel_arrays`), each field documented there, and are called
+with keyword arguments.
 Grids: nodes ``x`` = ln q (any increasing sequence; third-order interval rule for the non-uniform spacing), angular
 tables uniform in log10 omega. A temperature T enters through ``shift`` = log10 a_T(T) and ``vshift`` = ln b_T(T)
 relative to the table temperature (time-temperature superposition: E(omega, T) = b_T E(omega a_T, T_table));
 per-scale strain factors f, g multiply E' and E'' (large-strain modulus).
+
+An anisotropic PSD (:mod:`persson.engine.anisotropic`) runs through the same kernels: an :class:`AngularShape`
+multiplies the isotropic angular integrals at every node by factors :math:`\rho(q, \theta, \omega)` of its sliding
+direction (:func:`shape_factors`), and each row of the per-speed tuples is then one problem (a direction at a
+speed), so the plain solve and the flash-temperature fixed point are the isotropic ones with C(q) the angular mean.
+An isotropic PSD passes a shape without basis functions (:math:`\rho = 1`, not evaluated).
 """
 
 from __future__ import annotations
@@ -49,11 +56,11 @@ import math
 import numpy as np
 from numba import njit, prange
 
-from .kernel_arrays import (AngularTables, ContactLaw, FixedPoint, FlashSpeeds, HeatSource, Nodes, Outputs,
-                            QuadratureRule, SpeedFactors, TemperatureTables)
+from .kernel_arrays import (AngularShape, AngularTables, ContactLaw, FixedPoint, FlashSpeeds, HeatSource, Nodes,
+                            Outputs, QuadratureRule, SpeedFactors, TemperatureTables)
 
-__all__ = ["QuadratureRule", "ContactLaw", "AngularTables", "Nodes", "SpeedFactors", "Outputs",
-           "angular_convolution", "angular_at", "cumulative_weighted", "area", "contact_weight",
+__all__ = ["QuadratureRule", "ContactLaw", "AngularTables", "AngularShape", "Nodes", "SpeedFactors", "Outputs",
+           "angular_convolution", "angular_at", "shape_factors", "cumulative_weighted", "area", "contact_weight",
            "interval_node_weights", "friction_cumulative", "linear_at", "scale_factors", "contact_and_friction",
            "friction_parallel", "friction_serial", "heat_matrix", "integrands_at", "heated_temperature",
            "flash_parallel", "flash_serial", "heat_kernel", "heat_kernel_factors", "FlashSpeeds", "TemperatureTables",
@@ -129,18 +136,37 @@ def _cubic(tab, x):
     -------
     float
     """
-    n = tab.shape[0]
+    im, i, ip, ip2, c0, c1, c2, c3 = _cubic_weights(x, tab.shape[0])
+    return c0 * tab[im] + c1 * tab[i] + c2 * tab[ip] + c3 * tab[ip2]
+
+
+@njit(cache=True)
+def _cubic_weights(x, n):
+    """The nodes and weights of :func:`_cubic` at fractional index ``x`` of a table of ``n`` values: one stencil
+    serves every table on the same grid (the basis functions of an angular shape).
+
+    Parameters
+    ----------
+    x : float
+        Fractional index into the table.
+    n : int
+        Length of the table.
+
+    Returns
+    -------
+    (int, int, int, int, float, float, float, float)
+        The four nodes and their weights (clamped ends: the end node with weight 1).
+    """
     if x <= 0.0:
-        return tab[0]
+        return 0, 0, 0, 0, 1.0, 0.0, 0.0, 0.0
     if x >= n - 1:
-        return tab[n - 1]
+        return n - 1, n - 1, n - 1, n - 1, 1.0, 0.0, 0.0, 0.0
     i = int(x)
     t = x - i
     im = i - 1 if i >= 1 else 0
-    ip = i + 1
     ip2 = i + 2 if i + 2 < n else n - 1
-    return (-t * (t - 1.0) * (t - 2.0) / 6.0 * tab[im] + (t + 1.0) * (t - 1.0) * (t - 2.0) / 2.0 * tab[i]
-            - (t + 1.0) * t * (t - 2.0) / 2.0 * tab[ip] + (t + 1.0) * t * (t - 1.0) / 6.0 * tab[ip2])
+    return (im, i, i + 1, ip2, -t * (t - 1.0) * (t - 2.0) / 6.0, (t + 1.0) * (t - 1.0) * (t - 2.0) / 2.0,
+            -((t + 1.0) * t * (t - 2.0) / 2.0), (t + 1.0) * t * (t - 1.0) / 6.0)
 
 
 @njit(cache=True)
@@ -187,6 +213,46 @@ def angular_at(lw, angular):
     x = (lw - angular.lw0) * angular.inv_dlw
     return (math.exp(_cubic(angular.ln_are, x)), math.exp(_cubic(angular.ln_aim, x)),
             math.exp(_cubic(angular.ln_l, x)))
+
+
+@njit(cache=True)
+def shape_factors(p, i, x, shape):
+    r"""The factors :math:`\rho = \sum_j W_j v_j(\omega)` of an anisotropic PSD's angular shape that multiply the
+    isotropic angular integrals A_re, A_im and L of problem ``p`` at node ``i`` (:mod:`persson.engine.anisotropic`);
+    the basis functions interpolated cubically in log10 omega on the grid of the angular tables.
+
+    Parameters
+    ----------
+    p : int
+        The problem (one sliding direction at one speed).
+    i : int
+        The node.
+    x : float
+        Fractional index of log10 omega into the angular tables' grid.
+    shape : AngularShape
+        The angular shape (with at least one basis function).
+
+    Returns
+    -------
+    (float, float, float)
+        rho of A_re, A_im and L, 1.
+    """
+    d = shape.direction[p]
+    w = shape.weights[d if shape.weights.shape[0] > 1 else 0, i]
+    k = d if shape.v_re.shape[0] > 1 else 0
+    v_re = shape.v_re[k]
+    v_im = shape.v_im[k]
+    v_l = shape.v_l[k]
+    im, i0, ip, ip2, c0, c1, c2, c3 = _cubic_weights(x, v_re.shape[0])
+    r_re = 0.0
+    r_im = 0.0
+    r_l = 0.0
+    for j in range(w.shape[0]):
+        wj = w[j]
+        r_re += wj * (c0 * v_re[im, j] + c1 * v_re[i0, j] + c2 * v_re[ip, j] + c3 * v_re[ip2, j])
+        r_im += wj * (c0 * v_im[im, j] + c1 * v_im[i0, j] + c2 * v_im[ip, j] + c3 * v_im[ip2, j])
+        r_l += wj * (c0 * v_l[im, j] + c1 * v_l[i0, j] + c2 * v_l[ip, j] + c3 * v_l[ip2, j])
+    return r_re, r_im, r_l
 
 
 # ==================================================================================================== q rules
@@ -485,11 +551,12 @@ def friction_cumulative(G, K, R, q, rule, law, out):
 
 # ==================================================================================================== friction
 @njit(cache=True)
-def scale_factors(lq10, lw_speed, q4C, shift, vshift, f, g, angular, scale, K, dG, R, loss):
+def scale_factors(lq10, lw_speed, q4C, shift, vshift, f, g, angular, shape, p, scale, K, dG, R, loss):
     r"""The factors of the integrands at every node: the angular factor :math:`K = A/8` of
     :math:`dG/d\ln q = q^4 C K`, the ratio R = 4 L / A and the loss integral L, with
-    :math:`A = b_T^2 (f^2 A_{re} + g^2 A_{im}) / ((1-\nu^2)\sigma_0)^2` and
-    :math:`L = b_T\, g\, L / ((1-\nu^2)\sigma_0)`.
+    :math:`A = b_T^2 (f^2 A_{re}\rho_{re} + g^2 A_{im}\rho_{im}) / ((1-\nu^2)\sigma_0)^2` and
+    :math:`L = b_T\, g\, L \rho_L / ((1-\nu^2)\sigma_0)` (:math:`\rho = 1` for an isotropic PSD,
+    :func:`shape_factors` for an anisotropic one; C is then its angular mean).
 
     Parameters
     ----------
@@ -505,14 +572,25 @@ def scale_factors(lq10, lw_speed, q4C, shift, vshift, f, g, angular, scale, K, d
         Strain factors on E' and E'' at every node.
     angular : AngularTables
         The angular integrals at the table temperature.
+    shape : AngularShape
+        The angular shape of the PSD (no basis functions: isotropic).
+    p : int
+        The problem (row of ``shape.direction``; unused for an isotropic PSD).
     scale : float
         1 / ((1 - nu^2) sigma0), 1/Pa.
     K, dG, R, loss : ndarray (n_q,)
         Filled with K, dG/d ln q, R and L (all dimensionless).
     """
     nq = lq10.shape[0]
+    shaped = shape.weights.shape[2] > 0
     for iq in range(nq):
-        are, aim, ll = angular_at(lq10[iq] + lw_speed + shift[iq], angular)
+        lw = lq10[iq] + lw_speed + shift[iq]
+        are, aim, ll = angular_at(lw, angular)
+        if shaped:
+            r_re, r_im, r_l = shape_factors(p, iq, (lw - angular.lw0) * angular.inv_dlw, shape)
+            are *= r_re
+            aim *= r_im
+            ll *= r_l
         b = math.exp(vshift[iq])
         fi = f[iq]
         gi = g[iq]
@@ -554,8 +632,8 @@ def contact_and_friction(iv, nodes, rule, law, K, out):
 
 
 @njit(cache=True)
-def _solve_speed(iv, nodes, rule, speeds, angular, law, coarse, coarse_rule, coarser, coarser_rule, out, mu_coarse,
-                 mu_coarser):
+def _solve_speed(iv, nodes, rule, speeds, angular, shape, law, coarse, coarse_rule, coarser, coarser_rule, out,
+                 mu_coarse, mu_coarser):
     """One speed at its background temperature: G(q), P(q), d mu/d ln q and the cumulative hysteresis friction
     on the nodes, and the friction on the two sub-grids of the error estimate.
 
@@ -571,10 +649,12 @@ def _solve_speed(iv, nodes, rule, speeds, angular, law, coarse, coarse_rule, coa
         Speeds, stress scales and modulus factors.
     angular : AngularTables
         The angular integrals at the table temperature.
+    shape : AngularShape
+        The angular shape of the PSD (no basis functions: isotropic; then a problem is a speed).
     law : ContactLaw
         The contact law.
     coarse : ndarray of int64 (m,)
-        Every other node (indices, with the last node).
+        Every other node (indices, with the last node); empty: mu alone, no sub-grids.
     coarse_rule : QuadratureRule
         The quadrature on ``coarse``.
     coarser : ndarray of int64 (m',)
@@ -584,18 +664,19 @@ def _solve_speed(iv, nodes, rule, speeds, angular, law, coarse, coarse_rule, coa
     out : Outputs
         Row iv is filled.
     mu_coarse, mu_coarser : ndarray (n_speed,)
-        Element iv is filled with mu on ``coarse`` and on ``coarser``.
+        Element iv is filled with mu on ``coarse`` and on ``coarser`` (left alone without sub-grids).
     """
     nq = nodes.q.shape[0]
     K = np.empty(nq)
     scale_factors(nodes.lq10, speeds.lv10[iv], nodes.q4C, speeds.shift[iv], speeds.vshift[iv], speeds.f[iv],
-                  speeds.g[iv], angular, speeds.scale[iv], K, out.dG[iv], out.ratio[iv], out.loss[iv])
+                  speeds.g[iv], angular, shape, iv, speeds.scale[iv], K, out.dG[iv], out.ratio[iv], out.loss[iv])
     cumulative_weighted(K, rule, out.G[iv])
     contact_and_friction(iv, nodes, rule, law, K, out)
     R = out.ratio[iv]
     out.mu[iv] = out.cum[iv, nq - 1]
-    mu_coarse[iv] = _coarse_mu(nodes.q, K, R, law, coarse, coarse_rule)
-    mu_coarser[iv] = _coarse_mu(nodes.q, K, R, law, coarser, coarser_rule)
+    if coarse.shape[0] > 0:
+        mu_coarse[iv] = _coarse_mu(nodes.q, K, R, law, coarse, coarse_rule)
+        mu_coarser[iv] = _coarse_mu(nodes.q, K, R, law, coarser, coarser_rule)
 
 
 @njit(cache=True)
@@ -638,7 +719,7 @@ def _coarse_mu(q, K, R, law, index, rule):
     return cc[m - 1]
 
 
-def _friction_all(nodes, rule, speeds, angular, law, coarse, coarse_rule, coarser, coarser_rule, out, mu_coarse,
+def _friction_all(nodes, rule, speeds, angular, shape, law, coarse, coarse_rule, coarser, coarser_rule, out, mu_coarse,
                   mu_coarser):
     """Hysteresis friction and contact area of every speed at its background temperature, one speed per
     iteration of a ``prange`` loop (see :func:`_solve_speed`; the loop body only calls it: numba's parallel loops
@@ -654,10 +735,12 @@ def _friction_all(nodes, rule, speeds, angular, law, coarse, coarse_rule, coarse
         Speeds, stress scales and modulus factors.
     angular : AngularTables
         The angular integrals at the table temperature.
+    shape : AngularShape
+        The angular shape of the PSD (no basis functions: isotropic; then a problem is a speed).
     law : ContactLaw
         The contact law.
     coarse : ndarray of int64 (m,)
-        Every other node (indices, with the last node).
+        Every other node (indices, with the last node); empty: mu alone, no sub-grids.
     coarse_rule : QuadratureRule
         The quadrature on ``coarse``.
     coarser : ndarray of int64 (m',)
@@ -667,10 +750,10 @@ def _friction_all(nodes, rule, speeds, angular, law, coarse, coarse_rule, coarse
     out : Outputs
         Filled for every speed.
     mu_coarse, mu_coarser : ndarray (n_speed,)
-        Filled with mu on ``coarse`` and on ``coarser``.
+        Filled with mu on ``coarse`` and on ``coarser`` (left alone without sub-grids).
     """
     for iv in prange(speeds.lv10.shape[0]):
-        _solve_speed(iv, nodes, rule, speeds, angular, law, coarse, coarse_rule, coarser, coarser_rule, out,
+        _solve_speed(iv, nodes, rule, speeds, angular, shape, law, coarse, coarse_rule, coarser, coarser_rule, out,
                      mu_coarse, mu_coarser)
 
 
@@ -693,7 +776,7 @@ friction_serial = njit(cache=True)(_friction_all)
 _MIN_RELAX = 1e-4
 
 
-def _flash_all(nodes, rule, speeds, angular, law, temperature, heat, iteration, out, T_out, it_out, res_out):
+def _flash_all(nodes, rule, speeds, angular, shape, law, temperature, heat, iteration, out, T_out, it_out, res_out):
     """The self-consistent flash temperature and the friction of every speed, one speed per iteration of a
     ``prange`` loop (see :func:`_flash_speed`; the loop body only calls it: numba's parallel loops lose writes
     made through a named tuple's field in the body itself).
@@ -708,6 +791,8 @@ def _flash_all(nodes, rule, speeds, angular, law, temperature, heat, iteration, 
         Speeds, stress scales, background temperatures and starting profiles.
     angular : AngularTables
         The angular integrals at the table temperature.
+    shape : AngularShape
+        The angular shape of the PSD (no basis functions: isotropic; then a problem is a speed).
     law : ContactLaw
         The contact law.
     temperature : TemperatureTables
@@ -726,7 +811,8 @@ def _flash_all(nodes, rule, speeds, angular, law, temperature, heat, iteration, 
         Filled with the last max |T_new - T|, K.
     """
     for iv in prange(speeds.lv10.shape[0]):
-        _flash_speed(iv, nodes, rule, speeds, angular, law, temperature, heat, iteration, out, T_out, it_out, res_out)
+        _flash_speed(iv, nodes, rule, speeds, angular, shape, law, temperature, heat, iteration, out, T_out, it_out,
+                     res_out)
 
 
 #: Flash-temperature solver for every speed, in parallel over the speeds (see :func:`_flash_all`).
@@ -736,7 +822,8 @@ flash_serial = njit(cache=True)(_flash_all)
 
 
 @njit(cache=True)
-def _flash_speed(iv, nodes, rule, speeds, angular, law, temperature, heat, iteration, out, T_out, it_out, res_out):
+def _flash_speed(iv, nodes, rule, speeds, angular, shape, law, temperature, heat, iteration, out, T_out, it_out,
+                 res_out):
     """Self-consistent flash temperature for one speed on the nodes.
 
     Fixed-point iteration from the starting profile, converged when max |T_new - T| < ``iteration.tol``:
@@ -756,6 +843,8 @@ def _flash_speed(iv, nodes, rule, speeds, angular, law, temperature, heat, itera
         Speeds, stress scales, background temperatures and starting profiles.
     angular : AngularTables
         The angular integrals at the table temperature.
+    shape : AngularShape
+        The angular shape of the PSD (no basis functions: isotropic; then a problem is a speed).
     law : ContactLaw
         The contact law.
     temperature : TemperatureTables
@@ -793,7 +882,7 @@ def _flash_speed(iv, nodes, rule, speeds, angular, law, temperature, heat, itera
             for i in range(nq):
                 T[i] = T0
             relax = 1.0
-        integrands_at(iv, T, nodes, rule, speeds, angular, temperature, factors, K, out)
+        integrands_at(iv, T, nodes, rule, speeds, angular, shape, temperature, factors, K, out)
         G = out.G[iv]
         P_m = area(_at_G(G, nodes.x, heat.x_m), law)
         source = speeds.v[iv] * heat.heat_factor[iv] / P_m
@@ -816,7 +905,7 @@ def _flash_speed(iv, nodes, rule, speeds, angular, law, temperature, heat, itera
         _relax_step(T_new, T, r_prev, relax)
     for i in range(nq):
         T_out[iv, i] = T[i]
-    integrands_at(iv, T, nodes, rule, speeds, angular, temperature, factors, K, out)
+    integrands_at(iv, T, nodes, rule, speeds, angular, shape, temperature, factors, K, out)
     contact_and_friction(iv, nodes, rule, law, K, out)
     out.mu[iv] = out.cum[iv, nq - 1]
     it_out[iv] = it
@@ -860,7 +949,7 @@ def heat_matrix(q, erfcx_q, S1, S2, a_t0, D):
 
 
 @njit(cache=True)
-def integrands_at(iv, T, nodes, rule, speeds, angular, temperature, factors, K, out):
+def integrands_at(iv, T, nodes, rule, speeds, angular, shape, temperature, factors, K, out):
     """The integrands of speed ``iv`` with the modulus of every scale at that scale's temperature: K, dG/d ln q,
     R and the loss at the nodes, and G(q).
 
@@ -878,6 +967,8 @@ def integrands_at(iv, T, nodes, rule, speeds, angular, temperature, factors, K, 
         Speeds and stress scales.
     angular : AngularTables
         The angular integrals at the table temperature.
+    shape : AngularShape
+        The angular shape of the PSD (no basis functions: isotropic).
     temperature : TemperatureTables
         Shift and strain-factor tables.
     factors : ndarray (4, n_q)
@@ -889,7 +980,7 @@ def integrands_at(iv, T, nodes, rule, speeds, angular, temperature, factors, K, 
     """
     _temperature_factors(T, temperature, factors[0], factors[1], factors[2], factors[3])
     scale_factors(nodes.lq10, speeds.lv10[iv], nodes.q4C, factors[0], factors[1], factors[2], factors[3], angular,
-                  speeds.scale[iv], K, out.dG[iv], out.ratio[iv], out.loss[iv])
+                  shape, iv, speeds.scale[iv], K, out.dG[iv], out.ratio[iv], out.loss[iv])
     cumulative_weighted(K, rule, out.G[iv])
 
 

@@ -87,7 +87,13 @@ class Solved:
 
 @dataclass(frozen=True, eq=False)
 class Prepared:
-    """Arrays the kernels need for one group of speeds sharing a modulus table."""
+    """Arrays the kernels need for one group of speeds sharing a modulus table.
+
+    ``shape`` is None for an isotropic PSD. For an anisotropic one (:mod:`persson.engine.anisotropic`) every "speed"
+    is one problem, a sliding direction at a speed, and ``shape`` gives the kernels its angular shape:
+    ``shape.kernel(q, table)`` is the :class:`~persson.engine.kernel_arrays.AngularShape` on the nodes ``q`` and the
+    grid of the angular table ``table``, ``shape.subset(problems)`` the shape of some of the problems.
+    """
 
     q: np.ndarray
     x: np.ndarray
@@ -117,6 +123,7 @@ class Prepared:
     modulus: object = None
     s_v: np.ndarray | None = None
     b_v: np.ndarray | None = None
+    shape: object = None
 
     @property
     def n_speed(self) -> int:
@@ -131,6 +138,14 @@ class Prepared:
     def kernel_angular(self) -> _kernels.AngularTables:
         """The angular integrals of the modulus table, as the kernels take them."""
         return _angular_arrays(self.table)
+
+    @functools.cached_property
+    def kernel_shape(self) -> _kernels.AngularShape:
+        """The angular shape of the PSD on the nodes, as the kernels take it (no basis functions: isotropic)."""
+        if self.shape is None:
+            return _kernels.AngularShape(direction=np.zeros(0, dtype=np.int64), weights=np.zeros((1, 1, 0)),
+                                         v_re=np.zeros((1, 1, 0)), v_im=np.zeros((1, 1, 0)), v_l=np.zeros((1, 1, 0)))
+        return self.shape.kernel(self.q, self.table)
 
     def nodes(self, idx: np.ndarray) -> "Prepared":
         """The same problem on the sub-grid of node indices ``idx`` (for the coarse-grid error estimate)."""
@@ -150,7 +165,8 @@ class Prepared:
         """The speeds ``speeds`` alone on the nodes ``q`` (inside this problem's q range), with its tables."""
         return _assemble(self.surface, np.asarray(q, dtype=float), self.v[speeds], self.T0[speeds],
                          self.pressure[speeds], self.scale[speeds], self.table, self.shift_table, self.s_v[speeds],
-                         self.b_v[speeds], self.modulus, self.law)
+                         self.b_v[speeds], self.modulus, self.law,
+                         None if self.shape is None else self.shape.subset(speeds))
 
 
 def solve(surface, material, cond: Conditions, grid: GridSettings, nu: float, gamma: float, thermal,
@@ -187,12 +203,13 @@ def solve(surface, material, cond: Conditions, grid: GridSettings, nu: float, ga
     return Solved(q=first.q, converged=bool(merged["converged_each"].all()), notes=notes, **merged)
 
 
-def _solve_group(surface, material, cond, grid, nu, gamma, thermal, correction, modulus) -> Solved:
+def _solve_group(surface, material, cond, grid, nu, gamma, thermal, correction, modulus, shape=None) -> Solved:
     """Solve, then re-solve the speeds whose error estimate exceeds ``grid.tolerance / 3`` on grids refined 2x, 4x, ...
     (up to ``grid.max_refinement`` halvings of every interval): the grid adapts per speed where the integrand
     is hard (e.g. a narrow loss peak swept by a steep flash temperature), and the per-scale arrays of a refined
-    speed are its values at the base nodes, which every refined grid contains."""
-    solved = _solve_once(surface, material, cond, grid, nu, gamma, thermal, correction, modulus, 0)
+    speed are its values at the base nodes, which every refined grid contains. ``shape``: the angular shape of an
+    anisotropic PSD, whose problems (a direction at a speed) are the speeds of ``cond`` (see :class:`Prepared`)."""
+    solved = _solve_once(surface, material, cond, grid, nu, gamma, thermal, correction, modulus, 0, shape=shape)
     for level in range(1, grid.max_refinement + 1):
         # aim a factor 3 below the tolerance: the estimate is within a factor 3 of the true error
         # (a flash temperature that did not converge is tried again on the finer grid too)
@@ -203,13 +220,13 @@ def _solve_group(surface, material, cond, grid, nu, gamma, thermal, correction, 
         rise = _rise(grid, solved.T_q[bad], np.broadcast_to(np.asarray(cond.temperature, dtype=float),
                                                               cond.speed.shape)[bad])
         fine = _solve_once(surface, material, _subset(cond, bad), grid, nu, gamma, thermal, correction, modulus,
-                           level, solved.q, rise=rise)
+                           level, solved.q, rise=rise, shape=None if shape is None else shape.subset(bad))
         solved = _merge(solved, bad, fine, 2**level)
     return solved
 
 
 def _solve_once(surface, material, cond, grid, nu, gamma, thermal, correction, modulus, refine,
-                q_base=None, rise=None) -> Solved:
+                q_base=None, rise=None, shape=None) -> Solved:
     """One solve on the grid's nodes refined ``refine`` times. With the flash temperature, the speeds whose
     temperature leaves the shift table (which covers ``rise``, by default ``grid.max_temperature_rise``, above the
     background) are solved again with a wider table (:func:`_rise`), up to ``_RISE_WIDENING`` times
@@ -218,7 +235,7 @@ def _solve_once(surface, material, cond, grid, nu, gamma, thermal, correction, m
     rise = grid.max_temperature_rise if rise is None else rise
     table_grid = grid if rise == grid.max_temperature_rise else replace(grid, max_temperature_rise=rise)
     prep = prepare(surface, material, cond, table_grid, nu, gamma=gamma, correction=correction,
-                   flash=thermal is not None, modulus=modulus, refine=refine, nodes=q_base)
+                   flash=thermal is not None, modulus=modulus, refine=refine, nodes=q_base, shape=shape)
     if thermal is None:
         return run_plain(prep)
     options = temperature_options(thermal, prep, material)
@@ -235,7 +252,8 @@ def _solve_once(surface, material, cond, grid, nu, gamma, thermal, correction, m
         sub = _subset(cond, hot)
         # on the first solve's nodes, so that the results merge node by node
         prep = prepare(surface, material, sub, replace(grid, max_temperature_rise=rise), nu, gamma=gamma,
-                       correction=correction, flash=True, modulus=modulus, nodes=solved.q)
+                       correction=correction, flash=True, modulus=modulus, nodes=solved.q,
+                       shape=None if shape is None else shape.subset(hot))
         solved = _merge(solved, hot, run_temperature(prep, options), 1)
         top[hot] = prep.shift_table.T_hi
     widened = (top > prep_top) & (solved.T_q.max(axis=1) > prep_top)
@@ -298,7 +316,7 @@ _PER_SPEED = ("mu", "error_estimate", "excited_layer", "converged_each", "iterat
 
 def prepare(surface, material, cond: Conditions, grid: GridSettings, nu: float, *, gamma: float = 0.5,
             correction: str | None = None, flash: bool = False, modulus=None, refine: int = 0,
-            nodes=None) -> Prepared:
+            nodes=None, shape=None) -> Prepared:
     """Nodes, PSD, modulus tables and temperature shifts for the speeds of ``cond``.
 
     ``refine`` halves every interval that many times (the adaptive refinement of :func:`solve`), of ``nodes``
@@ -306,7 +324,8 @@ def prepare(surface, material, cond: Conditions, grid: GridSettings, nu: float, 
     With the flash temperature, nodes graded geometrically towards q0 are added (:func:`_graded_nodes`): there
     T_q rises like the square root of q - q0 (the heat source is proportional to P, which falls like
     (q - q0)^(-1/2) where G grows linearly from zero), a non-smooth start that the regular grid would
-    integrate with first-order accuracy only.
+    integrate with first-order accuracy only. ``shape``: the angular shape of an anisotropic PSD (see
+    :class:`Prepared`).
 
     Raises
     ------
@@ -319,7 +338,6 @@ def prepare(surface, material, cond: Conditions, grid: GridSettings, nu: float, 
     q = grid.q_nodes(q_lo, q_hi)
     v = np.ascontiguousarray(cond.speed, dtype=float)
     lv10 = np.log10(v)
-    nv = v.size
     T0 = np.ascontiguousarray(np.broadcast_to(np.asarray(cond.temperature, dtype=float), v.shape))
     pressure = np.ascontiguousarray(np.broadcast_to(np.asarray(cond.pressure, dtype=float), v.shape))
     if not np.all(np.isfinite(pressure)) or np.any(pressure <= 0):
@@ -353,10 +371,10 @@ def prepare(surface, material, cond: Conditions, grid: GridSettings, nu: float, 
         t = np.arange(k) / k
         q = np.exp(np.append((x[:-1, None] + np.diff(x)[:, None] * t).ravel(), x[-1]))
     return _assemble(surface, q, v, T0, pressure, scale, table, stab, s_v, b_v, modulus,
-                     contact_law(gamma, correction))
+                     contact_law(gamma, correction), shape)
 
 
-def _assemble(surface, q, v, T0, pressure, scale, table, stab, s_v, b_v, modulus, law) -> Prepared:
+def _assemble(surface, q, v, T0, pressure, scale, table, stab, s_v, b_v, modulus, law, shape=None) -> Prepared:
     """The :class:`Prepared` problem on the nodes ``q`` from its tables (``stab`` is None without the flash
     temperature) and per-speed arrays (``s_v``, ``b_v``: the speeds' background shifts onto the table)."""
     flash = stab is not None
@@ -384,7 +402,7 @@ def _assemble(surface, q, v, T0, pressure, scale, table, stab, s_v, b_v, modulus
                     quad_coarser=None if flash else quadrature_rule(surface, x[coarser]), surface=surface, v=v,
                     lv10=np.log10(v), T0=T0, pressure=pressure, scale=scale, table=table, shift=shifts,
                     vshift=vshifts, shift_table=stab, fq=fq, gq=gq, f_tab=f_tab, g_tab=g_tab, law=law,
-                    modulus=modulus, s_v=s_v, b_v=b_v)
+                    modulus=modulus, s_v=s_v, b_v=b_v, shape=shape)
 
 
 def _graded_nodes(q: np.ndarray, surface, table, lw_speed: np.ndarray, ln_b: np.ndarray,
@@ -408,23 +426,27 @@ def _graded_nodes(q: np.ndarray, surface, table, lw_speed: np.ndarray, ln_b: np.
     return np.unique(np.concatenate([q, np.exp(x0 + h * 2.0 ** -np.arange(1, levels + 1))]))
 
 
-def run_plain(prep: Prepared) -> Solved:
+def run_plain(prep: Prepared, *, estimate: bool = True) -> Solved:
     """Hysteresis friction and contact area at the background temperature of each speed
-    (:func:`persson.engine.kernels.friction_parallel`), with the three-level error estimate."""
+    (:func:`persson.engine.kernels.friction_parallel`), with the three-level error estimate (``estimate=False``:
+    without it, the error estimate zero; the anisotropic engine's coarser angular grids need mu alone)."""
     nv, nq = prep.n_speed, prep.q.size
     out = _outputs(nv, nq)
-    mu_c = np.empty(nv)
-    mu_cc = np.empty(nv)
+    mu_c = np.zeros(nv)
+    mu_cc = np.zeros(nv)
+    skip = np.zeros(0, dtype=np.int64)
     kern = _kernels.friction_parallel if nv >= _PARALLEL_MIN_SPEEDS else _kernels.friction_serial
     kern(nodes=prep.kernel_nodes, rule=prep.quad,
          speeds=_kernels.SpeedFactors(lv10=prep.lv10, scale=prep.scale, shift=prep.shift, vshift=prep.vshift,
                                       f=prep.fq, g=prep.gq),
-         angular=prep.kernel_angular, law=prep.law, coarse=prep.coarse, coarse_rule=prep.quad_coarse,
-         coarser=prep.coarser, coarser_rule=prep.quad_coarser, out=out, mu_coarse=mu_c, mu_coarser=mu_cc)
+         angular=prep.kernel_angular, shape=prep.kernel_shape, law=prep.law,
+         coarse=prep.coarse if estimate else skip, coarse_rule=prep.quad_coarse,
+         coarser=prep.coarser if estimate else skip, coarser_rule=prep.quad_coarser, out=out, mu_coarse=mu_c,
+         mu_coarser=mu_cc)
     T_q = np.repeat(prep.T0[:, None], nq, axis=1)
     ok = np.ones(nv, dtype=bool)
-    return _solved(prep, out, T_q, _relative_error(out.mu, mu_c, mu_cc), ok, np.zeros(nv, dtype=np.int64),
-                   np.zeros(nv))
+    err = _relative_error(out.mu, mu_c, mu_cc) if estimate else np.zeros(nv)
+    return _solved(prep, out, T_q, err, ok, np.zeros(nv, dtype=np.int64), np.zeros(nv))
 
 
 def temperature_options(effect, prep: Prepared, material) -> TemperatureSolverOptions:
@@ -602,7 +624,7 @@ def _flash(prep, q_m, a_t0, D, heat_factor, tol, max_iter, T_start=None):
     kern(nodes=prep.kernel_nodes, rule=prep.quad,
          speeds=_kernels.FlashSpeeds(lv10=prep.lv10, v=prep.v, scale=prep.scale, T0=prep.T0,
                                            T_start=np.ascontiguousarray(T_start, dtype=float)),
-         angular=prep.kernel_angular, law=prep.law,
+         angular=prep.kernel_angular, shape=prep.kernel_shape, law=prep.law,
          temperature=_kernels.TemperatureTables(T_lo=st.T_lo, inv_dT=1.0 / st.dT, shift=st.shift,
                                                       vshift=st.vshift, f=prep.f_tab, g=prep.g_tab),
          heat=_kernels.HeatSource(erfcx=np.ascontiguousarray(EX), S1=S1, S2=S2,
