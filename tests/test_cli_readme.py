@@ -39,21 +39,47 @@ def test_help_lists_the_commands(capsys):
         assert f"    {name} " in out
 
 
-def test_the_engine_does_not_import_the_validation_package():
+#: Checks that need a fresh interpreter (what importing a package pulls in, ``python -m persson``).
+FRESH_INTERPRETER = {
+    "engine imports": [sys.executable, "-c",
+                       "import sys, persson, persson.commands.cli, persson.commands.friction, persson.commands.sweep, "
+                       "persson.case; print('validation' in sys.modules)"],
+    "package imports": [sys.executable, "-c",
+                        "import sys, persson, persson.commands.cli, persson.case, materials, surfaces; "
+                        "print(sorted(m for m in ('scipy.optimize', 'scipy.interpolate', 'scipy.stats') "
+                        "if m in sys.modules))"],
+    "python -m persson": [sys.executable, "-m", "persson", "--help"],
+}
+
+
+@pytest.fixture(scope="module", autouse=True)
+def fresh_interpreters():
+    """The :data:`FRESH_INTERPRETER` processes, all started when this file's first test runs: each spends seconds
+    importing the packages, which they do on another core while the tests run here."""
+    procs = {name: subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+             for name, cmd in FRESH_INTERPRETER.items()}
+    yield procs
+    for p in procs.values():
+        p.kill()
+        p.communicate()
+
+
+def stdout_of(procs, name):
+    """What the fresh interpreter ``name`` printed, once it has exited without error."""
+    out, err = procs[name].communicate()
+    assert procs[name].returncode == 0, f"{FRESH_INTERPRETER[name]} failed:\n{err}"
+    return out
+
+
+def test_the_engine_does_not_import_the_validation_package(fresh_interpreters):
     """The validation commands come in through the ``persson.commands`` entry points, not an import."""
-    code = ("import sys, persson, persson.commands.cli, persson.commands.friction, persson.commands.sweep, persson.case; "
-            "print('validation' in sys.modules)")
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
-    assert out.stdout.strip() == "False"
+    assert stdout_of(fresh_interpreters, "engine imports").strip() == "False"
 
 
-def test_importing_the_packages_leaves_the_slow_scipy_subpackages_unloaded():
+def test_importing_the_packages_leaves_the_slow_scipy_subpackages_unloaded(fresh_interpreters):
     """Start-up time of every command: scipy.optimize, scipy.interpolate and scipy.stats (0.2-0.4 s to import) are
     imported by the functions that fit or interpolate, when they run, not by importing the packages."""
-    code = ("import sys, persson, persson.commands.cli, persson.case, materials, surfaces; "
-            "print(sorted(m for m in ('scipy.optimize', 'scipy.interpolate', 'scipy.stats') if m in sys.modules))")
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
-    assert out.stdout.strip() == "[]"
+    assert stdout_of(fresh_interpreters, "package imports").strip() == "[]"
 
 
 def test_readme_command_table_shows_what_each_command_takes():
@@ -70,9 +96,8 @@ def test_readme_command_table_shows_what_each_command_takes():
         assert shown == positional, (name, shown, positional)
 
 
-def test_python_dash_m_runs_the_cli():
-    out = subprocess.run([sys.executable, "-m", "persson", "--help"], capture_output=True, text=True, check=True)
-    assert "friction" in out.stdout
+def test_python_dash_m_runs_the_cli(fresh_interpreters):
+    assert "friction" in stdout_of(fresh_interpreters, "python -m persson")
 
 
 def test_friction_command_writes_csv_matching_the_api(tmp_path, capsys):

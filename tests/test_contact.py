@@ -39,7 +39,7 @@ def reference_mean_separation(Es, p, gamma):
     def inner(x):
         if x > 30:
             return 0.0
-        f = lambda t: (gamma + 3 * (1 - gamma) * special.erf(t) ** 2) * math.exp(-t * t) / t  # noqa: E731
+        f = lambda t: (gamma + 3 * (1 - gamma) * math.erf(t) ** 2) * math.exp(-t * t) / t  # noqa: E731
         return integrate.quad(f, x, max(x, 1.0) + 30.0, limit=400, epsabs=0, epsrel=1e-11)[0]
 
     def outer(tau):

@@ -16,7 +16,6 @@ from materials.dma import DMAData
 DATA = Path(__file__).resolve().parents[1].parent / "shared" / "data" / "dma"
 PYVISCO = DATA / "pyvisco" / "freq_user_raw.csv"
 PYVISCO_SHIFTS = DATA / "pyvisco" / "freq_user_master__shift_factors.csv"
-EPLEXOR = DATA / "eplexor"
 
 
 def _example_isotherms():
@@ -268,13 +267,8 @@ def test_pyvisco_automatic_shifts_fit_no_worse_than_pyvisco_shifts():
 
 
 @pytest.mark.data
-def test_eplexor_master_curve_with_quality():
-    if not EPLEXOR.exists():
-        pytest.skip(f"shared data not present: {EPLEXOR}")
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")          # temperature drift within isotherms is warned (tested elsewhere)
-        d = materials.read_dma(EPLEXOR)
-        m = materials.master_curve(d, T_ref=50.0)
+def test_eplexor_master_curve_with_quality(eplexor_master):
+    _, m = eplexor_master                        # the default master curve at T_ref = 50 C (tests/conftest.py)
     q = m.quality
     assert q.n_points == 1320 and 0 < q.rms_rel_storage < 0.2 and 0 < q.rms_rel_loss < 0.2
     assert q.shift_rms_log10 is not None and "RMS relative residual" in m.summary()

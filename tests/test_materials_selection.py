@@ -16,7 +16,6 @@ from materials.dma import DMAData
 DATA = Path(__file__).resolve().parents[1].parent / "shared" / "data" / "dma"
 PYVISCO = DATA / "pyvisco" / "freq_user_raw.csv"
 PYVISCO_SHIFTS = DATA / "pyvisco" / "freq_user_master__shift_factors.csv"
-EPLEXOR = DATA / "eplexor"
 R = 8.314462618
 
 
@@ -192,13 +191,10 @@ def test_pyvisco_default_is_no_worse_than_pyvisco_shifts(pyvisco_default):
 
 @pytest.mark.data
 @pytest.mark.slow
-def test_eplexor_default_is_the_best_option():
-    if not EPLEXOR.exists():
-        pytest.skip(f"shared data not present: {EPLEXOR}")
+def test_eplexor_default_is_the_best_option(eplexor_master):
+    d, m = eplexor_master                         # the default master curve at T_ref = 50 C (tests/conftest.py)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")           # temperature drift within isotherms is warned (tested elsewhere)
-        d = materials.read_dma(EPLEXOR)
-        m = materials.master_curve(d, T_ref=50.0)
         prony = materials.master_curve(d, T_ref=50.0, fit="prony")
     # measured: default 0.043 (table, tabulated); Prony with the tabulated law 0.073; the old default 0.288
     assert m.misfit <= min(s.misfit for s in m.scores) * (1 + 1e-9)
