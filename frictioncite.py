@@ -173,6 +173,13 @@ REFERENCES: dict[str, str] = {
     "friction for randomly rough surfaces with anisotropic statistical properties, Eur. Phys. J. E 29, 275 (2009).",
     "10.1140/epje/i2019-11844-5": "L. Afferrante, C. Putignano, N. Menga, G. Carbone, Friction in rough contacts of "
     "linear viscoelastic surfaces with anisotropic statistical properties, Eur. Phys. J. E 42, 80 (2019).",
+    "10.1080/01621459.1995.10476572": "R. E. Kass, A. E. Raftery, Bayes factors, J. Am. Stat. Assoc. 90, 773 (1995).",
+    "10.1214/aoms/1177731909": "A. Wald, J. Wolfowitz, On a test whether two samples are from the same "
+    "population, Ann. Math. Stat. 11, 147 (1940).",
+    "10.2307/3002019": "F. E. Satterthwaite, An approximate distribution of estimates of variance components, "
+    "Biometrics Bulletin 2, 110 (1946).",
+    "gasser:biometrika-73-625-1986": "T. Gasser, L. Sroka, C. Jennen-Steinmetz, Residual variance and residual "
+    "pattern in nonlinear regression, Biometrika 73, 625 (1986).",
 }
 
 

@@ -200,3 +200,24 @@ def test_measurements_repr_is_one_line():
                                  mu=[0.5, 0.6, 0.7])
     text = repr(m)
     assert text.startswith("Measurements(3 rows") and "array(" not in text and "\n" not in text
+
+
+def test_q1_equal_to_the_last_q_of_the_psd_within_rounding_is_accepted(tmp_path):
+    """q1 written with 6 digits against a PSD table written with 10: the same wavevector (relative tolerance 1e-6);
+    a q1 really past the table is refused with enough digits to show the difference."""
+    d = _copy_case(tmp_path)
+    psd = d / "surface_psd.csv"
+    lines = psd.read_text().splitlines()
+    q_last, c_last = lines[-1].split(",")
+    lines[-1] = f"2737169.534,{c_last}"          # the table ends at 2.737169534e6 rad/m
+    psd.write_text("\n".join(lines) + "\n")
+    toml = (d / "case.toml").read_text()
+    (d / "case.toml").write_text(toml.replace('psd = "surface_psd.csv"', 'psd = "surface_psd.csv"\nq1 = 2.73717e+06'))
+    case = validation.load_case(d)
+    # 2.73717e6 is 1.7e-7 past the table's end: the table's own last q is used
+    assert case.model.surface.q_range[1] == pytest.approx(2737169.534, rel=1e-12)
+    (d / "case.toml").write_text(toml.replace('psd = "surface_psd.csv"', 'psd = "surface_psd.csv"\nq1 = 2.7375e+06'))
+    with pytest.raises(InputError) as exc:
+        validation.load_case(d)
+    msg = str(exc.value)
+    assert "q1 = 2737500 rad/m" in msg and "last q = 2737169.534 rad/m" in msg and "case.toml" in msg

@@ -205,3 +205,25 @@ def test_runs_test_matches_wald_wolfowitz():
     V = 2 * n1 * n2 * (2 * n1 * n2 - n) / (n * n * (n - 1))
     p = stats.norm.cdf((3 - E) / math.sqrt(V))
     assert any(f"runs test p = {p:.2g}" in f for f in pat.findings)
+
+
+def test_pattern_search_on_pure_noise_keeps_its_false_alarm_rate():
+    """300 residuals of pure noise on a DRFT-like grid (3 temperatures x 2 pressures x 9 speeds and a slip sweep),
+    the noise estimated from the data each time: the pattern search calls at most its nominal rate PATTERN_ALPHA
+    (1.5 %) of them systematic (three binomial standard errors of margin)."""
+    from validation.noise import PATTERN_ALPHA
+
+    rng = np.random.default_rng(12)
+    v = np.geomspace(1e-3, 3.0, 9)
+    T, p, V = np.meshgrid([0.0, 20.0, 40.0], [2e5, 5e5], v, indexing="ij")
+    s = np.array([0.005, 0.01, 0.02, 0.05, 0.1, 0.2, 0.4, 0.8])
+    m0 = validation.Measurements.from_arrays(slip=np.concatenate([np.ones(V.size), s]),
+                                             speed=np.concatenate([V.ravel(), np.ones(s.size)]),
+                                             temperature=np.concatenate([T.ravel(), np.full(s.size, 20.0)]),
+                                             pressure=np.concatenate([p.ravel(), np.full(s.size, 3e5)]), mu=0.5)
+    n, found = 300, 0
+    for _ in range(n):
+        r = rng.normal(0, 0.01, m0.n)
+        m = m0.with_mu(0.5 + r)
+        found += remaining_pattern(r, m, estimate_noise(m, reference=np.full(m.n, 0.5))).found
+    assert found / n <= PATTERN_ALPHA + 3 * math.sqrt(PATTERN_ALPHA / n)

@@ -194,12 +194,29 @@ def test_baseline_parameters_are_projected_out_and_refitted_jointly(registry):
 
 
 def test_candidate_that_changes_nothing_is_reported_without_signature(registry):
+    @dataclass(frozen=True)
+    class Fast(Effect):
+        """A term that acts only above 10 m/s (the rows end at 1 m/s)."""
+
+        name = "test_fast"
+        parameters = (Parameter("a", 0.05, (0.0, 0.5), "1", "friction added above 10 m/s"),)
+        a: float = 0.05
+
+        def friction_term(self, state):
+            return np.where(state.conditions.speed > 10.0, self.a, 0.0)
+
     model = persson.Model(SURFACE, TREAD)
     m = _rows().with_mu(validation.predict(model, _rows()).mu + 0.001)
-    dx = validation.diagnose(model, m, candidates=["wet"], probe=False)   # no wet rows
-    assert dx.top.status == "no signature" and not dx.top.significant and dx.top.delta_bic == 0.0
+    dx = validation.diagnose(model, m, candidates=[Fast(), "wet"], probe=False)
+    fast = dx.candidate("test_fast")
+    assert fast.status == "no signature" and not fast.significant and fast.delta_bic == 0.0
+    # the wet effect cannot act on rows measured dry: not applicable (not failed, not a missing signature)
+    wet = dx.candidate("wet")
+    assert wet.status.startswith("not applicable") and "no wet rows" in wet.status and not wet.applicable
+    assert [c.effect for c in dx.candidates] == ["test_fast", "wet"]
+    assert "Not applicable to these rows: wet" in dx.explanation
     js = dx.to_json()
-    assert '"wet"' in js
+    assert '"wet"' in js and '"not applicable: no wet rows' in js
 
 
 def test_failing_user_effect_is_reported_not_raised(registry):

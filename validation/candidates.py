@@ -34,12 +34,21 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy import stats
 
+from frictioncite import doi
+
 from .errors import InputError
 from .fitting import Fitter, ParameterSpace, free_parameters, halton
 from .refit import GlobalFit, global_fit, with_uncertainty
 
 __all__ = ["Baseline", "Candidate", "SIGNIFICANCE_RULE", "DELTA_BIC_THRESHOLD", "P_THRESHOLD", "bic",
-           "fit_baseline", "fit_candidate", "finish_candidate", "FitSettings"]
+           "fit_baseline", "fit_candidate", "finish_candidate", "FitSettings", "not_applicable", "note_kind",
+           "NOTE_KINDS"]
+
+#: G. Schwarz, Estimating the dimension of a model, Ann. Stat. 6, 461 (1978): the BIC.
+SCHWARZ_1978 = "10.1214/aos/1176344136"
+#: R. E. Kass, A. E. Raftery, Bayes factors, J. Am. Stat. Assoc. 90, 773 (1995): delta BIC > 10 is "very strong"
+#: evidence.
+KASS_RAFTERY_1995 = "10.1080/01621459.1995.10476572"
 
 DELTA_BIC_THRESHOLD = -10.0
 P_THRESHOLD = 0.01
@@ -187,6 +196,21 @@ class Candidate:
         return self.status == "ok" and self.significant and self.plausible
 
     @property
+    def not_identified(self) -> tuple:
+        """Fitted parameters the data do not limit (68 % interval spanning the range searched)."""
+        return tuple(e.name for e in self.estimates if not e.identified)
+
+    @property
+    def identified(self) -> bool:
+        """Whether the data limit every fitted parameter of the effect."""
+        return not self.not_identified
+
+    @property
+    def applicable(self) -> bool:
+        """False when the effect cannot act on these rows (e.g. wet without wet rows)."""
+        return not self.status.startswith("not applicable")
+
+    @property
     def placeholders(self) -> dict:
         """Parameters holding a placeholder (e.g. ``hurst = 0``, "fitted on the PSD"): name -> meaning."""
         out = {}
@@ -212,7 +236,10 @@ class Candidate:
                 "free": list(self.free), "baseline_parameters": dict(self.baseline_parameters),
                 "baseline_parameters_std": {e.key: e.std for e in self.baseline_estimates},
                 "n_params": self.n_params, "n_starts": self.n_starts, "n_good_starts": self.n_good,
-                "status": self.status, "notes": list(self.notes)}
+                "status": self.status, "notes": list(self.notes),
+                "notes_detail": [{"kind": note_kind(n), "text": n} for n in self.notes],
+                "identified": [e.name for e in self.estimates if e.identified],
+                "not_identified": list(self.not_identified)}
 
 
 @dataclass(frozen=True, eq=False)
@@ -250,8 +277,10 @@ class FitSettings:
         return self.max_evals or 40 + 25 * k
 
 
+@doi(SCHWARZ_1978)
 def bic(rss: float, n: int, k: int, sigma_known: bool) -> float:
-    """Schwarz's criterion for a Gaussian likelihood (chi2 with known sigma, else sigma profiled out)."""
+    r"""Schwarz's criterion for a Gaussian likelihood: :math:`\chi^2 + k\ln n` with known sigma, else
+    :math:`n\ln(RSS/n) + k\ln n` (sigma profiled out) (Schwarz, Ann. Stat. 6, 461 (1978))."""
     if sigma_known:
         return float(rss + k * math.log(n))
     return float(n * math.log(max(rss, 1e-300) / n) + k * math.log(n))
@@ -274,11 +303,14 @@ class BaselineFit:
     rss: float
     contact: object
     n_evals: int
+    searched: bool = True   # its parameters were searched globally here (False: polished from a previous fit)
 
 
-def fit_baseline(model, space: ParameterSpace, settings: FitSettings, global_search: bool = True) -> BaselineFit:
+def fit_baseline(model, space: ParameterSpace, settings: FitSettings, global_search: bool = True,
+                 extra_starts=()) -> BaselineFit:
     """Refit of the baseline's ``space`` (none: the model as given): global, or a local polish of the given values
-    (``global_search=False``, for values that come from a previous global fit)."""
+    (``global_search=False``, for values that come from a previous global fit); ``extra_starts`` (points in u)
+    are fitted from besides (e.g. the values of a related fit)."""
     s = settings
     f_given = s.predictor.predict(model).mu
     evals = 1
@@ -286,9 +318,9 @@ def fit_baseline(model, space: ParameterSpace, settings: FitSettings, global_sea
         fitter = Fitter(s.predictor, s.y, s.w, model, space, max_evals=s.budget(len(space)), contact=s.contact)
         u0 = space.u_of(model, s.contact)
         if global_search:
-            fit = global_fit(fitter, u0, seed=s.seed, n_local=s.n_local)
+            fit = global_fit(fitter, u0, seed=s.seed, n_local=s.n_local, extra_starts=extra_starts)
         else:
-            fit = global_fit(fitter, u0, seed=s.seed, n_screen=0, n_local=1)
+            fit = global_fit(fitter, u0, seed=s.seed, n_screen=0, n_local=1, extra_starts=extra_starts)
         J = fitter.jacobian(fit.u) * s.w[:, None]
         evals += fitter.n_evals
         norms = np.linalg.norm(J, axis=0)
@@ -296,7 +328,8 @@ def fit_baseline(model, space: ParameterSpace, settings: FitSettings, global_sea
         Q = np.linalg.qr(J[:, keep])[0] if np.any(keep) else np.zeros((s.n, 0))
         return BaselineFit(model=fit.model, space=space, fitter=fitter, fit=fit, u=fit.u, predicted=fit.mu,
                            given=f_given, Q=Q, k_eff=int(keep.sum()),
-                           rss=float(np.sum(((s.y - fit.mu) * s.w) ** 2)), contact=fit.contact, n_evals=evals)
+                           rss=float(np.sum(((s.y - fit.mu) * s.w) ** 2)), contact=fit.contact, n_evals=evals,
+                           searched=global_search)
     return BaselineFit(model=model, space=space, fitter=None, fit=None, u=np.zeros(0), predicted=f_given,
                        given=f_given, Q=np.zeros((s.n, 0)), k_eff=0, rss=float(np.sum(((s.y - f_given) * s.w) ** 2)),
                        contact=s.contact, n_evals=evals)
@@ -325,6 +358,9 @@ def fit_candidate(eff, base: BaselineFit, settings: FitSettings, names=None) -> 
     bic0 = bic(base.rss, s.n, base.k_eff, s.sigma_known)
     if getattr(eff, "error", None):
         return Trial(effect=eff, free=(), failed=_failed(name, eff.error, bic0))
+    why = not_applicable(eff, s.predictor.measurements, s.contact)
+    if why:
+        return Trial(effect=eff, free=(), failed=_failed(name, why, bic0, status="not applicable"))
     scale = max(float(np.max(np.abs(s.y))), 1e-12)
     tiny = 1e-9 * scale
     f0 = base.predicted
@@ -353,16 +389,20 @@ def fit_candidate(eff, base: BaselineFit, settings: FitSettings, names=None) -> 
     z, cos = _score(d, s, base, scale)
     kc = len(cand)
     if kc:
-        probe.screen(list(halton(kc, 2, seed=s.seed + 1)))
+        probe.screen(list(halton(kc, 2, seed=s.seed)))
     if (probe.max_change(f0) if kc else float(np.max(np.abs(d)))) <= tiny:
         return Trial(effect=eff, free=tuple(q.name for q in cand), n_evals=probe.n_evals,
                      failed=_no_signature(name, model_c, cand, d, f0, s, bic0, base.rss, probe.n_evals))
     evals = probe.n_evals
     space = base.space + ParameterSpace(cand)
     fitter = Fitter(s.predictor, s.y, s.w, model_c, space, max_evals=s.budget(len(space)), contact=base.contact)
+    fitter.adopt(probe, base.u)
     u_given = np.concatenate([base.u, u_c0])
     try:
-        fit = global_fit(fitter, u_given, seed=s.seed, n_local=s.n_local)
+        # after a global search of the baseline's parameters, the design varies the candidate's own (the
+        # baseline's stay at their optimum in the screen; every local fit is joint)
+        dims = None if base.searched else np.arange(len(base.space), len(space))
+        fit = global_fit(fitter, u_given, seed=s.seed, n_local=s.n_local, screen_dims=dims)
     except InputError as exc:
         return Trial(effect=eff, free=(), n_evals=evals + fitter.n_evals,
                      failed=_failed(name, str(exc), bic0, evals + fitter.n_evals))
@@ -442,11 +482,48 @@ def _likelihood_ratio_p(rss0, rss1, dfc, dfd, sigma_known) -> float:
     return float(stats.f.sf(F, dfc, max(dfd, 1)))
 
 
-def _failed(name: str, msg: str, bic0: float, evals: int = 0) -> Candidate:
+def not_applicable(effect, measurements, contact) -> str:
+    """Why ``effect`` cannot act on these rows ("" when it can): the wet effect without wet rows, patch heating
+    without a contact patch (no slip rows and no ``[contact]``)."""
+    from persson.effects import PatchHeating, Wet
+
+    if isinstance(effect, Wet) and not np.any(measurements.wet):
+        return "no wet rows: the wet effect acts on rows measured wet only"
+    if isinstance(effect, PatchHeating) and contact is None:
+        return ("no contact patch: patch heating acts along the contact of a wheel, and these data have no slip "
+                "rows and no [contact]")
+    return ""
+
+
+#: Machine-readable kinds of the notes a fit or a diagnosis attaches (the first pattern found in the text).
+NOTE_KINDS = (
+    ("budget", ("budget of model evaluations", "ran out of model evaluations")),
+    ("model_failed", ("the model failed",)),
+    ("misfit_in_errors", ("Birge ratio",)),
+    ("other_optimum", ("another local optimum",)),
+    ("released_bounds", ("parameters on their bounds released",)),
+    ("no_signature", ("changes no prediction",)),
+    ("extrapolated_psd", ("PSD tail extrapolated", "extrapolated past")),
+    ("convergence", ("ConvergenceWarning", "did not converge")),
+    ("accuracy", ("AccuracyWarning", "quadrature error")),
+    ("physics", ("PhysicsWarning",)),
+    ("patch_table", ("patch_heating:",)),
+)
+
+
+def note_kind(text: str) -> str:
+    """The kind of a note (:data:`NOTE_KINDS`), ``"other"`` when none matches."""
+    for kind, patterns in NOTE_KINDS:
+        if any(p in text for p in patterns):
+            return kind
+    return "other"
+
+
+def _failed(name: str, msg: str, bic0: float, evals: int = 0, status: str = "failed") -> Candidate:
     return Candidate(effect=name, instance=None, model=None, parameters={}, free=(), baseline_parameters={},
                      rmse=math.nan, rss=math.nan, bic=math.nan, delta_bic=math.inf, p_value=1.0, test="-",
                      score_z=0.0, score_p=1.0, cosine=0.0, explained=0.0, significant=False,
-                     status=f"failed: {msg}", n_evals=evals)
+                     status=f"{status}: {msg}", n_evals=evals)
 
 
 def _no_signature(name, model_c, cand, d, f0, s: FitSettings, bic0, rss0, evals) -> Candidate:

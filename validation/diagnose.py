@@ -24,13 +24,13 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from .ambiguity import COSINE_THRESHOLD, Ambiguity, Separation, clusters as find_clusters, separate
 from .candidates import (DELTA_BIC_THRESHOLD, P_THRESHOLD, SIGNIFICANCE_RULE, Baseline, BaselineFit, Candidate,
-                         FitSettings, bic, finish_candidate, fit_baseline, fit_candidate)
+                         FitSettings, bic, finish_candidate, fit_baseline, fit_candidate, note_kind)
 from .compare import json_text
 from .errors import InputError
 from .fitting import CONTACT, FreeParameter, ParameterSpace, contact_parameters, free_parameters
@@ -40,7 +40,7 @@ from .predict import Predictor
 from .refit import data_range, issues_at, with_uncertainty
 from .verdict import Verdict, decide, explain
 
-__all__ = ["Diagnosis", "Baseline", "Candidate", "Ambiguity", "Separation", "diagnose", "SIGNIFICANCE_RULE",
+__all__ = ["Diagnosis", "Baseline", "Candidate", "Ambiguity", "Separation", "diagnose_single", "SIGNIFICANCE_RULE",
            "DELTA_BIC_THRESHOLD", "P_THRESHOLD", "COSINE_THRESHOLD"]
 
 
@@ -64,8 +64,8 @@ class Diagnosis:
     sigma_known : bool
         Whether the likelihood uses mu_std.
     noise : float
-        Noise level in mu: the independent estimate (``noise_estimate``); without one, the residual standard
-        deviation of the best credible candidate (of the baseline when there is none).
+        Noise level in mu: the independent estimate (``noise_estimate``); NaN without one (``null`` in the
+        JSON; the verdict is then ``undetermined``).
     n_evaluations : int
         Model evaluations (each one prediction of every row).
     seconds : float
@@ -89,6 +89,32 @@ class Diagnosis:
     name: str = ""
     verdict: Verdict | None = None
     noise_estimate: NoiseEstimate | None = None
+    selection: object = None
+    context: object = field(default=None, repr=False)
+
+    @property
+    def noise_known(self) -> bool:
+        """Whether the noise level comes from an independent estimate."""
+        return self.noise_estimate is not None and self.noise_estimate.known
+
+    @property
+    def citations(self) -> tuple:
+        """References of the statistics (BIC, evidence scale, noise, pattern tests) and of the physics of the
+        baseline and the candidates."""
+        from frictioncite import citations_of
+
+        from .noise import estimate_noise, remaining_pattern
+        from .verdict import decide
+
+        effects = [type(c.instance) for c in self.candidates if c.instance is not None]
+        return citations_of(bic, decide, estimate_noise, remaining_pattern, type(self.baseline.model),
+                            *(type(e) for e in self.baseline.model.effects), *effects)
+
+    def references(self) -> list:
+        """The :attr:`citations` as formatted references."""
+        from frictioncite import references
+
+        return references(self.citations)
 
     @property
     def top(self) -> Candidate | None:
@@ -139,12 +165,16 @@ class Diagnosis:
             if c.effect in amb:
                 d["ambiguity"] = amb[c.effect]
             cands.append(d)
-        return {
-            "verdict": v.verdict, "noise": self.noise, "noise_source": ne.source,
+        out = {
+            "verdict": v.verdict, "noise": self.noise if self.noise_known else None, "noise_source": ne.source,
             "lack_of_fit_p": v.lack_of_fit_p, "remaining_pattern": v.remaining_pattern,
-            "verdict_effect": v.effect, "verdict_alternatives": list(v.alternatives), "verdict_reason": v.reason,
+            "verdict_effect": v.effect, "verdict_effects": list(v.effects),
+            "verdict_alternatives": list(v.alternatives), "verdict_reason": v.reason,
+            "indicated": list(v.indicated), "not_identified": list(v.not_identified), "misfit_share": v.share,
+            "closest": v.closest,
             "close_call": list(v.close_call[:2]) + [v.close_call[2]] if v.close_call else None,
             "noise_dof": ne.dof, "noise_description": ne.description,
+            "citations": list(self.citations), "references": self.references(),
             "baseline": {"rmse": b.rmse, "effects": list(b.effects), "bic": b.bic, "rss": b.rss,
                          "fitted": dict(b.fitted), "parameters_std": {e.key: e.std for e in b.estimates},
                          "intervals": {e.key: list(e.interval) for e in b.estimates},
@@ -154,9 +184,13 @@ class Diagnosis:
                          "lack_of_fit": b.lack.as_dict(), "remaining_pattern": b.pattern.describe(),
                          "n": self.measurements.n, "noise": self.noise, "sigma_known": self.sigma_known,
                          "rule": self.rule, "explanation": self.explanation, "name": self.name,
-                         "n_evaluations": self.n_evaluations, "seconds": self.seconds, "notes": list(b.notes)},
+                         "n_evaluations": self.n_evaluations, "seconds": self.seconds, "notes": list(b.notes),
+                         "notes_detail": [{"kind": note_kind(t), "text": t} for t in b.notes]},
             "candidates": cands,
         }
+        if self.selection is not None:
+            out.update(self.selection.as_dict())
+        return out
 
     def to_dict(self) -> dict:
         """Alias of :meth:`as_dict` (the ``--json`` layout)."""
@@ -171,25 +205,31 @@ class Diagnosis:
         """The verdict line, then the ranking as aligned plain text."""
         b = self.baseline
         lines = [self.verdict.headline,
-                 f"noise {self.noise:.3g} ({self.noise_estimate.source}); baseline "
+                 (f"noise {self.noise:.3g} ({self.noise_estimate.source})" if self.noise_known else
+                  "noise unknown (no independent estimate)") + "; baseline "
                  f"{list(b.effects) or ['(hysteresis only)']}: RMSE {b.rmse:.4g}, lack-of-fit p = "
-                 f"{b.lack.p_value:.2g}" + (f", fitted {', '.join(e.describe() for e in b.estimates)}"
-                                            if b.estimates else ""),
+                 f"{b.lack.p_value:.2g}".replace("nan", "- (no test)")
+                 + (f", fitted {', '.join(e.describe() for e in b.estimates)}" if b.estimates else ""),
                  f"{'rank':<5}{'effect':<20}{'RMSE':>9}{'dBIC':>10}{'p':>10}{'LOF p':>9}  {'sig':<4}{'plaus':<6}"
                  "parameters (+- standard error)"]
         for i, c in enumerate(self.candidates, 1):
             if c.status != "ok":
                 lines.append(f"{i:<5}{c.effect:<20}{'-':>9}{'-':>10}{'-':>10}{'-':>9}  {'no':<4}{'-':<6}({c.status})")
                 continue
+            lof = f"{c.lack.p_value:>9.2g}" if self.noise_known else f"{'-':>9}"
             par = ", ".join(e.describe() for e in c.estimates) or "no free parameters"
             lines.append(f"{i:<5}{c.effect:<20}{c.rmse:>9.4g}{c.delta_bic:>+10.1f}{c.p_value:>10.2g}"
-                         f"{c.lack.p_value:>9.2g}  {'YES' if c.significant else 'no':<4}"
+                         f"{lof}  {'YES' if c.significant else 'no':<4}"
                          f"{'yes' if c.plausible else 'NO':<6}{par}")
         return "\n".join(lines)
 
     def text(self) -> str:
-        """What ``persson diagnose`` prints: the verdict and the ranking, then the explanation."""
-        return self.table_text() + "\n\n" + self.explanation
+        """What ``persson diagnose`` prints: the verdict and the ranking, then the explanation (and, with the set
+        search, the sets of effects)."""
+        txt = self.table_text() + "\n\n" + self.explanation
+        if self.selection is not None:
+            txt += "\n\n" + self.selection.text()
+        return txt
 
     def summary(self) -> str:
         return self.text()
@@ -204,53 +244,19 @@ class Diagnosis:
 
 
 # ==========================================================================================================
-def diagnose(model, measurements: Measurements | None = None, candidates=None, contact=None, *, fit=None,
-             parameters: dict | None = None, n_starts: int = 3, seed: int = 0, probe: bool = True,
-             name: str = "", max_evals: int | None = None, noise: NoiseEstimate | None = None,
-             refit_baseline: bool = True) -> Diagnosis:
-    """Rank the effects that could be missing from ``model`` and give the verdict (module docstring).
-
-    Parameters
-    ----------
-    model : persson.Model or validation.Case
-        The baseline. A :class:`~validation.Case` supplies the measurements, contact, ``fit`` and name.
-    measurements : Measurements
-    candidates : sequence of str or Effect, optional
-        Effect names or instances (instances set the starting / signature parameter values). Default: every
-        registered effect (:func:`persson.effects.available`, including user-defined ones) not in the model.
-    contact : persson.slip.Contact, optional
-        Needed when rows have slip < 1 (default: ``measurements.contact``, set by :func:`validation.load_case`).
-    fit : sequence of str, optional
-        Baseline parameters refitted with every candidate (``"effect.parameter"``, ``"gamma"`` or
-        ``"contact.stiffness"``, ``"contact.length"``, ``"contact.sakai_n"``).
-    parameters : dict, optional
-        ``effect name -> list of parameter names`` to refit, overriding the default rule of
-        :func:`validation.fitting.free_parameters`.
-    n_starts : int
-        Local least-squares fits per global fit (the given values and the best points of the design).
-    seed : int
-        Seed of the Halton design of starts.
-    probe : bool
-        Evaluate the probe grid for ambiguity clusters.
-    name : str
-    max_evals : int, optional
-        Budget of model evaluations per global fit (default 40 + 25 k for k parameters).
-    noise : validation.noise.NoiseEstimate, optional
-        Use this noise estimate instead of estimating it.
-    refit_baseline : bool
-        Search the baseline's parameters globally (False: only polish the given values, e.g. when they come from
-        a previous global fit).
-
-    Returns
-    -------
-    Diagnosis
-    """
+def diagnose_single(model, measurements: Measurements | None = None, candidates=None, contact=None, *, fit=None,
+                    parameters: dict | None = None, n_starts: int = 3, seed: int = 0, probe: bool = True,
+                    name: str = "", max_evals: int | None = None, noise: NoiseEstimate | None = None,
+                    refit_baseline: bool = True, progress=None, predictor=None) -> Diagnosis:
+    """Each candidate effect added alone to ``model``, ranked, and the verdict: :func:`validation.diagnose` with
+    ``search="single"`` (its parameters, less ``search``)."""
     t_start = time.perf_counter()
     model, measurements, contact, fit, name = _unpack(model, measurements, contact, fit, name)
     from persson.effects import Effect, available
 
     m = measurements
-    predictor = Predictor(m, contact)
+    if predictor is None or predictor.measurements is not m:
+        predictor = Predictor(m, contact)
     sigma_known = m.mu_std is not None
     settings = FitSettings(predictor=predictor, y=m.mu, w=1.0 / m.mu_std if sigma_known else np.ones(m.n),
                            sigma_known=sigma_known, seed=seed, n_local=max(1, n_starts), max_evals=max_evals,
@@ -260,20 +266,23 @@ def diagnose(model, measurements: Measurements | None = None, candidates=None, c
 
     base_space = ParameterSpace(_baseline_params(model, _fit_names(fit, model), contact))
     base = fit_baseline(model, base_space, settings, global_search=refit_baseline)
-    trials = [fit_candidate(eff, base, settings, parameters.get(eff.name))
-              for eff in _candidates(candidates, model, available, Effect)]
+    effects = _candidates(candidates, model, available, Effect)
+    trials = []
+    t_fits = time.perf_counter()
+    for i, eff in enumerate(effects):
+        if progress is not None:
+            left = ("" if i == 0 else
+                    f", about {(time.perf_counter() - t_fits) / i * (len(effects) - i):.0f} s left")
+            progress(f"fitting {eff.name}{left}", i, len(effects))
+        trials.append(fit_candidate(eff, base, settings, parameters.get(eff.name)))
     n_eval = base.n_evals + sum(t.n_evals for t in trials)
 
     noise = noise or _estimate_noise(m, base, trials)
-    s2 = 1.0 if sigma_known else (noise.sigma ** 2 if noise.known else base.rss / max(m.n - base.k_eff, 1))
-
-    def lof(r, k):
-        return lack_of_fit(r, k, noise)
-
-    def pattern(r):
-        return remaining_pattern(r, m, noise)
-
-    baseline = _finish_baseline(base, settings, s2, ranges, lof, pattern)
+    ctx = FitContext(settings=settings, noise=noise, ranges=ranges, measurements=m,
+                     s2=1.0 if sigma_known else (noise.sigma ** 2 if noise.known else
+                                                 base.rss / max(m.n - base.k_eff, 1)))
+    s2, lof, pattern = ctx.s2, ctx.lack_of_fit, ctx.pattern
+    baseline = ctx.finish(base)
     n_eval += baseline.fit.n_evals - base.fit.n_evals if base.fit is not None else 0
     bic0 = baseline.bic
     results = []
@@ -288,8 +297,7 @@ def diagnose(model, measurements: Measurements | None = None, candidates=None, c
                              pattern_of=pattern, budget=budget)
         n_eval += c.n_evals - t.n_evals
         results.append(c)
-    results.sort(key=lambda c: (c.status.startswith("failed"),
-                                c.delta_bic if math.isfinite(c.delta_bic) else math.inf))
+    results.sort(key=lambda c: (_rank_group(c.status), c.delta_bic if math.isfinite(c.delta_bic) else math.inf))
 
     clusters = find_clusters(results, base.Q, settings.w)
     if probe and clusters:
@@ -297,10 +305,49 @@ def diagnose(model, measurements: Measurements | None = None, candidates=None, c
         n_eval += used
     verdict = decide(baseline, results, noise)
     explanation = explain(verdict, m, baseline, results, clusters, noise)
+    if progress is not None:
+        progress(f"{len(effects)} candidates fitted", len(effects), len(effects))
     return Diagnosis(measurements=m, contact=contact, baseline=baseline, candidates=tuple(results),
                      clusters=tuple(clusters), explanation=explanation, rule=SIGNIFICANCE_RULE,
-                     sigma_known=sigma_known, noise=_noise_level(noise, baseline, results, m.n), n_evaluations=n_eval,
-                     seconds=time.perf_counter() - t_start, name=name, verdict=verdict, noise_estimate=noise)
+                     sigma_known=sigma_known, noise=_noise_level(noise), n_evaluations=n_eval,
+                     seconds=time.perf_counter() - t_start, name=name, verdict=verdict, noise_estimate=noise,
+                     context=ctx)
+
+
+@dataclass(frozen=True, eq=False)
+class FitContext:
+    """What the fits of one diagnosis share once the noise is known (reused by the set search).
+
+    Attributes
+    ----------
+    settings : validation.candidates.FitSettings
+    noise : validation.noise.NoiseEstimate
+    ranges : validation.refit.DataRange
+    measurements : Measurements
+    s2 : float
+        Variance unit of the weighted chi2 for the uncertainties (1 with ``mu_std``, else the noise variance;
+        the baseline's residual variance without a noise estimate).
+    """
+
+    settings: object
+    noise: NoiseEstimate
+    ranges: object
+    measurements: Measurements
+    s2: float
+
+    def lack_of_fit(self, residual, k):
+        return lack_of_fit(residual, k, self.noise)
+
+    def pattern(self, residual):
+        return remaining_pattern(residual, self.measurements, self.noise)
+
+    def parameters(self, model, names) -> list[FreeParameter]:
+        """The free parameters ``names`` (``"effect.parameter"``, ``"gamma"``, ``"contact.*"``) of ``model``."""
+        return _baseline_params(model, _fit_names(names, model), self.settings.contact)
+
+    def finish(self, base: BaselineFit) -> Baseline:
+        """Uncertainties, lack of fit and pattern of a fitted model (a baseline, or a set of effects)."""
+        return _finish_baseline(base, self.settings, self.s2, self.ranges, self.lack_of_fit, self.pattern)
 
 
 # ==========================================================================================================
@@ -340,13 +387,16 @@ def _finish_baseline(base: BaselineFit, settings: FitSettings, s2, ranges, lof, 
                     pattern=pattern(r0), notes=notes, fit=fit)
 
 
-def _noise_level(noise: NoiseEstimate, baseline: Baseline, results, n: int) -> float:
-    if noise.known:
-        return float(noise.sigma)
-    best = next((c for c in results if c.credible), None)
-    if best is not None:
-        return math.sqrt(best.rss / max(n - baseline.n_params - best.n_params, 1))
-    return baseline.sigma
+def _noise_level(noise: NoiseEstimate) -> float:
+    """The independent noise level, NaN without one (a residual's own scatter is not a noise estimate)."""
+    return float(noise.sigma) if noise.known else math.nan
+
+
+def _rank_group(status: str) -> int:
+    """Fitted candidates first (by delta BIC), then those without signature, not applicable, failed."""
+    if status.startswith("failed"):
+        return 2
+    return 1 if status.startswith("not applicable") else 0
 
 
 def _contact_dict(contact) -> dict | None:

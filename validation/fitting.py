@@ -279,6 +279,19 @@ class BudgetExhausted(Exception):
     """Raised by :meth:`Fitter.mu` when the fit's budget of model evaluations is spent."""
 
 
+#: Distance in u (every coordinate) within which a local fit has joined the basin of an optimum found before.
+MERGE_TOL = 0.02
+
+
+class _Merged(Exception):
+    """A local fit reached the basin of a known optimum (see :meth:`Fitter.local`)."""
+
+    def __init__(self, chi2, u):
+        super().__init__()
+        self.chi2 = chi2
+        self.u = u
+
+
 class Fitter:
     """Weighted least squares of ``predictor.predict(space.apply(model, u))`` against ``y``.
 
@@ -315,6 +328,7 @@ class Fitter:
         self.errors: dict[str, None] = {}
         self.notes: dict[str, None] = {}
         self._penalty = (np.abs(self.y) + 10.0) * self.w * 10.0
+        self.last_hessian = None
 
     def mu(self, u):
         """Predicted mu at ``u`` (None when the model failed there)."""
@@ -342,6 +356,21 @@ class Fitter:
             if c < self.best[0]:
                 self.best = (c, np.array(u))
         return mu
+
+    def adopt(self, other: "Fitter", prefix) -> None:
+        """Take over the predictions ``other`` has made, ``other``'s space being this one's with the leading
+        coordinates held at ``prefix`` (e.g. a candidate's own parameters at the baseline's fitted values): the
+        same models, so they need not be evaluated again."""
+        prefix = np.asarray(prefix, dtype=float)
+        for key, mu in other._cache.items():
+            u = np.concatenate([prefix, np.asarray(key, dtype=float)])
+            self._cache.setdefault(tuple(np.round(u, 12)), mu)
+            if mu is not None:
+                c = float(np.sum(((self.y - mu) * self.w) ** 2))
+                if c < self.best[0]:
+                    self.best = (c, u)
+        self.errors.update(other.errors)
+        self.notes.update(other.notes)
 
     def chi2(self, u) -> float:
         """Weighted residual sum of squares at ``u`` (inf where the model failed)."""
@@ -373,25 +402,58 @@ class Fitter:
                 break
         return sorted(out, key=lambda t: t[0])
 
-    def local(self, u0, fixed=(), max_nfev: int | None = None) -> tuple[np.ndarray, float]:
+    def local(self, u0, fixed=(), max_nfev: int | None = None, known=()) -> tuple[np.ndarray, float]:
         """Bounded least squares (trust-region reflective) from ``u0``; the coordinates in ``fixed`` stay put.
 
-        Returns the end point and its chi2. Raises :class:`BudgetExhausted` when the budget runs out.
+        ``known`` lists optima ``(chi2, u)`` or ``(chi2, u, H)`` found before (``H`` the Gauss-Newton Hessian
+        there, see :attr:`last_hessian`): a fit whose iterate is no better than one of them and comes within
+        :data:`MERGE_TOL` of it (every coordinate), or inside the region where its chi2 rises by less than its
+        residual variance ``chi2 / (n - k)`` (predicted by ``H``), stops there: it has entered the same basin, and
+        the multi-start search would otherwise pay for converging to it again.
+
+        Returns the end point and its chi2; :attr:`last_hessian` holds the Gauss-Newton Hessian there (full
+        coordinates, zero rows for the fixed ones). Raises :class:`BudgetExhausted` when the budget runs out.
         """
         u0 = np.clip(np.asarray(u0, dtype=float), 0.0, 1.0)
         free = np.array([j for j in range(u0.size) if j not in set(fixed)], dtype=int)
+        self.last_hessian = None
         if free.size == 0:
             return u0, self.chi2(u0)
+        dof = max(self.y.size - u0.size, 1)
+        known = [(float(k[0]), np.asarray(k[1], dtype=float), k[2] if len(k) > 2 else None)
+                 for k in known if math.isfinite(k[0])]
 
         def full(v):
             u = u0.copy()
             u[free] = v
             return u
 
-        res = optimize.least_squares(lambda v: self.resid(full(v)), u0[free], bounds=(0.0, 1.0), method="trf",
-                                     diff_step=2e-3, x_scale=1.0, ftol=1e-5, xtol=1e-4, gtol=1e-10,
-                                     max_nfev=max_nfev or 12 * (free.size + 1))
+        def resid(v):
+            u = full(v)
+            r = self.resid(u)
+            if known:
+                c = float(r @ r)
+                for ck, uk, Hk in known:
+                    if c < ck:
+                        continue
+                    du = u - uk
+                    if np.max(np.abs(du)) <= MERGE_TOL or (
+                            Hk is not None and np.max(np.abs(du)) <= 5 * MERGE_TOL
+                            and float(du @ Hk @ du) <= ck / dof):
+                        raise _Merged(ck, uk)
+            return r
+
+        try:
+            res = optimize.least_squares(resid, u0[free], bounds=(0.0, 1.0), method="trf", diff_step=2e-3,
+                                         x_scale=1.0, ftol=1e-5, xtol=1e-4, gtol=1e-10,
+                                         max_nfev=max_nfev or 12 * (free.size + 1))
+        except _Merged as m:
+            return m.u.copy(), m.chi2
         u = full(np.clip(res.x, 0.0, 1.0))
+        if res.jac is not None and np.all(np.isfinite(res.jac)):
+            H = np.zeros((u0.size, u0.size))
+            H[np.ix_(free, free)] = res.jac.T @ res.jac
+            self.last_hessian = H
         return u, self.chi2(u)
 
     def jacobian(self, u, h: float = 2e-3) -> np.ndarray:

@@ -1,25 +1,35 @@
-"""The improvement loop: add the credible effect the diagnosis names, and stop with the verdict.
+"""The improvement loop: find the set of effects the data support, step by step, and stop with the verdict.
 
-Step 0 is the first diagnosis (given, or computed once). While its verdict is ``partly_explained``, the effect it
-names -- significant, plausible, refitted jointly with the baseline's parameters -- is added with exactly the
-parameters of that diagnosis, and the next diagnosis (of the remaining candidates) starts from them. The loop
-stops when the verdict is ``explained`` (that effect is added, and nothing more is called for), ``nothing_missing``
-or ``unexplained`` (nothing credible to add), or after ``max_steps`` effects. An effect that is significant only
-with implausible parameters is never added.
+Step 0 is the first diagnosis (given, or computed once). While its verdict calls for an effect
+(``partly_explained``, or ``explained``), the effect it names -- significant, plausible, refitted jointly with the
+baseline's parameters -- is added with exactly the parameters of that diagnosis. After each addition the effects
+added earlier are tested again (:mod:`validation.select`): one whose removal costs less than 10 BIC units is
+removed, and one that an alternative of its own step replaces with a lower BIC is swapped. The next diagnosis (of
+the remaining candidates, with the noise estimate of the first, so that every model is judged against the same
+noise) starts from the current set's values. The loop stops when the verdict is ``explained`` and nothing changed
+(nothing more is called for), ``nothing_missing``, ``unexplained`` or ``undetermined`` (nothing credible to add, or
+no noise to judge against), when a set comes back that was tried before, or after ``max_steps`` additions. A final
+pass keeps an effect only if dropping it from the final joint model costs more than 10 BIC units, and names every
+other set within 10 BIC units (equally supported) with the measurement that would separate it. Every step keeps
+the alternatives its diagnosis named ("or as well by").
 """
 
 from __future__ import annotations
 
+import math
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from .compare import Comparison, comparison_from, json_text
-from .diagnose import Diagnosis, _unpack, diagnose
-from .predict import Prediction
+from .diagnose import Diagnosis, _unpack, diagnose_single
+from .errors import InputError
+from .predict import Prediction, Predictor
+from .select import Selection, SetSearch
+from .verdict import Verdict, judge, misfit_share
 
-__all__ = ["Improvement", "Step", "improve"]
+__all__ = ["Improvement", "Step", "improve", "diagnose"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -31,7 +41,7 @@ class Step:
     index : int
         0 for the baseline.
     added : str or None
-        The effect added at this step (None for the baseline).
+        The effect added at this step (None for the baseline and for a removal).
     effects : tuple of str
         Effects of the model after the step.
     parameters : dict
@@ -45,15 +55,23 @@ class Step:
         Change of BIC against the previous step (0 for the baseline).
     model : persson.Model
     diagnosis : Diagnosis or None
-        The diagnosis of this step's model (None for the last step when the previous verdict was ``explained``:
-        nothing more was called for, so it was not diagnosed again).
+        The diagnosis of this step's model (None when it was not diagnosed: the last step after an
+        ``explained`` verdict, or a step the loop left at once).
     predicted : ndarray
         This step's prediction per row.
     contact : persson.slip.Contact or None
     estimates : tuple of validation.refit.Estimate
-        The fitted parameters with their uncertainties (from the diagnosis that chose the step).
+        The fitted parameters with their uncertainties (from the diagnosis or the joint refit that made the
+        step).
     lack_of_fit_p : float
         Lack-of-fit p-value of this step's model against the noise.
+    action : str
+        ``"baseline"``, ``"added"``, ``"removed"`` (backward elimination) or ``"swapped"``.
+    removed : str or None
+        The effect removed (or swapped out) at this step.
+    alternatives : tuple of str
+        What the step's diagnosis named "or as well by": plausible candidates within 10 BIC units of the one
+        added (for a swap: the effect swapped out).
     """
 
     index: int
@@ -70,9 +88,23 @@ class Step:
     contact: object = None
     estimates: tuple = ()
     lack_of_fit_p: float = float("nan")
+    action: str = "added"
+    removed: str | None = None
+    alternatives: tuple = ()
+
+    def describe(self) -> str:
+        """What the step did, in words."""
+        if self.action == "baseline":
+            return "(baseline)"
+        if self.action == "removed":
+            return f"- {self.removed}"
+        if self.action == "swapped":
+            return f"{self.removed} -> {self.added}"
+        return f"+ {self.added}"
 
     def as_dict(self) -> dict:
-        return {"step": self.index, "added": self.added, "effects": list(self.effects),
+        return {"step": self.index, "action": self.action, "added": self.added, "removed": self.removed,
+                "alternatives": list(self.alternatives), "effects": list(self.effects),
                 "parameters": self.parameters, "fitted": list(self.fitted), "rmse": self.rmse, "bic": self.bic,
                 "delta_bic": self.delta_bic, "lack_of_fit_p": self.lack_of_fit_p,
                 "parameters_std": {e.key: e.std for e in self.estimates},
@@ -86,22 +118,27 @@ class Improvement:
     Attributes
     ----------
     steps : tuple of Step
-        The baseline first, then one step per added effect.
+        The baseline first, then one step per change of the set of effects.
     model : persson.Model
-        The final model.
+        The final model (the best set).
     measurements : Measurements
     contact : persson.slip.Contact or None
     noise : float
-        Noise level of the last diagnosis (see :attr:`Diagnosis.noise`).
+        Noise level of the first diagnosis (NaN without an independent estimate).
     stopped : str
         Why the loop stopped.
     seconds : float
     name : str
     verdict : str
-        ``"nothing_missing"`` (nothing added: the baseline fits the noise), ``"explained"`` (the added effects
-        bring the residual to the noise level), ``"partly_explained"`` (effects were added but the misfit is
-        not all explained) or ``"unexplained"`` (nothing credible to add to a failing baseline).
+        ``"nothing_missing"`` (nothing added: the baseline fits the noise), ``"explained"`` (the best set brings
+        the residual to the noise level and the data identify its parameters), ``"partly_explained"`` (effects
+        were added but the misfit is not all explained), ``"unexplained"`` (nothing credible to add to a failing
+        baseline, or too little of the misfit explained) or ``"undetermined"`` (no noise estimate).
     noise_source : str
+    selection : validation.select.Selection or None
+        The best set, the equally supported sets, the cost of dropping each effect.
+    final : validation.verdict.Verdict or None
+        The verdict on the best set, with its reason.
     """
 
     steps: tuple
@@ -114,11 +151,17 @@ class Improvement:
     name: str = ""
     verdict: str = ""
     noise_source: str = ""
+    selection: Selection | None = None
+    final: Verdict | None = None
+    n_evaluations: int = 0
 
     @property
     def added(self) -> tuple:
-        """Effects added, in order."""
-        return tuple(s.added for s in self.steps if s.added)
+        """The effects of the final model beyond the baseline, in the order they were added."""
+        base = set(self.steps[0].effects)
+        order = [s.added for s in self.steps if s.added]
+        final = [e for e in self.steps[-1].effects if e not in base]
+        return tuple(sorted(final, key=lambda e: order.index(e) if e in order else len(order)))
 
     @property
     def diagnoses(self) -> tuple:
@@ -137,18 +180,32 @@ class Improvement:
                                name=f"{self.name} step {s.index}" if self.name else f"step {s.index}")
 
     def table_text(self) -> str:
-        lines = [f"verdict: {self.verdict} (noise {self.noise:.3g} from {self.noise_source})",
-                 f"{'step':<6}{'added':<20}{'RMSE':>9}{'dBIC':>9}{'LOF p':>9}  effects / fitted parameters"]
+        noise = f"{self.noise:.3g} from {self.noise_source}" if math.isfinite(self.noise) else "unknown"
+        lines = [f"verdict: {self.verdict} (noise {noise})"]
+        if self.final is not None:
+            lines[0] += f" -- {self.final.reason}"
+        lines.append(f"{'step':<6}{'change':<34}{'RMSE':>9}{'dBIC':>9}{'LOF p':>9}  effects / fitted parameters")
         for s in self.steps:
             par = ", ".join(e.describe() for e in s.estimates) or "-"
-            lines.append(f"{s.index:<6}{s.added or '(baseline)':<20}{s.rmse:>9.4g}{s.delta_bic:>+9.1f}"
-                         f"{s.lack_of_fit_p:>9.2g}  {list(s.effects)} {par}")
+            alt = f" (or as well by {', '.join(s.alternatives)})" if s.alternatives else ""
+            lines.append(f"{s.index:<6}{s.describe():<34}{s.rmse:>9.4g}{s.delta_bic:>+9.1f}"
+                         f"{s.lack_of_fit_p:>9.2g}  {list(s.effects)} {par}{alt}")
         lines.append(f"stopped: {self.stopped}")
+        if self.selection is not None:
+            lines.append(self.selection.text())
         return "\n".join(lines)
 
     def as_dict(self) -> dict:
-        return {"name": self.name, "verdict": self.verdict, "noise": self.noise, "noise_source": self.noise_source,
-                "steps": [s.as_dict() for s in self.steps], "stopped": self.stopped, "seconds": self.seconds}
+        out = {"name": self.name, "verdict": self.verdict,
+               "noise": self.noise if math.isfinite(self.noise) else None, "noise_source": self.noise_source,
+               "added": list(self.added), "steps": [s.as_dict() for s in self.steps], "stopped": self.stopped,
+               "seconds": self.seconds, "n_evaluations": self.n_evaluations}
+        if self.final is not None:
+            out["verdict_reason"] = self.final.reason
+            out["verdict_detail"] = self.final.as_dict()
+        if self.selection is not None:
+            out.update(self.selection.as_dict())
+        return out
 
     def to_dict(self) -> dict:
         """Alias of :meth:`as_dict`."""
@@ -164,10 +221,85 @@ class Improvement:
 
         return {"steps": plots.plot_steps(self)}
 
+    def as_diagnosis(self) -> Diagnosis:
+        """The first diagnosis with the verdict on the best set and the selection attached
+        (``diagnose(..., search="sets")``)."""
+        dx = self.steps[0].diagnosis
+        v = self.final or dx.verdict
+        explanation = v.headline + "\n\n" + self.selection.text() + "\n\n" + "The single-effect diagnosis:\n\n" + \
+            dx.explanation
+        return replace(dx, verdict=v, selection=self.selection, explanation=explanation,
+                       seconds=self.seconds, n_evaluations=self.n_evaluations)
+
+
+def diagnose(model, measurements=None, candidates=None, contact=None, *, search: str = "single",
+             **options) -> Diagnosis:
+    """Rank the effects that could be missing from ``model`` and give the verdict (module docstring).
+
+    Parameters
+    ----------
+    model : persson.Model or validation.Case
+        The baseline. A :class:`~validation.Case` supplies the measurements, contact, ``fit`` and name.
+    measurements : Measurements
+    candidates : sequence of str or Effect, optional
+        Effect names or instances (instances set the starting / signature parameter values). Default: every
+        registered effect (:func:`persson.effects.available`, including user-defined ones) not in the model.
+    contact : persson.slip.Contact, optional
+        Needed when rows have slip < 1 (default: ``measurements.contact``, set by :func:`validation.load_case`).
+    fit : sequence of str, optional
+        Baseline parameters refitted with every candidate (``"effect.parameter"``, ``"gamma"`` or
+        ``"contact.stiffness"``, ``"contact.length"``, ``"contact.sakai_n"``).
+    parameters : dict, optional
+        ``effect name -> list of parameter names`` to refit, overriding the default rule of
+        :func:`validation.fitting.free_parameters`.
+    n_starts : int
+        Local least-squares fits per global fit (the given values and the best points of the design).
+    seed : int
+        Seed of the Halton design of starts.
+    probe : bool
+        Evaluate the probe grid for ambiguity clusters.
+    name : str
+    max_evals : int, optional
+        Budget of model evaluations per global fit (default 40 + 25 k for k parameters).
+    noise : validation.noise.NoiseEstimate, optional
+        Use this noise estimate instead of estimating it.
+    refit_baseline : bool
+        Search the baseline's parameters globally (False: only polish the given values, e.g. when they come from
+        a previous global fit).
+    search : {"single", "sets"}
+        ``"single"``: each candidate added alone. ``"sets"``: also search combinations of effects
+        (:mod:`validation.select`, through :func:`validation.improve`); the verdict is then the one on the best
+        set, and ``selection`` names it and every equally supported set.
+    progress : callable, optional
+        Called as ``progress(text, done, total)`` while candidates are fitted (the text says what runs and the
+        time left, estimated from the candidates done).
+    predictor : validation.predict.Predictor, optional
+        A predictor of these measurements to reuse (its engine solutions and patch tables carry over between
+        diagnoses, e.g. the steps of :func:`validation.improve`).
+    **improve_options
+        With ``search="sets"``: passed to :func:`validation.improve` (``max_steps``).
+
+    Returns
+    -------
+    Diagnosis
+    """
+    if search not in ("single", "sets"):
+        raise InputError(f"search: expected \"single\" or \"sets\", got {search!r}")
+    if search == "sets":
+        keep = ("fit", "progress", "parameters", "n_starts", "seed", "probe", "name", "max_evals", "noise",
+                "max_steps")
+        unknown = sorted(set(options) - set(keep))
+        if unknown:
+            raise InputError(f"diagnose(search=\"sets\"): unknown or inapplicable argument(s) {unknown}")
+        return improve(model, measurements, contact=contact, candidates=candidates, **options).as_diagnosis()
+    if "max_steps" in options:
+        raise InputError("diagnose: max_steps applies only with search=\"sets\"")
+    return diagnose_single(model, measurements, candidates, contact, **options)
+
 
 def improve(case_or_model, measurements=None, *, contact=None, candidates=None, fit=None, max_steps: int = 4,
             progress=None, diagnosis: Diagnosis | None = None, **diagnose_options) -> Improvement:
-    """Add the credible effect each diagnosis names until the verdict says stop (module docstring).
+    """Find the set of effects the data support (module docstring).
 
     Parameters
     ----------
@@ -176,13 +308,14 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
         Required with a model.
     contact : persson.slip.Contact, optional
     candidates : sequence of str or Effect, optional
-        As for :func:`validation.diagnose` (effects already added are dropped from later rounds).
+        As for :func:`validation.diagnose` (effects in the current set are left out of each round).
     fit : sequence of str, optional
         Baseline parameters refitted at every step; the free parameters of each added effect join them.
     max_steps : int
         Largest number of effects added.
     progress : callable, optional
-        Called with a one-line message after each diagnosis.
+        Called with a one-line message after each diagnosis, and forwarded to the diagnoses (fraction done and
+        time left while candidates are fitted).
     diagnosis : Diagnosis, optional
         The first diagnosis, when already computed (it must be of this case: same model and measurements); it
         is reused, not recomputed.
@@ -195,71 +328,138 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
     """
     t0 = time.perf_counter()
     name = diagnose_options.pop("name", "")
+    diagnose_options.pop("search", None)
     model, measurements, contact, fit, name = _unpack(case_or_model, measurements, contact, fit, name)
-    fit = list(fit or ())
+    base_fit = list(fit or ())
     cands = None if candidates is None else list(candidates)
     dx = diagnosis
     if dx is not None and dx.measurements is not measurements:
-        from .errors import InputError
-
         raise InputError("diagnosis: it was made for other measurements than the ones given")
+    predictor = Predictor(measurements, contact)
     if dx is None:
-        dx = diagnose(model, measurements, cands, contact, fit=fit, name=name, **diagnose_options)
+        dx = diagnose_single(model, measurements, cands, contact, fit=base_fit, name=name, progress=_sub(progress, "step 0"),
+                      predictor=predictor, **diagnose_options)
+    noise = diagnose_options.pop("noise", None) or dx.noise_estimate
+    n_evals = dx.n_evaluations
+    search = SetSearch(model, base_fit, dx.context)
+    search.record(dx, (), 0)
     b = dx.baseline
     steps = [Step(index=0, added=None, effects=tuple(b.model.effect_names), parameters=_params(b.model),
-                  fitted=tuple(fit), rmse=b.rmse, bic=b.bic, delta_bic=0.0, model=b.model, diagnosis=dx,
-                  predicted=b.predicted, contact=b.contact, estimates=b.estimates,
-                  lack_of_fit_p=b.lack.p_value)]
-    first_verdict = dx.verdict.verdict
+                  fitted=tuple(base_fit), rmse=b.rmse, bic=b.bic, delta_bic=0.0, model=b.model, diagnosis=dx,
+                  predicted=b.predicted, contact=b.contact, estimates=b.estimates, lack_of_fit_p=b.lack.p_value,
+                  action="baseline")]
+    current: tuple = ()
+    tried = {frozenset()}
+    n_added = 0
+    stopped = ""
     while True:
         v = dx.verdict
         if progress is not None:
             progress(f"step {len(steps) - 1}: RMSE {dx.baseline.rmse:.4g}; verdict {v.verdict}"
                      + (f" ({v.effect})" if v.effect else ""))
-        if v.verdict in ("nothing_missing", "unexplained"):
+        if v.verdict in ("nothing_missing", "unexplained", "undetermined"):
             stopped = {"nothing_missing": "the model is consistent with the noise and no candidate is credible",
-                       "unexplained": "no credible candidate is left, but the model still misses the data"}[v.verdict]
+                       "unexplained": "no credible candidate is left, but the model still misses the data",
+                       "undetermined": "without an independent noise estimate nothing can be judged missing"}[v.verdict]
             break
-        if len(steps) > max_steps:
+        if n_added >= max_steps:
             stopped = f"max_steps = {max_steps} reached ({v.effect} would be next)"
             break
         best = dx.explaining
-        fit = fit + [f"{best.effect}.{p}" for p in best.free]
-        steps.append(Step(index=len(steps), added=best.effect, effects=tuple(best.model.effect_names),
-                          parameters=_params(best.model), fitted=tuple(fit), rmse=best.rmse, bic=best.bic,
-                          delta_bic=best.delta_bic, model=best.model, diagnosis=None, predicted=best.predicted,
-                          contact=best.contact, estimates=best.baseline_estimates + best.estimates,
-                          lack_of_fit_p=best.lack.p_value))
-        if v.verdict == "explained":
+        current = current + (best.effect,)
+        n_added += 1
+        search.alternatives[best.effect] = tuple(v.alternatives)
+        s = search.get(current)
+        steps.append(_step(len(steps), "added", best.effect, None, s, steps[-1], base_fit, search,
+                           alternatives=v.alternatives, estimates=best.baseline_estimates + best.estimates))
+        changes = search.prune(current, progress=_sub(progress, "checking the effects added before"))
+        for ch in changes:
+            if ch[0] == "removed":
+                _, f, cost, current = ch
+                steps.append(_step(len(steps), "removed", None, f, search.get(current), steps[-1], base_fit,
+                                   search))
+            else:
+                _, f, g, gain, current = ch
+                steps.append(_step(len(steps), "swapped", g, f, search.get(current), steps[-1], base_fit, search,
+                                   alternatives=(f,)))
+        if v.verdict == "explained" and not changes:
             stopped = f"explained: with {best.effect} the residual is at the noise level, without pattern"
             break
-        if cands is not None:
-            cands = [c for c in cands if (c if isinstance(c, str) else c.name) != best.effect]
-        if len(steps) > max_steps:
-            stopped = f"max_steps = {max_steps} reached"
+        if frozenset(current) in tried:
+            stopped = f"the set {' + '.join(current) or '(baseline)'} was reached before: the search went round"
             break
-        dx = diagnose(best.model, measurements, cands, best.contact or contact, fit=fit, name=name,
-                      refit_baseline=False, **diagnose_options)
-        steps[-1] = _with_diagnosis(steps[-1], dx)
-    final = _final_verdict(first_verdict, dx.verdict.verdict, len(steps) > 1)
-    return Improvement(steps=tuple(steps), model=steps[-1].model, measurements=measurements, contact=contact,
-                       noise=float(dx.noise), stopped=stopped, seconds=time.perf_counter() - t0, name=name,
-                       verdict=final, noise_source=dx.noise_estimate.source)
+        tried.add(frozenset(current))
+        remaining = None if cands is None else [c for c in cands if (c if isinstance(c, str) else c.name)
+                                                not in current]
+        s = search.get(current)
+        dx = diagnose_single(s.model, measurements, remaining, s.contact or contact, fit=_fit_names(base_fit, current, search),
+                      name=name, refit_baseline=False, noise=noise, predictor=predictor,
+                      progress=_sub(progress, f"step {len(steps)}"), **diagnose_options)
+        n_evals += dx.n_evaluations
+        search.record(dx, current, len(steps) - 1)
+        steps[-1] = replace(steps[-1], diagnosis=dx)
+    probe = None
+    if diagnose_options.get("probe", True):
+        from .ambiguity import Probe
+
+        probe = Probe(measurements, contact)
+    selection = search.finish(current, probe=probe)
+    n_evals += search.n_evals
+    if frozenset(selection.best.effects) != frozenset(steps[-1].effects) - frozenset(steps[0].effects):
+        for f in [e for e in current if e not in selection.best.effects]:
+            current = tuple(e for e in current if e != f)
+            steps.append(_step(len(steps), "removed", None, f, search.get(current), steps[-1], base_fit, search))
+    final = _final_verdict(dx0=steps[0].diagnosis, selection=selection, noise=noise)
+    return Improvement(steps=tuple(steps), model=selection.best.model, measurements=measurements, contact=contact,
+                       noise=float(noise.sigma) if noise.known else math.nan, stopped=stopped,
+                       seconds=time.perf_counter() - t0, name=name, verdict=final.verdict,
+                       noise_source=noise.source, selection=selection, final=final, n_evaluations=n_evals)
 
 
-def _with_diagnosis(step: Step, dx: Diagnosis) -> Step:
-    from dataclasses import replace
+# ==========================================================================================================
+def _step(index, action, added, removed, s, previous, base_fit, search, alternatives=(), estimates=None) -> Step:
+    return Step(index=index, added=added, effects=tuple(s.model.effect_names), parameters=_params(s.model),
+                fitted=tuple(_fit_names(base_fit, s.effects, search)), rmse=s.rmse, bic=s.bic,
+                delta_bic=s.bic - previous.bic, model=s.model, diagnosis=None, predicted=s.predicted,
+                contact=s.contact, estimates=s.estimates if estimates is None else estimates,
+                lack_of_fit_p=s.lack.p_value, action=action, removed=removed, alternatives=tuple(alternatives))
 
-    return replace(step, diagnosis=dx)
+
+def _fit_names(base_fit, effects, search) -> list:
+    return list(base_fit) + [f"{e}.{p}" for e in effects for p in search.free.get(e, ())]
 
 
-def _final_verdict(first: str, last: str, added: bool) -> str:
-    """The loop's verdict: the last diagnosis' verdict on what the added effects left over."""
-    if not added:
-        return first
-    if last in ("explained", "nothing_missing"):
-        return "explained"
-    return "partly_explained"
+def _final_verdict(dx0: Diagnosis, selection: Selection, noise) -> Verdict:
+    """The verdict on the best set: the first diagnosis' when nothing was added, else :func:`judge` on the set
+    (its lack of fit, pattern, identification and share of the misfit removed), naming the equally supported
+    sets as alternatives."""
+    best = selection.best
+    if not best.effects:
+        return dx0.verdict
+    if not noise.known:
+        v = dx0.verdict
+        return replace(v, reason=v.reason + f" The set search ended with {best.label}.")
+    b = dx0.baseline
+    share = misfit_share(b.rss, b.n_params, best.rss, best.n_params, b.residual.size, noise,
+                         noise.source == "mu_std")
+    noise_txt = f"noise {noise.sigma:.3g} from {noise.source}"
+    alts = tuple(s.label for s in selection.supported)
+    return judge(best.effects[0], best.effects, best.lack, best.pattern, best.not_identified, share,
+                 best.bic - b.bic, noise_txt, (), alts)
+
+
+def _sub(progress, prefix):
+    """A progress callback that puts ``prefix`` before the texts it forwards."""
+    if progress is None:
+        return None
+
+    def call(*args):
+        if args and isinstance(args[0], str):
+            progress(f"{prefix}: {args[0]}", *args[1:])
+        else:
+            progress(prefix, *args)
+
+    return call
 
 
 def _params(model) -> dict:

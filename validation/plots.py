@@ -18,7 +18,8 @@ def plot_mu_speed(cmp, curve_points: int = 40):
     """Measured (points, error bars from mu_std) and predicted (lines) mu against sliding speed.
 
     One panel per pressure, one colour per temperature; wet rows hollow markers and dashed lines. Only the
-    pure-sliding rows (slip = 1) are shown.
+    pure-sliding rows (slip = 1) are shown. Every curve comes from one prediction of the model's own path
+    (:class:`validation.predict.Predictor`: the contact patch with patch heating, ``Wet`` on wet rows).
     """
     m = cmp.measurements
     sl = m.is_sliding
@@ -26,16 +27,24 @@ def plot_mu_speed(cmp, curve_points: int = 40):
     if pressures.size > _MAX_PANELS:
         pressures = pressures[np.linspace(0, pressures.size - 1, _MAX_PANELS).round().astype(int)]
     n = max(1, pressures.size)
-    fig, axes = plt.subplots(1, n, figsize=(4.6 * n + 0.6, 4.0), squeeze=False, constrained_layout=True,
-                             sharey=True)
+    fig, axes = plt.subplots(1, n, figsize=(4.6 * n + 0.6, 4.0), squeeze=False, sharey=True)
+    fig.subplots_adjust(left=0.35 / n + 0.04, right=0.98, bottom=0.13, top=0.86, wspace=0.08)
     axes = axes[0]
     if not np.any(sl):
         axes[0].text(0.5, 0.5, "no pure-sliding rows (slip = 1)", ha="center", va="center",
                      transform=axes[0].transAxes)
-        return fig
+        return _light(fig)
     temps = np.unique(m.temperature[sl])
     colors = {T: c for T, c in zip(temps, _temperature_colors(temps.size))}
-    pred = cmp.predictor
+    curves = {}
+    for p in pressures:
+        for T in temps:
+            for wet in (False, True):
+                sel = sl & (m.pressure == p) & (m.temperature == T) & (m.wet == wet)
+                if np.any(sel):
+                    v = m.speed[sel]
+                    curves[(p, T, wet)] = np.geomspace(v.min() / 1.5, v.max() * 1.5, curve_points)
+    mu = _predict_curves(cmp, {k: (np.ones(v.size), v, k[1], k[0], k[2]) for k, v in curves.items()})
     for ax, p in zip(axes, pressures):
         for T in temps:
             for wet in (False, True):
@@ -51,21 +60,17 @@ def plot_mu_speed(cmp, curve_points: int = 40):
                                 **kw)
                 else:
                     ax.plot(v, m.mu[sel], "o", color=c, ms=4, label=lab, **kw)
-                vv = np.geomspace(v.min() / 1.5, v.max() * 1.5, curve_points)
-                try:
-                    mu = pred.curve(cmp.model, vv, float(T), float(p), wet)
-                    ax.plot(vv, mu, "--" if wet else "-", color=c, lw=1.2)
-                except Exception:  # noqa: BLE001  (a plot must not hide the comparison)
-                    pass
+                if mu is not None:
+                    ax.plot(curves[(p, T, wet)], mu[(p, T, wet)], "--" if wet else "-", color=c, lw=1.2)
         ax.set_xscale("log")
         ax.set_xlabel("sliding speed v (m/s)")
-        ax.set_title(f"sigma0 = {p / 1e6:g} MPa")
+        ax.set_title(f"sigma0 = {p / 1e6:g} MPa", fontsize=9)
         ax.grid(alpha=0.3)
         if ax.get_legend_handles_labels()[0]:
             ax.legend(fontsize=7, title="points: measured, lines: model", title_fontsize=7)
     axes[0].set_ylabel("friction coefficient mu")
     fig.suptitle(f"{cmp.name}: mu(v), effects {', '.join(cmp.effects) or 'none'}", fontsize=10)
-    return fig
+    return _light(fig)
 
 
 def _temperature_colors(n: int):
@@ -76,21 +81,29 @@ def _temperature_colors(n: int):
 
 
 def plot_mu_slip(cmp, curve_points: int = 40):
-    """Measured (points) and brush-model (lines) mu against slip ratio, one curve per series / condition."""
+    """Measured (points) and predicted (lines) mu against slip ratio, one curve per series / condition (the
+    model's own prediction path: the brush model, with patch heating along the patch when the model has it)."""
     m = cmp.measurements
     rows = ~m.is_sliding
-    fig, ax = plt.subplots(figsize=(6.4, 4.2), constrained_layout=True)
+    fig, ax = plt.subplots(figsize=(6.4, 4.2))
+    fig.subplots_adjust(left=0.11, right=0.97, bottom=0.13, top=0.91)
     if not np.any(rows):
         ax.text(0.5, 0.5, "no rows with slip < 1", ha="center", va="center", transform=ax.transAxes)
-        return fig
+        return _light(fig)
     keys = {}
     for i in np.flatnonzero(rows):
         k = (m.series[i], float(m.speed[i]), float(m.temperature[i]), float(m.pressure[i]), bool(m.wet[i]))
         keys.setdefault(k, []).append(i)
-    # add the sliding rows (slip = 1) of the same condition to each curve
-    pred = cmp.predictor
-    for j, (k, idx) in enumerate(list(keys.items())[:_MAX_SLIP_CURVES]):
+    shown = list(keys.items())[:_MAX_SLIP_CURVES]
+    grids = {}
+    for k, idx in shown:
         ser, V, T, p, wet = k
+        s = np.geomspace(max(float(m.slip[idx].min()) / 1.5, 1e-4), 1.0, curve_points)
+        grids[k] = (s, np.full(s.size, V), T, p, wet)
+    mu = _predict_curves(cmp, grids)
+    for j, (k, idx) in enumerate(shown):
+        ser, V, T, p, wet = k
+        # the sliding rows (slip = 1) of the same condition belong to the curve
         same = (m.is_sliding & (m.speed == V) & (m.temperature == T) & (m.pressure == p) & (m.wet == wet))
         idx = np.concatenate([np.asarray(idx), np.flatnonzero(same)])
         c = f"C{j % 10}"
@@ -99,20 +112,56 @@ def plot_mu_slip(cmp, curve_points: int = 40):
             ax.errorbar(m.slip[idx], m.mu[idx], yerr=m.mu_std[idx], fmt="o", color=c, ms=4, capsize=2, label=lab)
         else:
             ax.plot(m.slip[idx], m.mu[idx], "o", color=c, ms=4, label=lab)
-        s = np.geomspace(max(m.slip[idx].min() / 1.5, 1e-4), 1.0, curve_points)
-        try:
-            ax.plot(s, pred.slip_curve(cmp.model, s, V, T, p, wet), "-", color=c, lw=1.2)
-        except Exception:  # noqa: BLE001
-            pass
+        if mu is not None:
+            ax.plot(grids[k][0], mu[k], "-", color=c, lw=1.2)
     if len(keys) > _MAX_SLIP_CURVES:
         ax.text(0.01, 0.01, f"{len(keys) - _MAX_SLIP_CURVES} more curves not shown", transform=ax.transAxes,
                 fontsize=7)
     ax.set_xscale("log")
     ax.set_xlabel("slip ratio s")
     ax.set_ylabel("friction coefficient mu")
-    ax.set_title(f"{cmp.name}: mu(slip), brush model", fontsize=10)
+    ax.set_title(f"{cmp.name}: mu(slip)", fontsize=10)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7)
+    return _light(fig)
+
+
+def _predict_curves(cmp, curves: dict):
+    """``key -> mu`` of the model along each curve ``key -> (slip, speed, T, p, wet)``, in one prediction (None
+    when the model fails there: a plot must not hide the comparison)."""
+    import warnings
+
+    from .measurements import Measurements
+    from .predict import Predictor
+
+    if not curves:
+        return {}
+    parts = [[np.broadcast_to(np.asarray(x, dtype=float), np.shape(c[0])) for x in c] for c in curves.values()]
+    cols = [np.concatenate([p[i] for p in parts]) for i in range(5)]
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            rows = Measurements.from_arrays(slip=cols[0], speed=cols[1], temperature=cols[2], pressure=cols[3],
+                                            mu=np.zeros(cols[0].size), wet=cols[4].astype(bool),
+                                            source="plotted curves")
+            mu = Predictor(rows, cmp.contact).predict(cmp.model).mu
+    except Exception:  # noqa: BLE001
+        return None
+    out, k = {}, 0
+    for key, p in zip(curves, parts):
+        out[key] = mu[k:k + p[0].size]
+        k += p[0].size
+    return out
+
+
+def _light(fig):
+    """Log axes without minor ticks: they cost most of the drawing time and say little in a report."""
+    from matplotlib.ticker import NullLocator
+
+    for ax in fig.axes:
+        for axis, scale in ((ax.xaxis, ax.get_xscale()), (ax.yaxis, ax.get_yscale())):
+            if scale == "log":
+                axis.set_minor_locator(NullLocator())
     return fig
 
 
@@ -121,7 +170,8 @@ def plot_residuals(cmp):
     m = cmp.measurements
     r = cmp.residual
     vs = m.sliding_speed
-    fig, axes = plt.subplots(2, 2, figsize=(10, 7), constrained_layout=True)
+    fig, axes = plt.subplots(2, 2, figsize=(10, 7))
+    fig.subplots_adjust(left=0.07, right=0.98, bottom=0.07, top=0.93, wspace=0.22, hspace=0.25)
     mk = np.where(m.is_sliding, "o", "x")
     ax = axes[0, 0]
     sc = None
@@ -161,14 +211,15 @@ def plot_residuals(cmp):
     for a in (axes[0, 0], axes[0, 1], axes[1, 0]):
         a.axhline(0.0, color="k", lw=0.8)
     fig.suptitle(f"{cmp.name}: residuals, RMSE {cmp.rmse:.3g}, bias {cmp.bias:+.3g}", fontsize=10)
-    return fig
+    return _light(fig)
 
 
 def plot_signatures(dx, n_top: int = 3):
     """Baseline residual and the refitted change of the top candidates against row (sorted by speed)."""
     m = dx.measurements
     order = np.lexsort((m.sliding_speed, m.pressure, m.temperature, m.wet))
-    fig, ax = plt.subplots(figsize=(10, 4), constrained_layout=True)
+    fig, ax = plt.subplots(figsize=(10, 4))
+    fig.subplots_adjust(left=0.07, right=0.98, bottom=0.13, top=0.91)
     x = np.arange(m.n)
     ax.plot(x, dx.baseline.residual[order], "ko", ms=3, label="baseline residual")
     for j, c in enumerate([c for c in dx.candidates if c.change is not None][:n_top]):
@@ -190,21 +241,22 @@ def plot_signatures(dx, n_top: int = 3):
 def plot_steps(improvement):
     """RMSE after each improvement step (watch the error fall)."""
     steps = improvement.steps
-    fig, ax = plt.subplots(figsize=(6, 3.6), constrained_layout=True)
+    fig, ax = plt.subplots(figsize=(6, 3.6))
+    fig.subplots_adjust(left=0.11, right=0.97, bottom=0.2, top=0.9)
     x = np.arange(len(steps))
     ax.plot(x, [s.rmse for s in steps], "o-", color="C3")
     for i, s in enumerate(steps):
         ax.annotate(f"{s.rmse:.3g}", (i, s.rmse), textcoords="offset points", xytext=(5, 5), fontsize=8)
     ax.set_xticks(x)
-    ax.set_xticklabels(["baseline" if s.added is None else f"+ {s.added}" for s in steps], rotation=15,
+    ax.set_xticklabels([s.describe() if s.action != "baseline" else "baseline" for s in steps], rotation=15,
                        fontsize=8)
-    if improvement.noise is not None:
+    if improvement.noise is not None and np.isfinite(improvement.noise):
         ax.axhline(improvement.noise, color="0.5", ls="--", lw=1, label=f"noise estimate {improvement.noise:.3g}")
         ax.legend(fontsize=8)
     ax.set_ylabel("RMSE")
     ax.set_ylim(bottom=0)
     ax.grid(alpha=0.3)
-    ax.set_title("RMSE after each added effect", fontsize=10)
+    ax.set_title("RMSE after each change of the set of effects", fontsize=10)
     return fig
 
 
@@ -212,7 +264,8 @@ def plot_residual_slip(dx):
     """Residual against slip ratio (rows with slip < 1, and the sliding rows at slip = 1): the baseline's, and the
     explaining candidate's when the verdict names one, with the noise band."""
     m = dx.measurements
-    fig, ax = plt.subplots(figsize=(6.4, 4.0), constrained_layout=True)
+    fig, ax = plt.subplots(figsize=(6.4, 4.0))
+    fig.subplots_adjust(left=0.13, right=0.97, bottom=0.13, top=0.91)
     s = m.slip
     series = [("baseline", dx.baseline.residual, "ko")]
     cand = dx.explaining
@@ -230,4 +283,4 @@ def plot_residual_slip(dx):
     ax.set_title("residual vs slip ratio", fontsize=10)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7)
-    return fig
+    return _light(fig)

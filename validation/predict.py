@@ -18,6 +18,7 @@ temperatures) for all its rows.
 from __future__ import annotations
 
 import warnings
+from collections import OrderedDict
 from dataclasses import dataclass
 
 import numpy as np
@@ -108,6 +109,9 @@ class Predictor:
         self.contact = contact
         self.n_calls = 0
         self._patch_tables: dict = {}  # friction tables of patch heating, per wet/dry group
+        # solutions of the engine kept across predictions: a fit of parameters that do not enter the solver
+        # (adhesion, the patch heating, the contact) solves each set of conditions once
+        self._solutions: OrderedDict = OrderedDict()
         # One engine call per wet/dry group: every distinct (sliding speed, temperature, pressure) of the rows
         # is one "speed" of that call (the engine takes a temperature and a pressure per speed).
         by_wet: dict[bool, list[int]] = {}
@@ -147,6 +151,12 @@ class Predictor:
                 self.n_calls = other.n_calls
         if not (hasattr(model, "friction") and hasattr(model, "effect_names")):
             raise InputError(f"model: expected a persson.Model, got {type(model).__name__}")
+        from persson.solver import reuse_solutions
+
+        with reuse_solutions(self._solutions):
+            return self._predict(model)
+
+    def _predict(self, model) -> Prediction:
         m = self.measurements
         mu = np.empty(m.n)
         mu_loc = np.empty(m.n)

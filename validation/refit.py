@@ -3,8 +3,10 @@ r"""Global, joint refits from several starts, and the uncertainty and plausibili
 1. **Starts.** The given values and a scrambled Halton design (seeded, so a case always gives the same result)
    over the whole bounded box in ``u`` (log10 where the parameter declares ``log_scale``). Every start is
    evaluated; bounded least squares (:meth:`validation.fitting.Fitter.local`) runs from the given values and from
-   the best distinct design points. The best local optimum is the fit; the other optima within
-   :math:`\Delta\chi^2 \le 1` (noise units) are "good" and their spread widens the intervals below.
+   the best distinct design points (for one parameter, from the design points that are local minima along it:
+   the screen shows the basins). A local fit that enters the basin of an optimum found before stops there. The
+   best local optimum is the fit; the other optima within :math:`\Delta\chi^2 \le 1` (noise units) are "good"
+   and their spread widens the intervals below.
 2. **Standard errors.** Gauss-Newton covariance of the parameters at the optimum,
    :math:`C = s^2 (J^T W^2 J)^{-1}` with :math:`J` the central-difference Jacobian of the prediction and
    :math:`W = \mathrm{diag}(1/\sigma_i)` from ``mu_std`` (:math:`s^2 = 1`) or :math:`W = I` with
@@ -92,6 +94,8 @@ class Estimate:
         The declared plausible range (evaluated on the data's ranges).
     issue : str
         Why the value is not credible (on a search bound, outside the plausible range), else ``""``.
+    search : (float, float)
+        The bounds searched.
     """
 
     key: str
@@ -103,10 +107,24 @@ class Estimate:
     bound: str = ""
     plausible: tuple = (-math.inf, math.inf)
     issue: str = ""
+    search: tuple = (-math.inf, math.inf)
 
     @property
     def name(self) -> str:
         return self.key.rpartition(".")[2]
+
+    @property
+    def identified(self) -> bool:
+        """Whether the data limit the parameter: False when its 68 % interval spans the whole range searched
+        (or it changes no prediction on these rows)."""
+        if self.method.startswith("no effect"):
+            return False
+        lo, hi = self.interval
+        slo, shi = self.search
+        if not (math.isfinite(slo) and math.isfinite(shi)) or any(math.isnan(x) for x in (lo, hi)):
+            return True
+        tol = 1e-6 * max(abs(slo), abs(shi), 1e-300)
+        return not (lo <= slo + tol and hi >= shi - tol)
 
     def describe(self) -> str:
         """``"tau_f0 = 1.52e+06 +- 4.1e+04 Pa"`` or ``"v_ref = 3e-04 m/s (68 % 1.1e-04 - 8e-04, profile)"``."""
@@ -120,11 +138,14 @@ class Estimate:
             txt += " [at its physical limit]"
         if self.issue:
             txt += f" [{self.issue}]"
+        if not self.identified:
+            txt += " [not identified: the interval spans the range searched]"
         return txt
 
     def as_dict(self) -> dict:
         return {"value": self.value, "std": self.std, "interval": list(self.interval), "method": self.method,
-                "unit": self.unit, "bound": self.bound, "plausible": list(self.plausible), "issue": self.issue}
+                "unit": self.unit, "bound": self.bound, "plausible": list(self.plausible), "issue": self.issue,
+                "search": list(self.search), "identified": self.identified}
 
 
 @dataclass(frozen=True, eq=False)
@@ -187,7 +208,7 @@ class GlobalFit:
 
 # ==========================================================================================================
 def global_fit(fitter: Fitter, u_given, *, seed: int = 0, n_screen: int | None = None, n_local: int = 3,
-               extra_starts=()) -> GlobalFit:
+               extra_starts=(), screen_dims=None) -> GlobalFit:
     """Multi-start bounded least squares over ``fitter``'s whole box (module docstring, item 1).
 
     The result has no estimates yet: :func:`with_uncertainty` adds them once the noise is known.
@@ -205,6 +226,9 @@ def global_fit(fitter: Fitter, u_given, *, seed: int = 0, n_screen: int | None =
         Local fits from the given values and the best distinct design points.
     extra_starts : sequence of array_like
         Further starts fitted besides (e.g. a previous fit).
+    screen_dims : sequence of int, optional
+        The coordinates the design varies (default all); the others stay at ``u_given`` in the screen (e.g. the
+        baseline's parameters, already at the optimum of a previous global fit), and every local fit is joint.
     """
     k = len(fitter.space)
     notes: dict[str, None] = {}
@@ -217,19 +241,31 @@ def global_fit(fitter: Fitter, u_given, *, seed: int = 0, n_screen: int | None =
         else:
             starts = [u_given] + [np.clip(np.asarray(s, dtype=float), 0, 1) for s in extra_starts]
             fitter.screen(starts)
-            n_scr = n_screen if n_screen is not None else min(3 + 5 * k, 24)
-            screened = fitter.screen(list(halton(k, n_scr, seed=seed)))
+            dims = np.arange(k) if screen_dims is None else np.asarray(screen_dims, dtype=int)
+            n_scr = n_screen if n_screen is not None else min(3 + 5 * dims.size, 24)
+            design = []
+            for p in halton(dims.size, n_scr, seed=seed):
+                q = u_given.copy()
+                q[dims] = p
+                design.append(q)
+            screened = fitter.screen(design)
+            if dims.size == 1:
+                # on a line the screen shows the basins: only its local minima (the given values included) can
+                # lead to distinct optima
+                screened = _line_minima(screened + [(fitter.chi2(s), s) for s in starts], int(dims[0]))
             for c, p in screened:
                 if len(starts) >= n_local + len(extra_starts):
                     break
                 if math.isfinite(c) and all(np.max(np.abs(p - q)) > 0.1 for q in starts):
                     starts.append(p)
+            known = []
             for s in starts:
                 if not math.isfinite(fitter.chi2(s)):
                     continue
-                u, c = fitter.local(s)
+                u, c = fitter.local(s, known=known)
                 n_starts += 1
                 optima.append((c, u))
+                known.append((c, u, getattr(fitter, "last_hessian", None)))
     except BudgetExhausted:
         notes["the fit stopped at its budget of model evaluations (the best point found is used)"] = None
     c_best, u_best = fitter.best
@@ -245,6 +281,19 @@ def global_fit(fitter: Fitter, u_given, *, seed: int = 0, n_screen: int | None =
                      contact=fitter.contact_at(u_best), estimates=(), jacobian=np.zeros((fitter.y.size, 0)),
                      n_starts=n_starts, n_good=0, n_evals=fitter.n_evals, notes=tuple(notes),
                      optima=tuple(optima))
+
+
+def _line_minima(points, j: int = 0) -> list:
+    """The points ``(chi2, u)`` of a screen along coordinate ``j`` that are local minima along it, best first."""
+    pts = sorted(((float(c), np.asarray(u, dtype=float)) for c, u in points if math.isfinite(c)),
+                 key=lambda t: float(t[1][j]))
+    out = []
+    for i, (c, u) in enumerate(pts):
+        left = pts[i - 1][0] if i > 0 else math.inf
+        right = pts[i + 1][0] if i + 1 < len(pts) else math.inf
+        if c <= left and c <= right:
+            out.append((c, u))
+    return sorted(out, key=lambda t: t[0])
 
 
 def with_uncertainty(fitter: Fitter, fit: GlobalFit, *, s2: float, ranges: DataRange | None = None,
@@ -319,7 +368,7 @@ def _estimates(fitter, u, chi2, J, s2, good, ranges, profile) -> tuple:
         if norms[j] <= 1e-10 * max(float(norms.max()), 1e-300):
             # the parameter changes no prediction here: neither determined nor judged
             out.append(Estimate(key=p.key, value=float(x), std=math.inf, interval=(p.lo, p.hi),
-                                method="no effect on these rows", unit=p.unit))
+                                method="no effect on these rows", unit=p.unit, search=(float(p.lo), float(p.hi))))
             continue
         sd_u = math.sqrt(cov[j, j]) if math.isfinite(cov[j, j]) and cov[j, j] >= 0 else math.inf
         on_bound = u[j] < BOUND_TOL or u[j] > 1 - BOUND_TOL
@@ -328,7 +377,7 @@ def _estimates(fitter, u, chi2, J, s2, good, ranges, profile) -> tuple:
         try:
             if profile and (on_bound or not math.isfinite(sd_u) or sd_u > 0.25
                             or not _quadratic_ok(fitter, u, j, sd_u, H, chi2, s2)):
-                lo_u, hi_u = _profile(fitter, u, j, chi2, s2, sd_u, k)
+                lo_u, hi_u = _profile(fitter, u, j, chi2, s2, sd_u, k, H=H)
                 method = "profile"
         except BudgetExhausted:
             method = "quadratic (the profile ran out of model evaluations)"
@@ -361,7 +410,8 @@ def _estimate(p, x, std, interval, method, uj, ranges) -> Estimate:
     if not issue and not (plo * (1 - 1e-9) - 1e-300 <= x <= phi * (1 + 1e-9) + 1e-300):
         issue = f"outside the plausible range {plo:.3g} - {phi:.3g}"
     return Estimate(key=p.key, value=float(x), std=float(std), interval=tuple(float(v) for v in interval),
-                    method=method, unit=p.unit, bound=bound, plausible=(plo, phi), issue=issue)
+                    method=method, unit=p.unit, bound=bound, plausible=(plo, phi), issue=issue,
+                    search=(float(p.lo), float(p.hi)))
 
 
 def _covariance(H: np.ndarray) -> np.ndarray:
@@ -396,13 +446,21 @@ def _quadratic_ok(fitter, u, j, sd_u, H, chi2, s2) -> bool:
     return True
 
 
-def _profile(fitter, u, j, chi2, s2, sd_u, k, max_steps: int = 4, refine: int = 5) -> tuple[float, float]:
-    """Ends of the profile-likelihood interval of parameter j in u (a bound when the profile stays below 1).
+def _profile(fitter, u, j, chi2, s2, sd_u, k, max_steps: int = 4, refine: int = 5, H=None) -> tuple[float, float]:
+    r"""Ends of the profile-likelihood interval of parameter j in u (a bound when the profile stays below 1).
 
     Steps out from the optimum (the others refitted at each step) until the profile exceeds 1, then refines the
     crossing by regula falsi in sqrt(delta chi2) (exact for a parabola, and converging for the linear rise of a
-    profile at a bound).
+    profile at a bound). Each refit starts where the Gauss-Newton Hessian ``H`` at the optimum puts the other
+    parameters for the new value of parameter j (:math:`\delta u_o = -H_{oo}^{-1} H_{oj}\,\delta u_j`), so that
+    correlated parameters need few iterations.
     """
+    others = np.array([i for i in range(k) if i != j], dtype=int)
+    cond = None
+    if H is not None and others.size:
+        cond = -np.linalg.lstsq(H[np.ix_(others, others)], H[others, j], rcond=1e-10)[0]
+        if not np.all(np.isfinite(cond)):
+            cond = None
     ends = []
     for sign in (-1.0, 1.0):
         edge = 0.0 if sign < 0 else 1.0
@@ -414,6 +472,8 @@ def _profile(fitter, u, j, chi2, s2, sd_u, k, max_steps: int = 4, refine: int = 
         def delta(t, start):
             v = start.copy()
             v[j] = u[j] + sign * t
+            if cond is not None:
+                v[others] = np.clip(start[others] + cond * (v[j] - start[j]), 0.0, 1.0)
             if k > 1:
                 v, c = fitter.local(v, fixed=(j,), max_nfev=6 * k)
             else:

@@ -27,7 +27,8 @@ th,td{border:1px solid #ccc;padding:3px 8px;text-align:right}th{background:#f0f0
 td.l,th.l{text-align:left}.sig{background:#e3f6e3}.bad{color:#a00}.note{color:#555;font-size:0.9em}
 .verdict{font-size:1.15em;padding:0.7em 1em;margin:1em 0;border-radius:4px;border:2px solid}
 .v-explained,.v-nothing_missing{background:#e8f6e8;border-color:#3a3}.v-partly_explained{background:#fff6e0;
-border-color:#c90}.v-unexplained{background:#fdeaea;border-color:#c33}
+border-color:#c90}.v-unexplained{background:#fdeaea;border-color:#c33}.v-undetermined{background:#eef0f6;
+border-color:#668}
 img{max-width:100%;border:1px solid #ddd;margin:0.5em 0}p.expl{white-space:pre-wrap;background:#fafafa;
 border-left:4px solid #4a7;padding:0.6em 1em}
 """
@@ -218,7 +219,11 @@ def _diagnosis_html(dx) -> str:
     ne = dx.noise_estimate
     out = [f"<h2>Diagnosis: which effect is missing{(' (' + _e(dx.name) + ')') if dx.name else ''}</h2>",
            f"<div class='verdict v-{_e(v.verdict)}'>{_e(v.headline)}</div>",
-           f"<p><b>Noise</b>: {_num(dx.noise)} in mu, from <b>{_e(ne.source)}</b>: {_e(ne.description)}.</p>"]
+           (f"<p><b>Noise</b>: {_num(dx.noise)} in mu, from <b>{_e(ne.source)}</b>: {_e(ne.description)}.</p>"
+            if dx.noise_known else
+            f"<p><b>Noise</b>: <b>unknown</b> ({_e(ne.description)}): no lack-of-fit test is possible, and the "
+            "data cannot say whether anything is missing beyond the noise. Give a mu_std column or repeat some "
+            "conditions.</p>")]
     out.append(_table(["baseline", "RMSE as given", "RMSE refitted", "BIC", "lack of fit", "refitted parameters"],
                       [[_e(", ".join(b.effects) or "hysteresis only"), _num(b.rmse_given), _num(b.rmse),
                         _num(b.bic, ".1f"), _e(b.lack.describe()), _estimates_html(b.estimates)]],
@@ -240,7 +245,8 @@ def _diagnosis_html(dx) -> str:
         if c.notes:
             par += "<br><span class='note'>fit notes: " + _e("; ".join(c.notes)) + "</span>"
         rows.append([_num(i, "d"), _e(c.effect), _num(c.rmse), _num(c.delta_bic, "+.1f"), _num(c.p_value, ".2g"),
-                     _num(c.lack.p_value, ".2g"), _num(100 * c.explained, ".0f") + " %",
+                     _num(c.lack.p_value, ".2g") if dx.noise_known else "no test",
+                     _num(100 * c.explained, ".0f") + " %",
                      "YES" if c.significant else "no",
                      "yes" if c.plausible else "<span class='bad'>NO</span>: " + _e("; ".join(c.issues)), par])
         classes.append("sig" if c.credible else "")
@@ -249,15 +255,52 @@ def _diagnosis_html(dx) -> str:
     out.append(f"<p class='expl'>{_e(dx.explanation)}</p>")
     for cl in dx.clusters:
         out.append(f"<h4>Ambiguity cluster: {_e(', '.join(cl.effects))}</h4>")
-        srows = [[_e(" vs ".join(s.effects)), _num(s.speed * s.slip, ".3g"), _num(s.slip, "g"),
-                  _num(s.temperature, "g"), _num(s.pressure / 1e6, "g"), _e("yes" if s.in_range else "no"),
-                  _num(s.mu[0], ".3f"), _num(s.mu[1], ".3f")]
-                 for s in tuple(cl.separations) + tuple(cl.separations_in_range)]
-        if srows:
-            out.append(_table(["pair", "sliding speed (m/s)", "slip", "T (C)", "p (MPa)", "inside data",
-                               "mu (first)", "mu (second)"], srows))
+        out.append(_probe_table(tuple(cl.separations) + tuple(cl.separations_in_range)))
+    if dx.selection is not None:
+        out.append(_selection_html(dx.selection))
     for name, fig in dx.figures().items():
         out.append(_img(fig, f"diagnosis {name}"))
+    refs = dx.references()
+    if refs:
+        out.append("<h4>References</h4><ul class='note'>" + "".join(f"<li>{_e(r)}</li>" for r in refs) + "</ul>")
+    return "\n".join(out)
+
+
+def _probe_table(seps) -> str:
+    """Where two models differ most: the condition (wet flag included), whether it was measured, both mu."""
+    if not seps:
+        return ""
+    rows = [[_e(" vs ".join(s.effects)), _num(s.speed * s.slip, ".3g"), _num(s.slip, "g"), _num(s.temperature, "g"),
+             _num(s.pressure / 1e6, "g"), _e("wet" if s.wet else "dry"),
+             _e("yes" if s.in_range else f"no (distance {s.distance:.1f})"), _num(s.mu[0], ".3f"),
+             _num(s.mu[1], ".3f")] for s in seps]
+    return (_table(["pair", "sliding speed (m/s)", "slip", "T (C)", "p (MPa)", "wet/dry", "inside the measured "
+                    "conditions", "mu (first)", "mu (second)"], rows, left=(0, 5, 6))
+            + "<p class='note'>Inside the measured conditions: within one measurement step of a measured row "
+              "(scaled distance to the nearest row at most 1, on the combination of speed, temperature, pressure "
+              "and slip with the same wet flag).</p>")
+
+
+def _selection_html(sel) -> str:
+    """The best set of effects, the equally supported ones (parameters and intervals) and what separates them."""
+    out = [f"<h3>Sets of effects: best {_e(sel.best.label)}</h3>",
+           "<p class='note'>Every set is a joint refit of all its parameters from global starts. An effect stays "
+           "only if dropping it from the best set costs more than 10 BIC units; sets within 10 BIC units of the "
+           "best are equally supported by the data.</p>"]
+    rows = []
+    for s in (sel.best,) + tuple(sel.supported):
+        rows.append([_e(s.label), _num(s.bic - sel.best.bic, "+.1f"), _num(s.rmse), _num(s.lack.p_value, ".2g"),
+                     _estimates_html(s.estimates)])
+    out.append(_table(["set", "delta BIC", "RMSE", "lack-of-fit p", "parameters (68 % intervals)"], rows,
+                      left=(0, 4)))
+    if sel.drop_costs:
+        out.append("<p>Cost of dropping each effect of the best set: " + _e(", ".join(
+            f"{k} {v:+.1f} BIC units" for k, v in sel.drop_costs.items())) + ".</p>")
+    if sel.supported:
+        out.append("<p><b>The data support these sets equally</b>; the measurement that would separate them:</p>")
+        out.append(_probe_table(tuple(sel.separations) + tuple(sel.separations_in_range)))
+    if sel.removed:
+        out.append("<p class='note'>Removed on the way: " + _e("; ".join(sel.removed)) + ".</p>")
     return "\n".join(out)
 
 
@@ -279,9 +322,16 @@ def _verdict_banner(items) -> str:
     imp = next((i for i in items if isinstance(i, Improvement)), None)
     if imp is not None and imp.verdict:
         added = ", ".join(imp.added) or "nothing"
+        noise = (f"against a noise of {imp.noise:.3g} ({imp.noise_source})" if math.isfinite(imp.noise) else
+                 "with the noise unknown (no independent estimate)")
         text = (f"Verdict: {imp.verdict.replace('_', ' ').upper()} -- effects added: {added}; RMSE "
-                f"{imp.rmse[0]:.4g} -> {imp.rmse[-1]:.4g} against a noise of {imp.noise:.3g} "
-                f"({imp.noise_source}). {imp.stopped}.")
+                f"{imp.rmse[0]:.4g} -> {imp.rmse[-1]:.4g} {noise}. {imp.stopped}.")
+        if imp.final is not None:
+            text += " " + imp.final.reason
+        sel = imp.selection
+        if sel is not None and sel.supported:
+            text += (" Equally supported (within 10 BIC units): " + ", ".join(s.label for s in sel.supported)
+                     + "; see the measurement that separates them below.")
         return f"<div class='verdict v-{_e(imp.verdict)}'>{_e(text)}</div>"
     dx = next((i for i in items if isinstance(i, Diagnosis)), None)
     if dx is not None and dx.verdict is not None:
@@ -292,11 +342,11 @@ def _verdict_banner(items) -> str:
 def _steps_table(steps) -> str:
     rows = []
     for s in steps:
-        rows.append([_num(s.index, "d"), _e(s.added or "(baseline)"), _e(", ".join(s.effects) or "none"),
-                     _num(s.rmse), _num(s.delta_bic, "+.1f"), _num(s.lack_of_fit_p, ".2g"),
-                     _estimates_html(s.estimates)])
-    return _table(["step", "added", "effects", "RMSE (refitted)", "delta BIC", "lack-of-fit p",
-                   "fitted parameters"], rows, left=(1, 2, 6))
+        rows.append([_num(s.index, "d"), _e(s.describe()), _e(", ".join(s.alternatives) or "-"),
+                     _e(", ".join(s.effects) or "none"), _num(s.rmse), _num(s.delta_bic, "+.1f"),
+                     _num(s.lack_of_fit_p, ".2g"), _estimates_html(s.estimates)])
+    return _table(["step", "change", "or as well by", "effects", "RMSE (refitted)", "delta BIC", "lack-of-fit p",
+                   "fitted parameters"], rows, left=(1, 2, 3, 7))
 
 
 def _improvement_html(imp) -> str:
@@ -304,8 +354,11 @@ def _improvement_html(imp) -> str:
            "<p class='note'>Each step: the model with every effect so far, its fitted parameters refitted to the "
            "measurements (step 0 is the baseline with its <code>[model] fit</code> parameters refitted).</p>"]
     out.append(_steps_table(imp.steps))
-    out.append(f"<p>Verdict: <b>{_e(imp.verdict)}</b>; noise level {_num(imp.noise)} (from {_e(imp.noise_source)}); "
-               f"stopped: {_e(imp.stopped)}.</p>")
+    noise = (f"noise level {_num(imp.noise)} (from {_e(imp.noise_source)})" if math.isfinite(imp.noise) else
+             "noise unknown (no independent estimate)")
+    out.append(f"<p>Verdict: <b>{_e(imp.verdict)}</b>; {noise}; stopped: {_e(imp.stopped)}.</p>")
+    if imp.selection is not None:
+        out.append(_selection_html(imp.selection))
     for name, fig in imp.figures().items():
         out.append(_img(fig, f"improvement {name}"))
     if len(imp.steps) > 1:

@@ -6,16 +6,26 @@ Verdicts (the noise and the lack-of-fit test are those of :mod:`validation.noise
     the baseline is consistent with the noise (no lack of fit, no systematic pattern) and no candidate is both
     significant and plausible;
 ``"explained"``
-    a significant, plausible candidate leaves a residual consistent with the noise and without pattern;
+    a significant, plausible candidate whose parameters the data identify leaves a residual consistent with the
+    noise and without pattern;
 ``"partly_explained"``
-    a significant, plausible candidate helps, but lack of fit or a pattern remains;
+    a significant, plausible candidate removes a real share of the misfit -- at least :data:`PARTLY_SHARE` (a
+    quarter) of the misfit above the noise (:func:`misfit_share`) -- but lack of fit or a pattern remains; or it
+    brings the residual to the noise level while the data do not identify one of its parameters (its 68 %
+    interval spans the range searched): the effect is indicated, not established;
 ``"unexplained"``
-    the baseline fails beyond the noise and no candidate is both significant and plausible.
+    the baseline fails beyond the noise and no candidate is both significant and plausible, or the best one
+    removes less than :data:`PARTLY_SHARE` of the misfit above the noise (it is named as the closest);
+``"undetermined"``
+    there is no independent noise estimate (no ``mu_std``, no replicates, too few rows along series): the data
+    cannot say whether anything is missing beyond the noise. Significant, plausible candidates are named as
+    *indicated*, with the parameters the data do and do not identify.
 
 A candidate is *plausible* when none of its fitted parameters sits on a search bound or outside the range its
 :class:`persson.effects.Parameter` declares plausible; an implausible one can be significant but is never the
 explanation. Two candidates whose BIC differ by less than :data:`CLOSE_CALL` are a close call, flagged whatever
-their signatures.
+their signatures (10 BIC units is "very strong" evidence on the scale of Kass & Raftery, J. Am. Stat. Assoc. 90,
+773 (1995)).
 """
 
 from __future__ import annotations
@@ -26,13 +36,22 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .candidates import SIGNIFICANCE_RULE
+from frictioncite import doi
 
-__all__ = ["Verdict", "decide", "explain", "VERDICTS", "CLOSE_CALL"]
+from .candidates import KASS_RAFTERY_1995, SIGNIFICANCE_RULE
 
-VERDICTS = ("nothing_missing", "explained", "partly_explained", "unexplained")
+__all__ = ["Verdict", "decide", "explain", "VERDICTS", "CLOSE_CALL", "PARTLY_SHARE", "misfit_share"]
+
+VERDICTS = ("nothing_missing", "explained", "partly_explained", "unexplained", "undetermined")
 #: Delta BIC below which the top two candidates are a close call.
 CLOSE_CALL = 10.0
+#: Least share of the misfit above the noise a candidate must remove for ``partly_explained``: a quarter. Two
+#: missing effects of similar size each remove about half of it alone, and less when their signatures overlap;
+#: a candidate that takes a few per cent off a large misfit is not a partial explanation.
+PARTLY_SHARE = 0.25
+
+_WORDS = {"nothing_missing": "NOTHING MISSING", "explained": "EXPLAINED", "partly_explained": "PARTLY EXPLAINED",
+          "unexplained": "UNEXPLAINED", "undetermined": "UNDETERMINED"}
 
 
 @dataclass(frozen=True)
@@ -44,9 +63,10 @@ class Verdict:
     verdict : str
         One of :data:`VERDICTS`.
     effect : str or None
-        The explaining candidate (``explained`` and ``partly_explained``).
+        The explaining candidate (``explained`` and ``partly_explained``); for a set of effects, the first.
     lack_of_fit_p : float
-        Lack-of-fit p-value of the verdict's model (the explaining candidate, else the baseline).
+        Lack-of-fit p-value of the verdict's model (the explaining candidate, else the baseline; NaN without a
+        noise estimate).
     remaining_pattern : str
         Systematic structure left in that model's residual ("none detected (...)" when there is none).
     reason : str
@@ -57,6 +77,18 @@ class Verdict:
     alternatives : tuple of str
         Plausible candidates within :data:`CLOSE_CALL` BIC units of the explaining one: the data do not tell
         them from it, so the explanation is not unique.
+    indicated : tuple of str
+        ``undetermined``: the significant, plausible candidates, best first.
+    not_identified : tuple of str
+        Parameters of the named (or first indicated) candidate whose 68 % interval spans the range searched.
+    share : float
+        Share of the misfit above the noise that the named (or closest) candidate removes (:func:`misfit_share`;
+        NaN when not computed).
+    closest : str or None
+        ``unexplained``: the significant, plausible candidate that comes closest.
+    effects : tuple of str
+        The explaining set of effects (one effect for a single candidate; several for the set search of
+        :func:`validation.improve`).
     """
 
     verdict: str
@@ -66,17 +98,46 @@ class Verdict:
     reason: str
     close_call: tuple = ()
     alternatives: tuple = ()
+    indicated: tuple = ()
+    not_identified: tuple = ()
+    share: float = math.nan
+    closest: str | None = None
+    effects: tuple = ()
 
     @property
     def headline(self) -> str:
         """The verdict in words, for the first line of texts and reports."""
-        words = {"nothing_missing": "NOTHING MISSING", "explained": "EXPLAINED",
-                 "partly_explained": "PARTLY EXPLAINED", "unexplained": "UNEXPLAINED"}[self.verdict]
+        named = " + ".join(self.effects) if len(self.effects) > 1 else self.effect
         alt = (f" -- or as well by {', '.join(self.alternatives)} (within {CLOSE_CALL:g} BIC units: the data "
                "cannot tell them apart)" if self.alternatives else "")
-        return f"Verdict: {words}" + (f" by {self.effect}" if self.effect else "") + alt + f". {self.reason}"
+        ind = f" ({', '.join(self.indicated)} indicated)" if self.indicated else ""
+        return f"Verdict: {_WORDS[self.verdict]}" + (f" by {named}" if named else "") + ind + alt + f". {self.reason}"
+
+    def as_dict(self) -> dict:
+        return {"verdict": self.verdict, "effect": self.effect, "effects": list(self.effects),
+                "lack_of_fit_p": self.lack_of_fit_p, "remaining_pattern": self.remaining_pattern,
+                "reason": self.reason, "alternatives": list(self.alternatives), "indicated": list(self.indicated),
+                "not_identified": list(self.not_identified), "share": self.share, "closest": self.closest}
 
 
+def misfit_share(rss0: float, k0: int, rss1: float, k1: int, n: int, noise, sigma_known: bool) -> float:
+    r"""Share of the baseline's misfit above the noise that a model removes.
+
+    With the misfit above the noise :math:`E = RSS/\sigma^2 - (n - k)` (:math:`\chi^2 - (n - k)` with
+    ``mu_std``; its expectation is 0 for a model that is right), the share is :math:`(E_0 - E_1)/E_0`, clipped to
+    [0, 1]; 1 when the baseline has no misfit above the noise; NaN without a noise estimate.
+    """
+    if not noise.known:
+        return math.nan
+    s2 = 1.0 if sigma_known else float(noise.sigma) ** 2
+    e0 = rss0 / s2 - (n - k0)
+    e1 = rss1 / s2 - (n - k1)
+    if e0 <= 0:
+        return 1.0
+    return float(min(max((e0 - e1) / e0, 0.0), 1.0))
+
+
+@doi(KASS_RAFTERY_1995)
 def decide(baseline, candidates, noise) -> Verdict:
     """The :class:`Verdict` for a refitted ``baseline`` and ranked ``candidates`` (module docstring)."""
     ok = [c for c in candidates if c.status == "ok"]
@@ -88,24 +149,18 @@ def decide(baseline, candidates, noise) -> Verdict:
     if len(ok) >= 2 and ok[1].delta_bic - ok[0].delta_bic < CLOSE_CALL and ok[0].delta_bic < 0:
         close = (ok[0].effect, ok[1].effect, float(ok[1].delta_bic - ok[0].delta_bic))
     noise_txt = _noise_phrase(noise)
+    n = baseline.residual.size
+    sigma_known = noise.source == "mu_std"
+    if not noise.known:
+        return _undetermined(baseline, credible, implausible, noise, close)
     if credible:
         best = credible[0]
         alts = tuple(c.effect for c in ok if c is not best and c.plausible
                      and abs(c.delta_bic - best.delta_bic) < CLOSE_CALL)
-        fits = best.lack.consistent and not best.pattern.found
-        if fits:
-            reason = (f"With {best.effect} the residual is at the noise level ({best.lack.describe()}; {noise_txt}) "
-                      "and shows no systematic pattern.")
-            return Verdict("explained", best.effect, best.lack.p_value, best.pattern.describe(), reason, close, alts)
-        why = []
-        if not best.lack.consistent:
-            why.append(f"its residual is still above the noise ({best.lack.describe()}; {noise_txt})")
-        if best.pattern.found:
-            why.append(f"a systematic pattern remains: {best.pattern.describe()}")
-        reason = f"{best.effect} helps (delta BIC {best.delta_bic:+.1f}) but " + " and ".join(why) + \
-            ": something else is missing too."
-        return Verdict("partly_explained", best.effect, best.lack.p_value, best.pattern.describe(), reason, close,
-                       alts)
+        share = misfit_share(baseline.rss, baseline.n_params, best.rss, baseline.n_params + best.n_params, n, noise,
+                             sigma_known)
+        return judge(best.effect, (best.effect,), best.lack, best.pattern, best.not_identified, share,
+                     best.delta_bic, noise_txt, close, alts)
     if base_fails:
         why = []
         if not base_lack.consistent:
@@ -120,9 +175,70 @@ def decide(baseline, candidates, noise) -> Verdict:
         return Verdict("unexplained", None, base_lack.p_value, base_pat.describe(), reason, close)
     reason = (f"The baseline is consistent with the noise ({base_lack.describe()}; {noise_txt}) and no candidate "
               "effect is both significant and plausible.")
-    if not noise.known:
-        reason += " Without an independent noise estimate this rests on the significance tests alone."
     return Verdict("nothing_missing", None, base_lack.p_value, base_pat.describe(), reason, close)
+
+
+def judge(name, effects, lack, pattern, not_identified, share, delta_bic, noise_txt, close=(), alts=()) -> Verdict:
+    """The verdict on a credible model (a candidate, or a set of effects): ``explained`` when it fits the noise
+    and the data identify its parameters, else ``partly_explained`` or ``unexplained`` by the share of the misfit
+    above the noise it removes (module docstring)."""
+    fits = lack.consistent and not pattern.found
+    words = " + ".join(effects)
+    if fits and not not_identified:
+        reason = (f"With {words} the residual is at the noise level ({lack.describe()}; {noise_txt}) "
+                  "and shows no systematic pattern.")
+        return Verdict("explained", name, lack.p_value, pattern.describe(), reason, close, alts, share=share,
+                       effects=tuple(effects))
+    if fits:
+        reason = (f"With {words} the residual is at the noise level ({lack.describe()}; {noise_txt}), but the "
+                  f"data do not identify {', '.join(not_identified)} (the 68 % interval spans the whole range "
+                  f"searched): {words} is indicated, not established; measure where "
+                  f"{'it acts' if len(not_identified) == 1 else 'they act'} to pin "
+                  f"{'it' if len(not_identified) == 1 else 'them'} down.")
+        return Verdict("partly_explained", name, lack.p_value, pattern.describe(), reason, close, alts,
+                       not_identified=tuple(not_identified), share=share, effects=tuple(effects))
+    why = []
+    if not lack.consistent:
+        why.append(f"its residual is still above the noise ({lack.describe()}; {noise_txt})")
+    if pattern.found:
+        why.append(f"a systematic pattern remains: {pattern.describe()}")
+    removed = "" if math.isnan(share) else f"removes {100 * share:.0f} % of the misfit above the noise"
+    if math.isnan(share) or share >= PARTLY_SHARE:
+        reason = (f"{words} helps (delta BIC {delta_bic:+.1f}" + (f"; {removed}" if removed else "") + ") but "
+                  + " and ".join(why) + ": something else is missing too.")
+        return Verdict("partly_explained", name, lack.p_value, pattern.describe(), reason, close, alts,
+                       not_identified=tuple(not_identified), share=share, effects=tuple(effects))
+    reason = (f"The closest candidate, {words}, is significant (delta BIC {delta_bic:+.1f}) but {removed}, less "
+              f"than the {100 * PARTLY_SHARE:.0f} % a partial explanation needs, and "
+              + " and ".join(why) + ". The missing physics is not in the candidate list.")
+    return Verdict("unexplained", None, lack.p_value, pattern.describe(), reason, close, share=share,
+                   closest=name)
+
+
+def _undetermined(baseline, credible, implausible, noise, close) -> Verdict:
+    indicated = tuple(c.effect for c in credible)
+    reason = (f"Without an independent noise estimate ({noise.description}) the data cannot say whether anything "
+              "is missing beyond the noise.")
+    not_identified = ()
+    if credible:
+        best = credible[0]
+        not_identified = best.not_identified
+        ident = [e.describe() for e in best.estimates if e.identified]
+        reason += (f" {best.effect} is indicated (delta BIC {best.delta_bic:+.1f}, p = {best.p_value:.2g}): "
+                   + (f"the data identify {'; '.join(ident)}" if ident else "the data identify none of its "
+                      "parameters")
+                   + (f", but not {', '.join(not_identified)} (the 68 % interval spans the range searched)"
+                      if not_identified and ident else "") + ".")
+        if len(indicated) > 1:
+            reason += f" Also indicated: {', '.join(indicated[1:])}."
+    elif implausible:
+        reason += (" Significant only with implausible parameters: "
+                   + "; ".join(f"{c.effect} ({', '.join(c.issues)})" for c in implausible[:3]) + ".")
+    else:
+        reason += " No candidate is significant."
+    reason += " Give a mu_std column or repeat some conditions."
+    return Verdict("undetermined", None, math.nan, baseline.pattern.describe(), reason, close,
+                   indicated=indicated, not_identified=tuple(not_identified))
 
 
 def explain(verdict: Verdict, m, baseline, candidates, clusters, noise) -> str:
@@ -133,7 +249,9 @@ def explain(verdict: Verdict, m, baseline, candidates, clusters, noise) -> str:
     sig = [c for c in ok if c.significant]
     credible = [c for c in sig if c.plausible]
     if credible:
-        paras.append(_candidate_paragraph(m, baseline, credible[0]))
+        paras.append(_candidate_paragraph(m, baseline, credible[0],
+                                          "Indicated" if verdict.verdict == "undetermined" else
+                                          "Closest" if verdict.verdict == "unexplained" else "Most likely missing"))
     elif ok:
         t = ok[0]
         paras.append(f"No candidate is {'both significant and plausible' if sig else 'significant'} "
@@ -159,6 +277,10 @@ def explain(verdict: Verdict, m, baseline, candidates, clusters, noise) -> str:
     failed = [c for c in candidates if c.status.startswith("failed")]
     if failed:
         paras.append("Could not evaluate: " + "; ".join(f"{c.effect} ({c.status})" for c in failed) + ".")
+    na = [c for c in candidates if c.status.startswith("not applicable")]
+    if na:
+        paras.append("Not applicable to these rows: " + "; ".join(
+            f"{c.effect} ({c.status.partition(': ')[2]})" for c in na) + ".")
     none = [c for c in candidates if c.status == "no signature"]
     if none:
         paras.append("No signature on these measurements (switching them on changes no prediction): "
@@ -192,7 +314,7 @@ def _baseline_paragraph(m, b) -> str:
     return head + f" Systematic pattern: {b.pattern.describe()}."
 
 
-def _candidate_paragraph(m, b, t) -> str:
+def _candidate_paragraph(m, b, t, lead: str = "Most likely missing") -> str:
     ch = t.change
     r = b.residual
     sd = float(np.std(r, ddof=1)) if r.size > 1 else 1.0
@@ -201,7 +323,7 @@ def _candidate_paragraph(m, b, t) -> str:
     corr = _cos(ch - ch.mean(), r - r.mean())
     doc = _first_doc_line(t.instance)
     fixed = t.placeholders
-    txt = (f"Most likely missing: {t.effect}" + (f" ({doc})" if doc else "") + ". Refitted: "
+    txt = (f"{lead}: {t.effect}" + (f" ({doc})" if doc else "") + ". Refitted: "
            + (_fmt_estimates(t.estimates) or "no free parameters")
            + (f"; placeholders kept: {', '.join(f'{k} = {v}' for k, v in fixed.items())}" if fixed else "")
            + (f"; baseline {_fmt_estimates(t.baseline_estimates)}" if t.baseline_estimates else "")

@@ -276,6 +276,10 @@ def shipped_cases() -> dict[str, Path]:
 
 
 # ---------------------------------------------------------------------------------------------------------
+#: Relative tolerance within which a case's q1 equals the last q of its PSD table (values written with 6 digits).
+_Q_RTOL = 1e-6
+
+
 def build_surface(tab: dict, base: Path, path: Path):
     """The surface PSD of a ``[surface]`` table (checked by :func:`parse_case`)."""
     import surfaces
@@ -305,13 +309,18 @@ def build_surface(tab: dict, base: Path, path: Path):
         q0 = tab.get("q0")
         q1 = tab.get("q1")
         lo, hi = s.q_range
-        if q1 is not None and float(q1) > hi * (1 + 1e-9):
-            raise InputError(f"{path}: [surface] q1 = {float(q1):g} rad/m lies past the PSD's last q = {hi:g}; "
-                             "nothing is extrapolated unless asked: switch on the microtexture effect "
+        if q1 is not None and float(q1) > hi * (1 + _Q_RTOL):
+            raise InputError(f"{path}: [surface] q1 = {float(q1):.10g} rad/m lies past the PSD's last q = "
+                             f"{hi:.10g} rad/m (relative difference {float(q1) / hi - 1:.2g}); nothing is "
+                             "extrapolated unless asked: switch on the microtexture effect "
                              "([model] effects = [\"microtexture\"]) to extend the tail")
         if "unidirectional_deg" in tab:
             raise InputError(f"{path}: [surface] q0 and q1 do not apply to a unidirectional surface (its band is "
                              "that of the profiles' 1-D PSD): give psd_options = {{ ... }} or remove them")
+        if q1 is not None and float(q1) > hi:
+            q1 = hi  # the table's last q written with fewer digits: the same wavevector
+        if q0 is not None and lo * (1 - _Q_RTOL) <= float(q0) < lo:
+            q0 = lo
         with _key(path, "surface", "q0" if q1 is None else "q1"):
             s = s.with_cutoff(q0=None if q0 is None else float(q0), q1=None if q1 is None else float(q1))
     if "stretch" in tab:

@@ -246,8 +246,10 @@ class Model:
         C_nodes = np.asarray(surface.C(solved.q), dtype=float)
         hrms = math.sqrt(solver.psd_moment(surface, solved.q, 1))
         if hrms > 0:
-            u_bar, per_load = separation.separation_and_energy(solved.q, C_nodes, solved.G, self.gamma,
-                                                               correction=self.correction)
+            u_bar, per_load = solver.derived(
+                solved, ("separation_and_energy", self.gamma, self.correction),
+                lambda: separation.separation_and_energy(solved.q, C_nodes, solved.G, self.gamma,
+                                                         correction=self.correction))
             # the depth of the highest asperities, never less than the load-weighted mean 2 U_el / sigma0
             depth = separation.penetration_depth(u_bar, hrms, energy_per_load=per_load)
         else:  # no roughness: the rubber touches the flat everywhere

@@ -11,9 +11,12 @@ self-consistent flash temperature itself (:func:`run_temperature`, :func:`persso
 
 from __future__ import annotations
 
+import contextlib
+import contextvars
 import functools
 import math
 import warnings
+from collections import OrderedDict
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -28,7 +31,7 @@ from .quadrature import cumulative_moment, psd_breakpoints, psd_moment, quadratu
 from .tabulate import angular_table, relative_shifts, shift_table
 
 __all__ = ["Solved", "Prepared", "solve", "prepare", "run_plain", "run_flash", "run_temperature",
-           "temperature_options"]
+           "temperature_options", "reuse_solutions"]
 
 #: Speeds below which a call runs on one thread (thread start-up costs more than it saves). The flash solver
 #: costs milliseconds per speed, so it goes parallel from two speeds.
@@ -169,6 +172,35 @@ class Prepared:
                          None if self.shape is None else self.shape.subset(speeds))
 
 
+@contextlib.contextmanager
+def reuse_solutions(memo: OrderedDict | None = None, size: int = 8):
+    """Inside this context, :func:`solve` returns the stored solution of a problem it has solved before.
+
+    A problem is the same when the surface and the material are the same objects, the conditions are equal
+    (speeds, temperatures, pressures, wet) and the settings and the solver's effects (temperature, per-scale
+    modulus) are equal by value. Effects that only add a friction term (adhesion) do not enter the solver, so a
+    fit of their parameters, or of anything downstream of the solver, solves each set of conditions once.
+
+    Parameters
+    ----------
+    memo : OrderedDict, optional
+        The store, kept by the caller to reuse solutions across contexts (a new one by default). The stored
+        arrays are shared between results: callers must not modify them in place.
+    size : int
+        Most problems kept (least recently used dropped first).
+    """
+    memo = OrderedDict() if memo is None else memo
+    token = _MEMO.set((memo, int(size)))
+    try:
+        yield memo
+    finally:
+        _MEMO.reset(token)
+
+
+#: The store of :func:`reuse_solutions` in the current context (None: every call solves).
+_MEMO: contextvars.ContextVar = contextvars.ContextVar("persson_solver_memo", default=None)
+
+
 def solve(surface, material, cond: Conditions, grid: GridSettings, nu: float, gamma: float, thermal,
           correction: str | None = None, modulus=None) -> Solved:
     """Solve every speed of ``cond``, grouped by temperature when the material cannot shift between them.
@@ -177,8 +209,56 @@ def solve(surface, material, cond: Conditions, grid: GridSettings, nu: float, ga
     (``material.log10_aT``); a material without it is evaluated at each distinct temperature separately.
     ``correction`` names an area correction of :mod:`persson.contact.corrections` (None: Persson's erf law);
     ``modulus`` is an effect whose ``modulus_factors`` give per-scale factors on E' and E'' (strain softening at
-    the local strain of each scale), or None.
+    the local strain of each scale), or None. Inside :func:`reuse_solutions` a problem solved before is not
+    solved again.
     """
+    active = _MEMO.get()
+    key = None if active is None else _memo_key(surface, material, cond, grid, nu, gamma, thermal, correction,
+                                                 modulus)
+    if key is not None:
+        memo, size = active
+        hit = memo.get(key)
+        if hit is not None:
+            memo.move_to_end(key)
+            return hit[2]
+        solved = _solve(surface, material, cond, grid, nu, gamma, thermal, correction, modulus)
+        memo[key] = (surface, material, solved, {})  # the objects stay alive, so their ids stay theirs
+        while len(memo) > size:
+            memo.popitem(last=False)
+        return solved
+    return _solve(surface, material, cond, grid, nu, gamma, thermal, correction, modulus)
+
+
+def derived(solved: Solved, key: tuple, compute):
+    """``compute()``, a quantity derived from ``solved`` alone (e.g. the mean separation), kept with the solution
+    inside :func:`reuse_solutions` so that a reused solution does not derive it again."""
+    active = _MEMO.get()
+    entry = None if active is None else next((e for e in active[0].values() if e[2] is solved), None)
+    if entry is None:
+        return compute()
+    if key not in entry[3]:
+        entry[3][key] = compute()
+    return entry[3][key]
+
+
+def _memo_key(surface, material, cond, grid, nu, gamma, thermal, correction, modulus):
+    """The key of a problem for :func:`reuse_solutions` (None when it cannot be keyed, e.g. an unhashable
+    effect or free-form ``extra`` conditions)."""
+    if cond.extra:
+        return None
+    shape = cond.speed.shape
+    arrays = tuple(np.ascontiguousarray(np.broadcast_to(np.asarray(a, dtype=float), shape)).tobytes()
+                   for a in (cond.speed, cond.temperature, cond.pressure, cond.nominal_pressure))
+    key = (id(surface), id(material), arrays, bool(cond.wet), grid, float(nu), float(gamma), thermal, correction,
+           modulus)
+    try:
+        hash(key)
+    except TypeError:
+        return None
+    return key
+
+
+def _solve(surface, material, cond, grid, nu, gamma, thermal, correction, modulus) -> Solved:
     shape = cond.speed.shape
     T = np.broadcast_to(np.asarray(cond.temperature, dtype=float), shape)
     if np.all(T == T[0]) or hasattr(material, "log10_aT"):

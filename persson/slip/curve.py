@@ -295,7 +295,7 @@ def _warn_shift_range(notes) -> tuple[str, ...]:
 def _mu_slip_patch(model, heating, s_f, V_f, T0, sigma0, contact, shape, profiles) -> SlipResult:
     from .heating import patch_friction
 
-    sol = patch_friction(model, heating, contact, s_f, V_f, T0, sigma0, profiles=profiles)
+    sol = patch_friction(model, heating, contact, s_f, V_f, T0, sigma0, profiles=profiles, warn_shift_range=False)
     scalar = shape == ()
     load = contact.load(sigma0)
 

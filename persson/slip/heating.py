@@ -59,6 +59,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from frictioncite import doi
+from materials.shift import SHIFT_RANGE_NOTE
 
 from ..effects.base import Effect, Parameter
 from ..errors import InputError
@@ -248,7 +249,7 @@ class PatchSolution:
 # Driver: tabulate once, march along the patch for every row
 # =========================================================================================================
 def patch_friction(model, heating: PatchHeating, contact, slip, speed, temperature, pressure, *,
-                   profiles: bool = False, tables=None) -> PatchSolution:
+                   profiles: bool = False, tables=None, warn_shift_range: bool = True) -> PatchSolution:
     r"""Brush-model friction with the local friction :math:`\mu(v_s, p(x), T(x))` along the patch.
 
     Parameters
@@ -262,6 +263,9 @@ def patch_friction(model, heating: PatchHeating, contact, slip, speed, temperatu
         sigma0 (Pa).
     profiles : bool
         Also return T(x), the shear and mu(x) on the patch nodes.
+    warn_shift_range : bool
+        Raise the engine's warning that the rubber left the shift law's fitted range (it is in the notes either
+        way); False where the caller warns once for several solutions (:func:`persson.slip.mu_slip`).
     tables : dict, optional
         A cache (a dict the caller keeps) of friction tables: reused when the engine (:func:`engine_key`), the
         table settings (``max_rise``, ``n_pressure``, ``temperature_points_per_decade``), the contact's pressure
@@ -349,6 +353,11 @@ def patch_friction(model, heating: PatchHeating, contact, slip, speed, temperatu
         engine = model.without("patch_heating") if "patch_heating" in getattr(model, "effect_names", ()) else model
         tab = _Tables(engine, keys, vnodes, voff, gnodes, V_lo, heating)
         if tables is not None:
+            if heated and tables.get("key") == cache_key and tables["value"].has_heated():
+                # the same rows with another engine (e.g. a fitted adhesion): the temperature range the previous
+                # table reached is the first guess, and the march below widens it if the patch gets hotter
+                tab.B[:] = tables["value"].B
+                tab._grow(np.ones(keys.shape[0], dtype=bool))
             tables.clear()
             tables.update(engine=ekey, key=cache_key, value=tab, model=model)
     xi = np.ascontiguousarray(contact._xi)
@@ -385,7 +394,8 @@ def patch_friction(model, heating: PatchHeating, contact, slip, speed, temperatu
     # the engine's warnings, recorded while the table was filled, reach the caller as warnings (once each) as
     # well as in the notes
     for category, message in tab.warned:
-        warnings.warn(message, category, stacklevel=2)
+        if warn_shift_range or SHIFT_RANGE_NOTE not in message:
+            warnings.warn(message, category, stacklevel=2)
     return PatchSolution(mu=mu, stick_fraction=xc, mu_local=mu_loc, max_rise=rise, xi=xi.copy(),
                          temperature=Tprof if profiles else None, shear=shear if profiles else None,
                          mu_profile=muprof if profiles else None, table_points=tab.points - points0,

@@ -28,6 +28,17 @@ def add_arguments(p):
     add_quiet(p)
 
 
+def _progress(status):
+    """Step verdicts printed as lines; the fraction done and the time left on the status line."""
+    def call(*args):
+        if len(args) == 1 and isinstance(args[0], str) and ": RMSE " in args[0]:
+            status.echo("  " + args[0])
+        else:
+            status(*args)
+
+    return call
+
+
 def run(args) -> int:
     from persson.io import Outputs, free_path
 
@@ -59,9 +70,9 @@ def run(args) -> int:
             cmp = validation.compare(case.model, case.measurements, case.contact, name=case.name)
         print(cmp.summary())
         cmp.to_csv(folder / "comparison.csv", comments=(f"case {case.path}",))
-        print("\n2-3. diagnose, add the best significant effect, repeat")
-        with status.phase("diagnose, add the best significant effect, repeat"):
-            imp = validation.improve(case, progress=lambda msg: status.echo("  " + msg))
+        print("\n2-3. diagnose, add the effects the data support, test every combination reached")
+        with status.phase("diagnose, find the set of effects the data support"):
+            imp = validation.improve(case, progress=_progress(status))
         dx = imp.steps[0].diagnosis
         print(dx.table_text())
         print()

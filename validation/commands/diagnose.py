@@ -23,6 +23,9 @@ def add_arguments(p):
     p.add_argument("--candidates", default=None,
                    help="comma-separated effect names to test (default: every registered effect not in the model)")
     p.add_argument("--seed", type=int, default=0, help="seed of the screening design (default 0)")
+    p.add_argument("--search", choices=("single", "sets"), default="single",
+                   help="single: each candidate added alone (default); sets: also search combinations of effects "
+                        "(forward steps with backward elimination and swaps; names every set within 10 BIC units)")
     add_effects(p)
     add_force(p)
     add_quiet(p)
@@ -49,12 +52,14 @@ def run(args) -> int:
         print_notes(case.spec.notes)
         t0 = time.perf_counter()
         with status.phase("diagnosing (screening every candidate effect, refitting the best)"):
-            dx = validation.diagnose(case, candidates=cands, seed=args.seed)
+            dx = validation.diagnose(case, candidates=cands, seed=args.seed, search=args.search, progress=status)
         dt = time.perf_counter() - t0
         print(f"case {case.name}: {case.measurements.describe()}", file=text)
         print(dx.table_text(), file=text)
         print(file=text)
         print(dx.explanation, file=text)
+        print(file=text)
+        print("References: " + "; ".join(dx.references()), file=text)
         print(file=text)
         print(f"diagnosis took {dt:.1f} s ({dx.n_evaluations} model evaluations); rule: {dx.rule}", file=text)
         if js is not None:

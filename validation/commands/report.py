@@ -19,6 +19,8 @@ def add_arguments(p):
     p.add_argument("--max-steps", type=int, default=4, help="largest number of effects added (default 4)")
     p.add_argument("--json", default=None, metavar="FILE",
                    help="also write the first diagnosis as JSON ('-': to stdout, the text then goes to stderr)")
+    p.add_argument("--candidates", default=None,
+                   help="comma-separated effect names to test (default: every registered effect not in the model)")
     add_effects(p)
     add_force(p)
     add_quiet(p)
@@ -47,13 +49,14 @@ def run(args) -> int:
         with status.phase(f"predicting {case.measurements.n} measured rows"):
             cmp = validation.compare(case.model, case.measurements, case.contact, name=case.name)
         print(cmp.summary(), file=text)
+        cands = [c.strip() for c in args.candidates.split(",") if c.strip()] if args.candidates else None
         if args.no_improve:
             with status.phase("diagnosing"):
-                dx = validation.diagnose(case)
+                dx = validation.diagnose(case, candidates=cands, progress=status)
             items = [case, cmp, dx]
         else:
-            with status.phase("diagnose, add the best significant effect, repeat"):
-                imp = validation.improve(case, max_steps=args.max_steps, progress=status)
+            with status.phase("diagnose, find the set of effects the data support"):
+                imp = validation.improve(case, candidates=cands, max_steps=args.max_steps, progress=status)
             dx = imp.steps[0].diagnosis
             items = [case, cmp, dx, imp]
             print(imp.table_text(), file=text)

@@ -1,0 +1,363 @@
+"""A blind study of the diagnosis loop: random cases with known hidden physics (not a test).
+
+Run: ``python benchmarks/blind_study.py --n 100 --seed 1 [--out results.json] [--kinds single,pair]``
+
+Each case is drawn at random and made by a path independent of the diagnosis:
+
+* **surface**: a self-affine PSD (Hurst exponent 0.7-0.9, roll-off wavelength 0.2-10 mm, hrms 20 um-0.5 mm: a
+  sandpaper or a road), tabulated to 1e6 rad/m -- or, when the microtexture is hidden, only to a profilometer
+  limit q_r of 3e4-1.6e5 rad/m while the truth keeps the analytic power law to q1 = 6-20 q_r;
+* **compound**: a generalized Maxwell solid with a log-normal relaxation spectrum (centre, width, rubbery and
+  glassy moduli and WLF constants drawn at random);
+* **conditions**: 2-3 temperatures, 1-2 pressures (at least 3 combinations), 7-9 sliding speeds over 3.5-4.5
+  decades, a slip sweep with a contact (always with patch heating), wet rows in some cases;
+* **hidden physics**: none; one effect (adhesion, flash temperature, microtexture, strain softening, patch
+  heating); a pair; wet rows with nothing hidden; or physics outside the candidate list (a Cole-Cole filler
+  relaxation of the compound that shifts with an Arrhenius law instead of WLF);
+* **truth**: the engine on a converged grid (4x the wavevector nodes, 3x the modulus table, a 2.5x finer
+  temperature table, a brush model with 1601 nodes), never the diagnosis's settings;
+* **noise**: Gaussian, its level set by an effect-to-noise ratio (rms of the hidden physics' change of mu over the
+  noise; for a pair, that of the weaker effect) drawn log-uniformly from 0.5-20 (0.004-0.02 in mu without hidden
+  physics); given as ``mu_std`` in 30 %
+  of the cases, as replicate rows in 20 %, else left to the local-difference estimate.
+
+The diagnosis sees the case as a user would (:func:`validation.improve` with the default candidates) and the
+outcome is compared with the truth. Printed: the confusion matrix (hidden physics against the set of effects
+found), false alarms on null and wet cases, physics outside the candidates called ``explained``, detection against
+the effect-to-noise ratio, and the coverage of the reported 68 % and 95 % intervals of the parameters of a hidden
+effect found alone.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+import time
+import warnings
+from dataclasses import dataclass, field
+
+import numpy as np
+
+import materials
+import persson
+import surfaces
+import validation
+from persson import effects as fx
+from persson.slip import Contact
+from validation.compare import json_text
+
+#: The truth's resolution: far finer than the diagnosis's defaults (24 q nodes and 40 modulus nodes per decade).
+TRUTH_GRID = persson.GridSettings(q_per_decade=96, n_phi=64, omega_per_decade=120, temperature_step=0.1)
+SINGLES = ("adhesion", "flash_temperature", "microtexture", "strain_softening", "patch_heating")
+PAIRS = (("microtexture", "flash_temperature"), ("flash_temperature", "adhesion"), ("adhesion", "strain_softening"),
+         ("microtexture", "adhesion"), ("patch_heating", "adhesion"))
+#: The mix of kinds, in the order cases cycle through it.
+SCHEDULE = ("single", "null", "single", "pair", "single", "outside", "single", "wet", "single", "pair")
+RATIO_BINS = (0.5, 1.0, 2.0, 5.0, 20.0)
+
+
+@dataclass
+class BlindCase:
+    """One drawn case: what the diagnosis gets and what is true."""
+
+    index: int
+    kind: str
+    hidden: dict                       # effect -> true parameters (free ones)
+    model: object                      # the case's baseline model (default grid)
+    measurements: object
+    contact: object
+    fit: tuple
+    ratio: float                       # effect-to-noise ratio (nan without hidden physics)
+    sigma: float
+    noise_kind: str
+    notes: dict = field(default_factory=dict)
+
+
+# ==========================================================================================================
+def draw(index: int, seed: int) -> BlindCase:
+    """The case ``index`` of the study with seed ``seed`` (module docstring)."""
+    rng = np.random.default_rng([seed, index])
+    kind = SCHEDULE[index % len(SCHEDULE)]
+    hidden_names: tuple = ()
+    if kind == "single":
+        hidden_names = (SINGLES[(index // len(SCHEDULE) + index) % len(SINGLES)],)
+    elif kind == "pair":
+        hidden_names = PAIRS[(index // len(SCHEDULE) * 2 + index) % len(PAIRS)]
+    micro = "microtexture" in hidden_names
+    truth_surface, case_surface = _surfaces(rng, micro)
+    material = _compound(rng)
+    temps = np.sort(rng.choice([-5.0, 5.0, 15.0, 25.0, 35.0, 45.0], size=int(rng.integers(2, 4)), replace=False))
+    # at least three (temperature, pressure) series, so that a noise estimate has the rows it needs
+    pressures = np.sort(rng.choice([0.15e6, 0.25e6, 0.4e6, 0.6e6], size=2 if temps.size < 3 else
+                                   int(rng.integers(1, 3)), replace=False))
+    speeds = np.geomspace(10 ** rng.uniform(-4.0, -3.0), 10 ** rng.uniform(0.0, 0.5), int(rng.integers(7, 10)))
+    with_slip = "patch_heating" in hidden_names or rng.random() < 0.6
+    wet_rows = kind == "wet" or (kind in ("null", "single") and rng.random() < 0.2 and "adhesion" not in hidden_names)
+    replicate = rng.random() < 0.2
+    use_std = not replicate and rng.random() < 0.375
+    rows = []
+    for T in temps:
+        for p in pressures:
+            for v in speeds:
+                for _ in range(2 if replicate else 1):
+                    rows.append((1.0, float(f"{v:.4g}"), T, p, False))
+    if with_slip:
+        for s in (0.005, 0.01, 0.02, 0.05, 0.1, 0.2, 0.4, 0.8):
+            rows.append((s, 1.0, float(temps[len(temps) // 2]), float(pressures[0]), False))
+    if wet_rows:
+        for v in speeds[::max(1, speeds.size // 6)]:
+            rows.append((1.0, float(f"{v:.4g}"), float(temps[0]), float(pressures[-1]), True))
+    slip, V, T, p, wet = (np.array(x) for x in zip(*rows))
+    skeleton = validation.Measurements.from_arrays(slip=slip, speed=V, temperature=T, pressure=p, mu=0.5,
+                                                   wet=wet.astype(bool), source=f"blind case {index}")
+    contact_case = Contact(0.02, 0.01, 3e9, "parabolic") if with_slip or "patch_heating" in hidden_names else None
+    contact_truth = Contact(0.02, 0.01, 3e9, "parabolic", n_points=1601) if contact_case is not None else None
+    # the baseline: hysteresis only, or with adhesion (tau_f0 fitted, given off its true value)
+    base_eff, fit = [], ()
+    base_true = []
+    if "adhesion" not in hidden_names and rng.random() < 0.5:
+        tau = rng.uniform(0.5e6, 2.0e6)
+        base_true.append(fx.Adhesion(tau_f0=tau, c=0.1, v_ref=1e-2))
+        base_eff.append(fx.Adhesion(tau_f0=tau * rng.uniform(0.6, 1.5), c=0.1, v_ref=1e-2))
+        fit = ("adhesion.tau_f0",)
+    hidden = {n: _hidden_params(n, rng, material, skeleton, truth_surface, case_surface) for n in hidden_names}
+    case_model = persson.Model(case_surface, material, effects=base_eff)
+    truth_effects = list(base_true)
+    for n, par in hidden.items():
+        if n == "microtexture":
+            continue  # the truth's surface carries the tail itself (the analytic power law)
+        truth_effects.append(fx.get(n, **par))
+    truth_material = material
+    notes = {}
+    if kind == "outside":
+        filler = {"delta_E": rng.uniform(4e6, 10e6), "f_ref_Hz": 10 ** rng.uniform(2.0, 4.0),
+                  "alpha": rng.uniform(0.3, 0.5), "E_a": rng.uniform(40e3, 80e3)}
+        truth_material = ArrheniusFiller(material, **filler)
+        notes["filler"] = filler
+    truth = persson.Model(truth_surface, truth_material, effects=truth_effects, grid=TRUTH_GRID)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        mu_true = validation.predict(truth, skeleton, contact_truth).mu
+        # the size of the hidden physics: the truth's change of mu when it is taken away (for a pair, each effect
+        # alone, and the weaker one counts)
+        withouts = []
+        if len(hidden) > 1:
+            for n in hidden:
+                surf = case_surface if n == "microtexture" else truth_surface
+                eff = [e for e in truth_effects if e.name != n]
+                withouts.append(persson.Model(surf, truth_material, effects=eff, grid=TRUTH_GRID))
+        else:
+            withouts.append(persson.Model(case_surface, material, effects=base_true, grid=TRUTH_GRID))
+        effect_rms = min(float(np.sqrt(np.mean((mu_true - validation.predict(w, skeleton, contact_truth).mu) ** 2)))
+                         for w in withouts)
+    if kind in ("null", "wet"):
+        ratio, sigma = math.nan, 10 ** rng.uniform(math.log10(0.004), math.log10(0.02))
+    else:
+        ratio = 10 ** rng.uniform(math.log10(0.5), math.log10(20.0))
+        sigma = float(np.clip(effect_rms / ratio, 0.002, 0.05))
+        ratio = effect_rms / sigma
+    mu = np.clip(mu_true + rng.normal(0.0, sigma, mu_true.size), 0.0, None)
+    meas = validation.Measurements.from_arrays(slip=slip, speed=V, temperature=T, pressure=p, mu=np.round(mu, 6),
+                                               mu_std=np.full(mu.size, sigma) if use_std else None,
+                                               wet=wet.astype(bool), source=f"blind case {index}", contact=contact_case)
+    return BlindCase(index=index, kind=kind, hidden=hidden, model=case_model, measurements=meas,
+                     contact=contact_case, fit=fit, ratio=ratio, sigma=sigma,
+                     noise_kind="mu_std" if use_std else "replicates" if replicate else "local differences",
+                     notes=notes)
+
+
+@dataclass(frozen=True, eq=False)
+class ArrheniusFiller:
+    r"""A compound with an extra Cole-Cole relaxation of its filler network whose relaxation time follows an
+    Arrhenius law, :math:`\tau(T) = \tau_{ref}\exp[E_a/R (1/T - 1/T_{ref})]`, not the compound's WLF law (Cole &
+    Cole, J. Chem. Phys. 9, 341 (1941)); no ``log10_aT``, so the engine evaluates it at each temperature."""
+
+    base: object
+    delta_E: float
+    f_ref_Hz: float
+    alpha: float
+    E_a: float
+
+    @property
+    def thermal(self):
+        return self.base.thermal
+
+    def E(self, omega, T):
+        omega = np.asarray(omega, dtype=float)
+        T = np.asarray(T, dtype=float)
+        tau = np.exp(self.E_a / 8.314462618 * (1.0 / (T + 273.15) - 1.0 / 293.15)) / (2 * math.pi * self.f_ref_Hz)
+        x = (1j * omega * tau) ** self.alpha
+        return self.base.E(omega, T) + self.delta_E * x / (1.0 + x)
+
+
+def _surfaces(rng, micro: bool):
+    """(truth surface, case surface): a sandpaper or a road, tabulated; with the microtexture hidden the case's
+    table stops at a profilometer limit q_r while the truth continues the power law."""
+    H = rng.uniform(0.7, 0.9)
+    if rng.random() < 0.5:   # a road
+        lam0, hrms = 10 ** rng.uniform(-3.0, -2.0), 10 ** rng.uniform(-4.0, math.log10(5e-4))
+    else:                    # a sandpaper
+        lam0, hrms = 10 ** rng.uniform(math.log10(2e-4), math.log10(8e-4)), 10 ** rng.uniform(math.log10(2e-5),
+                                                                                               math.log10(8e-5))
+    q0 = 2 * math.pi / lam0
+    if micro:
+        q_r = 10 ** rng.uniform(4.5, 5.2)
+        q1_true = q_r * 10 ** rng.uniform(0.8, 1.3)
+        sa = surfaces.SelfAffine(hurst=H, q0=q0, q1=q1_true, hrms=hrms, qL=q0 / rng.uniform(4.0, 15.0))
+        full = sa.tabulate(n_per_decade=32)
+        cut = sa.with_cutoff(q1=q_r).tabulate(n_per_decade=16)
+        case = surfaces.PSD(cut.q, cut.C_values, q_r=float(cut.q[-1]), qL=cut.qL, q_rolloff=cut.q_rolloff,
+                            hurst=cut.hurst, source="blind study: measured to q_r")
+        return full, case
+    sa = surfaces.SelfAffine(hurst=H, q0=q0, q1=1.0e6, hrms=hrms, qL=q0 / rng.uniform(4.0, 15.0))
+    tab = sa.tabulate(n_per_decade=16)
+    return sa.tabulate(n_per_decade=32), tab
+
+
+def _compound(rng):
+    """A generalized Maxwell solid: log-normal spectrum (3 terms per decade), WLF shift at 20 C."""
+    tau = np.logspace(-15, 3, 55)
+    centre, width = rng.uniform(-11.5, -9.5), rng.uniform(1.4, 2.0)
+    w = np.exp(-(np.log10(tau) - centre) ** 2 / (2 * width ** 2)) + 0.01 * np.exp(
+        -(np.log10(tau) - centre - 4.0) ** 2 / (2 * 2.5 ** 2))
+    E_inf, E_glassy = rng.uniform(2e6, 5e6), rng.uniform(1e9, 3e9)
+    E_i = w / w.sum() * (E_glassy - E_inf)
+    return materials.Prony(E_inf=E_inf, E_i=E_i, tau_i=tau, wlf=materials.WLF(C1=rng.uniform(8.0, 10.0),
+                                                                             C2=rng.uniform(90.0, 115.0),
+                                                                             T_ref=20.0),
+                           label="blind study compound")
+
+
+def _hidden_params(name, rng, material, rows, truth_surface, case_surface) -> dict:
+    if name == "adhesion":
+        vs = rows.sliding_speed * 10.0 ** np.asarray(material.log10_aT(rows.temperature))
+        return {"tau_f0": rng.uniform(0.5e6, 3e6), "c": rng.uniform(0.05, 0.3),
+                "v_ref": 10 ** rng.uniform(math.log10(vs.min()) + 0.5, math.log10(vs.max()) - 0.5)}
+    if name == "flash_temperature":
+        return {"macro_scale_ratio": 10 ** rng.uniform(math.log10(1.5), math.log10(6.0))}
+    if name == "microtexture":
+        return {"q1": float(truth_surface.q_range[1])}
+    if name == "strain_softening":
+        return {"storage_factor": rng.uniform(0.5, 0.85), "loss_factor": rng.uniform(0.6, 0.95)}
+    if name == "patch_heating":
+        return {"counter_effusivity": 10 ** rng.uniform(math.log10(300.0), math.log10(3000.0))}
+    raise ValueError(name)
+
+
+# ==========================================================================================================
+def run(case: BlindCase) -> dict:
+    """Diagnose ``case`` as a user would and compare the outcome with the truth."""
+    t0 = time.perf_counter()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        imp = validation.improve(case.model, case.measurements, contact=case.contact, fit=case.fit)
+    found = tuple(sorted(imp.added))
+    truth = tuple(sorted(case.hidden))
+    out = {"index": case.index, "kind": case.kind, "hidden": truth, "found": found, "verdict": imp.verdict,
+           "ratio": case.ratio, "sigma": case.sigma, "noise": case.noise_kind, "rows": case.measurements.n,
+           "noise_estimate": imp.noise, "seconds": time.perf_counter() - t0,
+           "supported": [list(s.effects) for s in imp.selection.supported] if imp.selection else [],
+           "coverage": []}
+    if case.kind in ("single", "pair") and set(found) == set(truth):
+        est = {e.key: e for e in imp.selection.best.estimates}
+        for eff, params in case.hidden.items():
+            for p, true in params.items():
+                e = est.get(f"{eff}.{p}")
+                if e is None:
+                    continue
+                lo, hi = e.interval
+                in68 = lo <= true <= hi
+                in95 = e.value - 1.96 * (e.value - lo) <= true <= e.value + 1.96 * (hi - e.value)
+                out["coverage"].append({"parameter": f"{eff}.{p}", "true": true, "value": e.value,
+                                        "interval": [lo, hi], "in68": bool(in68), "in95": bool(in95)})
+    return out
+
+
+def right(r: dict) -> bool:
+    """The outcome is right: nothing found on null and wet cases, exactly the hidden set otherwise, never
+    ``explained`` for physics outside the candidates."""
+    if r["kind"] in ("null", "wet"):
+        return not r["found"] and r["verdict"] == "nothing_missing"
+    if r["kind"] == "outside":
+        return r["verdict"] != "explained"
+    return set(r["found"]) == set(r["hidden"])
+
+
+def summarize(results: list) -> str:
+    lines = []
+    rows = sorted({"+".join(r["hidden"]) or r["kind"] for r in results})
+    cols = ["(none)"] + list(SINGLES) + ["two or more"]
+    short = {"(none)": "none", "adhesion": "adh", "flash_temperature": "flash", "microtexture": "micro",
+             "strain_softening": "strain", "patch_heating": "patch", "two or more": "2+"}
+    lines.append("Confusion matrix (rows: hidden physics; columns: effects found; counts)")
+    lines.append(f"  {'hidden':<40}" + "".join(f"{short[c]:>8}" for c in cols) + f"{'right':>8}")
+    for name in rows:
+        sel = [r for r in results if ("+".join(r["hidden"]) or r["kind"]) == name]
+        counts = {c: 0 for c in cols}
+        for r in sel:
+            f = r["found"]
+            counts["(none)" if not f else f[0] if len(f) == 1 else "two or more"] += 1
+        lines.append(f"  {name:<40}" + "".join(f"{counts[c]:>8}" for c in cols)
+                     + f"{sum(right(r) for r in sel):>5}/{len(sel)}")
+    nw = [r for r in results if r["kind"] in ("null", "wet")]
+    fa = [r for r in nw if not right(r)]
+    lines.append(f"False alarms on null and wet cases: {len(fa)} of {len(nw)}" + (
+        " (" + "; ".join(f"case {r['index']}: {r['verdict']} {r['found']}" for r in fa) + ")" if fa else ""))
+    out = [r for r in results if r["kind"] == "outside"]
+    lines.append(f"Physics outside the candidates called explained: {sum(r['verdict'] == 'explained' for r in out)} "
+                 f"of {len(out)} (verdicts: {', '.join(r['verdict'] for r in out) or '-'})")
+    lines.append("Detection against the effect-to-noise ratio (right / cases)")
+    for kind in ("single", "pair"):
+        sel = [r for r in results if r["kind"] == kind]
+        parts = []
+        for lo, hi in zip(RATIO_BINS[:-1], RATIO_BINS[1:]):
+            b = [r for r in sel if lo <= r["ratio"] < hi]
+            parts.append(f"{lo:g}-{hi:g}: {sum(right(r) for r in b)}/{len(b)}")
+        ge2 = [r for r in sel if r["ratio"] >= 2]
+        lines.append(f"  {kind:<7} " + ", ".join(parts) + f"; at ratio >= 2: {sum(right(r) for r in ge2)}/{len(ge2)}")
+    cov = [c for r in results for c in r["coverage"]]
+    if cov:
+        lines.append(f"Coverage of the reported intervals (parameters of hidden effects found exactly, {len(cov)} "
+                     f"parameters): 68 %: {100 * np.mean([c['in68'] for c in cov]):.0f} %, 95 %: "
+                     f"{100 * np.mean([c['in95'] for c in cov]):.0f} %")
+    secs = [r["seconds"] for r in results]
+    lines.append(f"Time per case: median {np.median(secs):.0f} s, max {max(secs):.0f} s ({len(results)} cases)")
+    return "\n".join(lines)
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--n", type=int, default=100, help="number of cases (default 100)")
+    ap.add_argument("--seed", type=int, default=1, help="seed of the study (default 1)")
+    ap.add_argument("--start", type=int, default=0, help="index of the first case (to split a study in parts)")
+    ap.add_argument("--kinds", default="", help="comma-separated kinds to run (null, wet, single, pair, outside)")
+    ap.add_argument("--out", default=None, help="JSON file for the per-case results (appended to when it exists)")
+    args = ap.parse_args(argv)
+    kinds = set(filter(None, args.kinds.split(",")))
+    results = []
+    if args.out:
+        from pathlib import Path
+
+        if Path(args.out).is_file():
+            results = json.loads(Path(args.out).read_text())
+    done = {(r["index"]) for r in results}
+    for i in range(args.start, args.start + args.n):
+        if i in done or (kinds and SCHEDULE[i % len(SCHEDULE)] not in kinds):
+            continue
+        case = draw(i, args.seed)
+        r = run(case)
+        results.append(r)
+        print(f"case {i:>3} {case.kind:<8} hidden {'+'.join(r['hidden']) or '-':<36} ratio {r['ratio']:6.2f} "
+              f"{r['rows']:>3} rows {r['noise']:<18} -> {r['verdict']:<17} {'+'.join(r['found']) or '-':<36} "
+              f"{'ok' if right(r) else 'WRONG'} ({r['seconds']:.0f} s)", flush=True)
+        if args.out:
+            json_text(results, args.out)
+    print()
+    print(summarize(results))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

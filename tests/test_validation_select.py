@@ -1,0 +1,207 @@
+"""validation: the search over sets of effects (issue 32), on small problems whose answer is known by construction.
+
+Three test effects act on 30 sliding rows (3 temperatures x 10 speeds, known noise ``mu_std`` = 0.005), with
+x = log10(v / 1 mm/s) / 3 running from 0 to 1 over the speeds:
+
+* ``test_texture`` adds a constant ``a`` and marks the surface as textured;
+* ``test_heat`` adds ``h x^2`` on a textured surface only: without the texture it has no signature at all (like
+  the flash temperature on a road whose PSD stops short until the microtexture is in the model);
+* ``test_slope`` adds ``k x``: it mimics part of the heat's rise.
+
+The data are baseline + texture (a = 0.05) + heat (h = 0.15). A path that never revisits a choice takes the slope
+first (it fits the data better than the constant), then the texture, then the heat, and keeps all three. The set
+search must end with {texture, heat}: the heat becomes visible once the texture is in, and the slope, made
+redundant by the heat, is removed by the backward elimination (dropping it costs less than 10 BIC units).
+
+Two near-parallel candidates (``test_line`` = k x, the truth, and ``test_bend`` = k (x + 0.15 x^2)) are equally
+supported: both are named, each with parameters and intervals, with the measurement that separates them.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+import pytest
+
+import materials
+import persson
+import surfaces
+import validation
+from persson.effects import Effect, Parameter
+
+SURFACE = surfaces.SelfAffine(hurst=0.8, q0=1e3, q1=1e5, hrms=1e-4)
+TREAD = materials.example_tread()
+SIGMA = 0.005
+
+
+def _x(state):
+    return np.log10(state.conditions.speed / 1e-3) / 3.0
+
+
+@pytest.fixture(scope="module")
+def effects():
+    """The test effects, registered in a throw-away copy of the registry for the module."""
+    from persson.effects import base
+
+    saved = base._REGISTRY
+    base._REGISTRY = dict(saved)
+
+    @dataclass(frozen=True)
+    class Texture(Effect):
+        """A constant added to mu; marks the surface as textured."""
+
+        name = "test_texture"
+        parameters = (Parameter("a", 0.02, (0.0, 0.3), "1", "constant added to mu", physical_limits=(0.0,)),)
+        a: float = 0.02
+
+        def transform_conditions(self, conditions):
+            return conditions.replace(extra={**conditions.extra, "texture": self.a})
+
+        def friction_term(self, state):
+            return np.full_like(state.conditions.speed, self.a)
+
+    @dataclass(frozen=True)
+    class Heat(Effect):
+        """h x^2 on a textured surface, nothing without the texture."""
+
+        name = "test_heat"
+        parameters = (Parameter("h", 0.05, (0.0, 1.0), "1", "rise over the speeds", physical_limits=(0.0,)),)
+        h: float = 0.05
+
+        def friction_term(self, state):
+            textured = state.conditions.extra.get("texture", 0.0) > 0.0
+            return self.h * _x(state) ** 2 * (1.0 if textured else 0.0)
+
+    @dataclass(frozen=True)
+    class Slope(Effect):
+        """k x."""
+
+        name = "test_slope"
+        parameters = (Parameter("k", 0.05, (-1.0, 1.0), "1", "slope over the speeds"),)
+        k: float = 0.05
+
+        def friction_term(self, state):
+            return self.k * _x(state)
+
+    @dataclass(frozen=True)
+    class Line(Effect):
+        """k x (the truth of the parallel pair)."""
+
+        name = "test_line"
+        parameters = (Parameter("k", 0.05, (0.0, 1.0), "1", "slope", physical_limits=(0.0,)),)
+        k: float = 0.05
+
+        def friction_term(self, state):
+            return self.k * _x(state)
+
+    @dataclass(frozen=True)
+    class Bend(Effect):
+        """k (x + 0.15 x^2): nearly parallel to the line on the measured speeds."""
+
+        name = "test_bend"
+        parameters = (Parameter("k", 0.05, (0.0, 1.0), "1", "slope", physical_limits=(0.0,)),)
+        k: float = 0.05
+
+        def friction_term(self, state):
+            x = _x(state)
+            return self.k * (x + 0.15 * x * x)
+
+    yield {"texture": Texture, "heat": Heat, "slope": Slope, "line": Line, "bend": Bend}
+    base._REGISTRY = saved
+
+
+def _data(truth, seed):
+    v = np.geomspace(1e-3, 1.0, 10)
+    rows = validation.Measurements.from_arrays(slip=1.0, speed=np.tile(v, 3),
+                                               temperature=np.repeat([10.0, 25.0, 40.0], 10), pressure=3e5, mu=0.5,
+                                               mu_std=SIGMA)
+    mu = validation.predict(truth, rows).mu + np.random.default_rng(seed).normal(0, SIGMA, rows.n)
+    return rows.with_mu(mu, mu_std=np.full(rows.n, SIGMA))
+
+
+@pytest.fixture(scope="module")
+def hidden_pair(effects):
+    """Data with texture + heat; the improvement loop over the slope, the texture and the heat."""
+    base = persson.Model(SURFACE, TREAD)
+    truth = base.with_effect(effects["texture"](a=0.05)).with_effect(effects["heat"](h=0.15))
+    m = _data(truth, 1)
+    cands = [effects["slope"](), effects["texture"](), effects["heat"]()]
+    imp = validation.improve(base, m, candidates=cands)
+    return imp
+
+
+def test_an_effect_invisible_until_another_is_added_is_found(hidden_pair):
+    imp = hidden_pair
+    dx0 = imp.steps[0].diagnosis
+    # at first the heat has no signature at all (there is no texture), and the slope fits best
+    assert dx0.candidate("test_heat").status == "no signature"
+    assert dx0.verdict.verdict == "partly_explained" and dx0.verdict.effect == "test_slope", dx0.text()
+    assert set(imp.added) == {"test_texture", "test_heat"}, imp.table_text()
+    assert imp.verdict == "explained", imp.table_text()
+    best = imp.selection.best
+    assert set(best.effects) == {"test_texture", "test_heat"}
+    est = {e.key: e for e in best.estimates}
+    assert abs(est["test_texture.a"].value - 0.05) <= 3 * est["test_texture.a"].std
+    assert abs(est["test_heat.h"].value - 0.15) <= 3 * est["test_heat.h"].std
+
+
+def test_an_effect_made_redundant_by_a_later_one_is_removed(hidden_pair):
+    imp = hidden_pair
+    actions = [(s.action, s.added, s.removed) for s in imp.steps]
+    # the path: slope, texture, heat added; then the slope removed (backward elimination)
+    assert ("added", "test_slope", None) in actions and ("removed", None, "test_slope") in actions, actions
+    removal = next(s for s in imp.steps if s.action == "removed")
+    assert removal.delta_bic < validation.select.STAY           # dropping it cost less than 10 BIC units
+    assert "test_slope" not in imp.model.effect_names
+    # the rule holds for every effect of the final set, and the costs are the refits without each
+    sel = imp.selection
+    assert set(sel.drop_costs) == {"test_texture", "test_heat"}
+    assert all(cost > validation.select.STAY for cost in sel.drop_costs.values())
+    # every model of the search is a joint refit: the final set's BIC is its own chi2 + k ln n
+    n = imp.measurements.n
+    chi2 = float(np.sum(((imp.measurements.mu - best_prediction(imp)) / SIGMA) ** 2))
+    assert sel.best.bic == pytest.approx(chi2 + sel.best.n_params * np.log(n), rel=1e-9)
+    data = imp.as_dict()
+    assert data["best_set"]["effects"] and set(data["best_set"]["effects"]) == {"test_texture", "test_heat"}
+    actions = [s["action"] for s in data["steps"]]
+    assert actions[0] == "baseline" and "removed" in actions
+
+
+def best_prediction(imp):
+    return validation.predict(imp.model, imp.measurements).mu
+
+
+@pytest.fixture(scope="module")
+def parallel(effects):
+    base = persson.Model(SURFACE, TREAD)
+    m = _data(base.with_effect(effects["line"](k=0.1)), 2)
+    return validation.improve(base, m, candidates=[effects["line"](), effects["bend"]()])
+
+
+def test_two_parallel_candidates_are_both_named_with_the_measurement_that_separates_them(parallel):
+    imp = parallel
+    dx0 = imp.steps[0].diagnosis
+    first, other = imp.added[0], ({"test_line", "test_bend"} - {imp.added[0]}).pop()
+    # the step keeps the alternative its diagnosis named ("or as well by"), in the record and the JSON
+    assert imp.steps[1].alternatives == (other,), imp.table_text()
+    assert imp.as_dict()["steps"][1]["alternatives"] == [other]
+    assert f"or as well by {other}" in imp.table_text()
+    assert dx0.clusters and set(dx0.clusters[0].effects) == {"test_line", "test_bend"}
+    # the result names both sets, each with parameters and intervals, and what would separate them
+    sel = imp.selection
+    assert [s.effects for s in sel.supported] == [(other,)]
+    assert sel.supported[0].bic - sel.best.bic < validation.select.EQUAL
+    for s in (sel.best,) + sel.supported:
+        (e,) = s.estimates
+        assert e.std > 0 and e.interval[0] < e.value < e.interval[1]
+    (sep,) = sel.separations
+    assert set(sep.effects) == {first, other} and sep.wet is False
+    assert abs(sep.difference) > 0 and not sep.in_range and sep.distance > 1
+    # the difference is the models' own predictions at that condition
+    cond = validation.Measurements.from_arrays(slip=sep.slip, speed=sep.speed, temperature=sep.temperature,
+                                               pressure=sep.pressure, mu=0.0)
+    mu = [validation.predict(s.model, cond).mu[0] for s in (sel.best, sel.supported[0])]
+    assert mu == pytest.approx(list(sep.mu), rel=1e-9)
+    assert imp.final.alternatives == (other,) and "cannot tell them apart" in imp.final.headline
+    assert "Equally supported" in sel.text() and "measure at" in sel.text()
+    data = imp.as_dict()
+    assert data["equally_supported"][0]["effects"] == [other] and data["set_separations"]

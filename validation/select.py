@@ -1,0 +1,359 @@
+r"""Selection over sets of effects: which combination of candidate effects the data support.
+
+A set :math:`S` of effects added to the baseline is a model whose parameters -- the baseline's fitted ones and
+the free parameters of every effect in :math:`S` -- are refitted jointly from global starts
+(:func:`validation.refit.global_fit`), and judged by its BIC (Schwarz, Ann. Stat. 6, 461 (1978)). The search
+(:func:`validation.improve`) is stepwise:
+
+1. **forward**: the diagnosis of the current set names the credible candidate that helps most (its joint refit is
+   the new set);
+2. **backward elimination**: after each addition, every effect added earlier is dropped in turn (a joint refit of
+   the others); an effect whose removal costs less than :data:`STAY` BIC units is removed (the cheapest first,
+   then again) -- it no longer earns its parameters once a later effect is in;
+3. **swaps**: every effect added earlier is replaced in turn by each of the alternatives its own step named
+   (plausible candidates within 10 BIC units of it when it was chosen); a swap that lowers the BIC is made.
+
+The search stops when the verdict on the current set says stop, and a final pass applies the rule to every effect:
+**an effect stays only if dropping it from the final joint model costs more than** :data:`STAY` **BIC units**
+("very strong" evidence, Kass & Raftery, J. Am. Stat. Assoc. 90, 773 (1995)). The result names the best set and
+every set within :data:`EQUAL` BIC units of it among the sets fitted on the way (equally supported models;
+supersets of another listed set, whose extra effects are not needed, are left out), each with its parameters and
+intervals, and the measurement that would separate each from the best (:mod:`validation.probe`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from frictioncite import doi
+
+from .candidates import KASS_RAFTERY_1995, SCHWARZ_1978, fit_baseline
+from .fitting import ParameterSpace
+
+__all__ = ["EffectSet", "Selection", "SetSearch", "STAY", "EQUAL"]
+
+#: BIC units an effect must be worth to stay in the final model (dropping it must cost more).
+STAY = 10.0
+#: Sets within this many BIC units of the best are equally supported.
+EQUAL = 10.0
+
+
+@dataclass(frozen=True, eq=False)
+class EffectSet:
+    """A set of effects added to the baseline, every parameter refitted jointly.
+
+    Attributes
+    ----------
+    effects : tuple of str
+        The effects added to the baseline, in the order they were added.
+    model : persson.Model
+    contact : persson.slip.Contact or None
+    predicted : ndarray
+        Prediction per row.
+    rss, bic, rmse : float
+        Weighted residual sum of squares (chi2 with ``mu_std``), Schwarz's criterion, root-mean-square residual.
+    n_params : int
+        Fitted parameters that change the prediction (the baseline's included).
+    estimates : tuple of validation.refit.Estimate
+        Every fitted parameter with its uncertainty (the baseline's first).
+    lack : validation.noise.LackOfFit
+    pattern : validation.noise.Pattern
+    source : str
+        Where the fit comes from (``"diagnosis of step 2"``, ``"joint refit"``).
+    notes : tuple of str
+    """
+
+    effects: tuple
+    model: object
+    contact: object
+    predicted: np.ndarray
+    rss: float
+    bic: float
+    rmse: float
+    n_params: int
+    estimates: tuple
+    lack: object
+    pattern: object
+    source: str = ""
+    notes: tuple = ()
+
+    @property
+    def key(self) -> frozenset:
+        return frozenset(self.effects)
+
+    @property
+    def label(self) -> str:
+        """``"a + b"`` (``"(baseline)"`` for the empty set)."""
+        return " + ".join(self.effects) or "(baseline)"
+
+    @property
+    def issues(self) -> tuple:
+        """Why the fit is not credible (parameters on search bounds or outside their plausible ranges)."""
+        return tuple(f"{e.key} = {e.value:.3g}: {e.issue}" for e in self.estimates if e.issue)
+
+    @property
+    def plausible(self) -> bool:
+        return not self.issues
+
+    @property
+    def not_identified(self) -> tuple:
+        """Parameters of the added effects whose 68 % interval spans the range searched."""
+        return tuple(e.key for e in self.estimates if not e.identified and e.key.partition(".")[0] in self.effects)
+
+    def parameters(self) -> dict:
+        """``"effect.parameter" -> value`` of every fitted parameter."""
+        return {e.key: e.value for e in self.estimates}
+
+    def as_dict(self, best_bic: float | None = None) -> dict:
+        return {"effects": list(self.effects), "label": self.label, "bic": self.bic,
+                "delta_bic": None if best_bic is None else self.bic - best_bic, "rmse": self.rmse,
+                "n_params": self.n_params, "parameters": self.parameters(),
+                "parameters_std": {e.key: e.std for e in self.estimates},
+                "intervals": {e.key: list(e.interval) for e in self.estimates},
+                "estimates": {e.key: e.as_dict() for e in self.estimates},
+                "plausible": self.plausible, "issues": list(self.issues),
+                "not_identified": list(self.not_identified),
+                "lack_of_fit_p": None if self.lack is None else self.lack.p_value,
+                "remaining_pattern": None if self.pattern is None else self.pattern.describe(),
+                "source": self.source, "notes": list(self.notes)}
+
+    def describe(self) -> str:
+        par = ", ".join(e.describe() for e in self.estimates) or "no fitted parameters"
+        return f"{self.label}: BIC {self.bic:.1f}, RMSE {self.rmse:.4g}; {par}"
+
+
+@dataclass(frozen=True, eq=False)
+class Selection:
+    """The outcome of the search over sets of effects.
+
+    Attributes
+    ----------
+    best : EffectSet
+        The set with the lowest BIC among those whose every effect earns its place (:data:`STAY`).
+    supported : tuple of EffectSet
+        Other sets within :data:`EQUAL` BIC units of the best (equally supported by the data), best first.
+    drop_costs : dict
+        ``effect -> BIC(best without it) - BIC(best)`` (each more than :data:`STAY`).
+    separations : tuple of validation.probe.Separation
+        For each supported set: where its predictions differ most from the best's.
+    visited : tuple of EffectSet
+        Every set fitted, lowest BIC first.
+    removed : tuple of str
+        Effects added on the way and removed by the backward elimination, swaps or the final rule (in words).
+    """
+
+    best: EffectSet
+    supported: tuple = ()
+    drop_costs: dict = field(default_factory=dict)
+    separations: tuple = ()
+    separations_in_range: tuple = ()
+    visited: tuple = ()
+    removed: tuple = ()
+
+    @property
+    def equally_supported(self) -> bool:
+        return bool(self.supported)
+
+    def as_dict(self) -> dict:
+        b = self.best.bic
+        return {"best_set": self.best.as_dict(b), "equally_supported": [s.as_dict(b) for s in self.supported],
+                "drop_costs": dict(self.drop_costs),
+                "set_separations": [s.as_dict() for s in self.separations],
+                "set_separations_in_measured_range": [s.as_dict() for s in self.separations_in_range],
+                "sets": [{"effects": list(s.effects), "bic": s.bic, "delta_bic": s.bic - b, "rmse": s.rmse,
+                          "plausible": s.plausible, "source": s.source} for s in self.visited],
+                "removed": list(self.removed)}
+
+    def text(self) -> str:
+        if self.drop_costs:
+            lines = [f"Best set of effects: {self.best.label} (BIC {self.best.bic:.1f}); dropping "
+                     + ", ".join(f"{k} would cost {v:.1f}" for k, v in self.drop_costs.items())
+                     + f" BIC units (an effect stays when that is more than {STAY:g})."]
+        else:
+            lines = [f"Best set of effects: none added, the baseline (BIC {self.best.bic:.1f})."]
+        lines.append("  " + self.best.describe())
+        if self.supported:
+            lines.append(f"Equally supported (within {EQUAL:g} BIC units):")
+            for s in self.supported:
+                lines.append(f"  {s.describe()} (delta BIC {s.bic - self.best.bic:+.1f})")
+            for sep in self.separations:
+                lines.append(f"  to tell them apart, measure at {sep.describe()}")
+            for sep in self.separations_in_range:
+                lines.append(f"  inside the measured conditions the largest difference is at {sep.describe()}")
+        if self.removed:
+            lines.append("Removed on the way: " + "; ".join(self.removed) + ".")
+        ranked = [s for s in self.visited if s is not self.best][:6]
+        if ranked:
+            lines.append("Other sets fitted: " + "; ".join(f"{s.label} ({s.bic - self.best.bic:+.1f})"
+                                                          for s in ranked) + ".")
+        return "\n".join(lines)
+
+
+class SetSearch:
+    """The sets of effects fitted during one improvement loop, and joint refits of new ones.
+
+    Parameters
+    ----------
+    base_model : persson.Model
+        The baseline as given (its ``fit`` parameters are refitted in every set).
+    base_fit : tuple of str
+        The baseline's fitted parameters (``[model] fit``).
+    context : validation.diagnose.FitContext
+        What every fit shares (the predictor, data, weights, noise, ranges).
+    """
+
+    def __init__(self, base_model, base_fit, context):
+        self.base_model = base_model
+        self.base_fit = tuple(base_fit)
+        self.ctx = context
+        self.sets: dict[frozenset, EffectSet] = {}
+        self.free: dict[str, tuple] = {}          # effect -> its free parameters (as first fitted)
+        self.instances: dict[str, object] = {}    # effect -> an instance (the values last fitted)
+        self.alternatives: dict[str, tuple] = {}  # effect -> alternatives named when it was added
+        self.n_evals = 0
+        self.removed: list[str] = []
+
+    # ---- recording fits made by diagnoses --------------------------------------------------------------
+    def record(self, dx, effects: tuple, step: int) -> None:
+        """The sets a diagnosis of the set ``effects`` fitted: that set, and it plus each fitted candidate."""
+        b = dx.baseline
+        self._keep(EffectSet(effects=tuple(effects), model=b.model, contact=b.contact, predicted=b.predicted,
+                             rss=b.rss, bic=b.bic, rmse=b.rmse, n_params=b.n_params, estimates=b.estimates,
+                             lack=b.lack, pattern=b.pattern, source=f"diagnosis of step {step}",
+                             notes=tuple(b.notes)))
+        for c in dx.candidates:
+            if c.status != "ok":
+                continue
+            self.free.setdefault(c.effect, tuple(c.free))
+            self.instances.setdefault(c.effect, c.instance)
+            self._keep(EffectSet(effects=tuple(effects) + (c.effect,), model=c.model, contact=c.contact,
+                                 predicted=c.predicted, rss=c.rss, bic=c.bic, rmse=c.rmse,
+                                 n_params=b.n_params + c.n_params, estimates=c.baseline_estimates + c.estimates,
+                                 lack=c.lack, pattern=c.pattern, source=f"diagnosis of step {step}",
+                                 notes=tuple(c.notes)))
+
+    def _keep(self, s: EffectSet) -> EffectSet:
+        old = self.sets.get(s.key)
+        if old is None or s.bic < old.bic - 1e-9:
+            self.sets[s.key] = s
+            for e in s.effects:
+                try:
+                    self.instances[e] = s.model.effect(e)
+                except Exception:  # noqa: BLE001
+                    pass
+        return self.sets[s.key]
+
+    # ---- joint refits ----------------------------------------------------------------------------------
+    def get(self, effects, warm=()) -> EffectSet:
+        """The joint refit of the set ``effects`` (fitted now, from global starts and the ``warm`` sets' values,
+        unless fitted before)."""
+        key = frozenset(effects)
+        if key in self.sets:
+            return self.sets[key]
+        return self._keep(self._fit(tuple(effects), warm))
+
+    @doi(SCHWARZ_1978, KASS_RAFTERY_1995)
+    def _fit(self, effects: tuple, warm) -> EffectSet:
+        ctx = self.ctx
+        model = self.base_model
+        for e in effects:
+            model = model.with_effect(self.instances[e])
+        names = list(self.base_fit) + [f"{e}.{p}" for e in effects for p in self.free.get(e, ())]
+        space = ParameterSpace(ctx.parameters(model, names))
+        starts = []
+        for w in warm:
+            vals = w.parameters()
+            u = space.u_of(model, w.contact or ctx.settings.contact)
+            for j, p in enumerate(space.params):
+                if p.key in vals:
+                    u[j] = p.to_u(vals[p.key])
+            starts.append(u)
+        base = fit_baseline(model, space, ctx.settings, global_search=True, extra_starts=starts)
+        self.n_evals += base.n_evals
+        b = ctx.finish(base)
+        self.n_evals += (b.fit.n_evals - base.fit.n_evals) if b.fit is not None and base.fit is not None else 0
+        return EffectSet(effects=effects, model=b.model, contact=b.contact, predicted=b.predicted, rss=b.rss,
+                         bic=b.bic, rmse=b.rmse, n_params=b.n_params, estimates=b.estimates, lack=b.lack,
+                         pattern=b.pattern, source="joint refit", notes=tuple(b.notes))
+
+    # ---- the search steps ------------------------------------------------------------------------------
+    def prune(self, current: tuple, progress=None) -> list[tuple]:
+        """Backward elimination and swaps on the set ``current`` (module docstring, items 2 and 3).
+
+        Returns the changes made, in order: ``("removed", effect, cost, new set)`` or
+        ``("swapped", effect, replacement, gain, new set)``; the last new set is the result.
+        """
+        changes = []
+        seen = {frozenset(current)}
+        while len(current) > 1:
+            s = self.get(current)
+            last = current[-1]
+            costs = {}
+            for f in current[:-1]:
+                rest = tuple(e for e in current if e != f)
+                if progress is not None:
+                    progress(f"backward elimination: refitting without {f}")
+                costs[f] = self.get(rest, warm=(s,)).bic - s.bic
+            f = min(costs, key=costs.get) if costs else None
+            if f is not None and costs[f] < STAY:
+                current = tuple(e for e in current if e != f)
+                self.removed.append(f"{f} (dropping it cost {costs[f]:+.1f} BIC units once {last} was in)")
+                changes.append(("removed", f, costs[f], current))
+                if frozenset(current) in seen:
+                    break
+                seen.add(frozenset(current))
+                continue
+            best = None
+            for f in current[:-1]:
+                for g in self.alternatives.get(f, ()):
+                    if g in current or g not in self.instances:
+                        continue
+                    trial = tuple(g if e == f else e for e in current)
+                    if frozenset(trial) in seen:
+                        continue
+                    if progress is not None:
+                        progress(f"swap: {g} instead of {f}")
+                    t = self.get(trial, warm=(s,))
+                    gain = s.bic - t.bic
+                    if gain > 1e-6 and t.plausible and (best is None or gain > best[3]):
+                        best = (f, g, trial, gain)
+            if best is None:
+                break
+            f, g, trial, gain = best
+            self.removed.append(f"{f} (swapped for {g}, {gain:.1f} BIC units better)")
+            changes.append(("swapped", f, g, gain, trial))
+            current = trial
+            seen.add(frozenset(current))
+        return changes
+
+    def finish(self, current: tuple, probe=None) -> Selection:
+        """The final rule (every effect of the best set earns more than :data:`STAY` BIC units), the equally
+        supported sets and the measurements that separate them (module docstring)."""
+        current = tuple(current)
+        while current:
+            s = self.get(current)
+            costs = {f: self.get(tuple(e for e in current if e != f), warm=(s,)).bic - s.bic for f in current}
+            f = min(costs, key=costs.get)
+            if costs[f] >= STAY:
+                break
+            self.removed.append(f"{f} (dropping it from the final set cost only {costs[f]:+.1f} BIC units)")
+            current = tuple(e for e in current if e != f)
+        best = self.get(current)
+        costs = {f: self.get(tuple(e for e in current if e != f)).bic - best.bic for f in current}
+        visited = sorted(self.sets.values(), key=lambda s: s.bic)
+        close = [s for s in visited if s is not best and s.bic - best.bic < EQUAL and s.plausible
+                 and not (best.key < s.key)]
+        supported = [s for s in close if not any(o.key < s.key for o in close + [best])]
+        seps, seps_in = [], []
+        if probe is not None:
+            for s in supported:
+                pair = probe.pair((best.label, s.label), [(best.model, best.contact), (s.model, s.contact)])
+                if pair is not None:
+                    seps.append(pair[0])
+                    if pair[1] is not None:
+                        seps_in.append(pair[1])
+        return Selection(best=best, supported=tuple(supported), drop_costs=costs, separations=tuple(seps),
+                         separations_in_range=tuple(seps_in), visited=tuple(visited), removed=tuple(self.removed))
+
