@@ -321,6 +321,9 @@ def test_flash_error_estimate_does_not_read_low_when_one_coarse_grid_agrees_by_a
                                  grid=persson.GridSettings(max_refinement=0, **grid)).friction(
                 1e-4, temperature=-20.0, pressure=0.3e6)
 
+    # the quadrature's part of the estimate, against grids with the same temperature tables (the tables' part is
+    # tested against a 0.01 K table below)
+    monkeypatch.setattr(solver, "_table_error", lambda prep, mu, T_q, ok, mu_ref: np.zeros(T_q.shape[0]))
     default = run()
     fine = run(q_per_decade=256, omega_per_decade=160)
     finer = run(q_per_decade=512, omega_per_decade=160)
@@ -331,3 +334,65 @@ def test_flash_error_estimate_does_not_read_low_when_one_coarse_grid_agrees_by_a
     assert true / 3 <= default.error_estimate <= 3 * true, (true, default.error_estimate)
     monkeypatch.setattr(solver, "_odd_indices", solver._coarse_indices)  # the even-numbered nodes twice
     assert run().error_estimate < true / 30
+
+
+def _flash_table_runs(surface, material, speed, temperature):
+    """The default result, the same with the quadrature estimate alone (the temperature tables' term switched off),
+    and a reference on a 4x finer q grid with the temperature-shift table every 0.01 K instead of 0.25 K, plus the
+    same reference at 0.02 K (the table's own error falls as the step squared)."""
+    from persson.engine import solver
+
+    fx = persson.effects.FlashTemperature(tol=1e-8)
+
+    def run(**grid):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", persson.PhysicsWarning)  # the example road's rms slope 3.9
+            warnings.simplefilter("ignore", persson.errors.UnitWarning)  # mu 4e-4 of the glassy narrow peak
+            return persson.Model(surface, material, effects=[fx], grid=persson.GridSettings(**grid)).friction(
+                speed, temperature=temperature, pressure=0.3e6)
+
+    default = run()
+    table_error = solver._table_error
+    solver._table_error = lambda prep, mu, T_q, ok, mu_ref: np.zeros(T_q.shape[0])
+    try:
+        quadrature_only = run()
+    finally:
+        solver._table_error = table_error
+    fine = dict(q_per_decade=96, omega_per_decade=160, max_refinement=0)
+    return default, quadrature_only, run(temperature_step=0.01, **fine), run(temperature_step=0.02, **fine)
+
+
+def test_flash_error_estimate_includes_the_temperature_table_where_it_dominates():
+    """A narrow loss peak with steep WLF constants (C1 = 10.2, C2 = 86.4 K at 20 C) at -20 C, 1 cm/s on the example
+    road: log10 a_T is convex, so the temperature table, linear between nodes 0.25 K apart, reads it high by up to
+    1.4e-4 decade, always to the same side. Against a fine grid with a 0.01 K table the default is 1e-4 off, almost
+    all from the table, which every grid of the quadrature estimate shares: that estimate alone reads more than
+    10x low; with the table's own term the estimate is within a factor 3."""
+    default, quadrature_only, ref, ref_coarser_table = _flash_table_runs(
+        surfaces.example_road(), narrow_steep(), 1e-2, -20.0)
+    assert default.converged and ref.converged and ref_coarser_table.converged
+    true = abs(default.mu_hysteresis / ref.mu_hysteresis - 1)
+    assert abs(ref_coarser_table.mu_hysteresis / ref.mu_hysteresis - 1) < true / 30  # the 0.01 K table: < true/90
+    assert true > 3e-5
+    assert quadrature_only.error_estimate < true / 10
+    assert true / 3 <= default.error_estimate <= 3 * true, (true, default.error_estimate)
+
+
+def test_flash_error_estimate_is_unchanged_where_the_table_is_exact():
+    """The example tread at 80 C and 1 um/s: the contact warms by 2e-4 K, within the first 0.25 K step of the table,
+    where the linear interpolation is exact to 1e-9 decade. The table's term adds nothing, and the estimate (the
+    quadrature's) stays within a factor 3 of the error against the fine grid with the 0.01 K table."""
+    default, quadrature_only, ref, _ = _flash_table_runs(surfaces.example_road(), materials.example_tread(), 1e-6,
+                                                         80.0)
+    true = abs(default.mu_hysteresis / ref.mu_hysteresis - 1)
+    assert default.max_flash_temperature < 1e-3
+    assert default.error_estimate == pytest.approx(quadrature_only.error_estimate, rel=1e-3)
+    assert true > 1e-6
+    assert true / 3 <= default.error_estimate <= 3 * true, (true, default.error_estimate)
+
+
+def narrow_steep():
+    """The narrow compound with steep WLF constants (C1 = 10.2, C2 = 86.4 K at 20 C)."""
+    tau = np.logspace(-9, -3, 7)
+    w = np.exp(-0.5 * ((np.log10(tau) + 6.0) / 0.8) ** 2)
+    return materials.Prony(E_inf=2e6, E_i=(5e8 - 2e6) * w / w.sum(), tau_i=tau, wlf=materials.WLF(10.2, 86.4, 20.0))

@@ -234,7 +234,7 @@ class Improvement:
 
 def diagnose(model, measurements=None, candidates=None, contact=None, *, search: str = "single",
              **options) -> Diagnosis:
-    """Rank the effects that could be missing from ``model`` and give the verdict (module docstring).
+    """Rank the effects that could be missing from ``model`` and give the verdict (see :mod:`validation.diagnose`).
 
     Parameters
     ----------

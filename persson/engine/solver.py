@@ -581,7 +581,7 @@ def run_flash(prep: Prepared, *, q_m: float, a_t0: np.ndarray, diffusivity: floa
     """
     args = (q_m, a_t0, diffusivity, heat_factor, tol, max_iter)
     out, T_q, it, res = _flash(prep, *args)
-    err = _flash_error(prep, out.mu, np.where((res < tol)[:, None], T_q, prep.T0[:, None]), args)
+    err = _flash_error(prep, out.mu, T_q, res < tol, args)
     budget = _FRONT_STEP * float(np.max(np.diff(prep.lq10)))
     # one vectorised test for all speeds; only the few with a steep front pay for the per-speed solves
     jump = np.abs(np.diff(_reduced_frequency(prep, prep.x, T_q), axis=-1))
@@ -652,15 +652,17 @@ def _resolve_front(prep, s, args, budget, out, T_q, it, res, err):
         getattr(out, name)[s] = getattr(o, name)[0, at]
     out.mu[s], out.layer[s] = o.mu[0], o.layer[0]
     T_q[s], it[s], res[s] = Ts[0, at], its[0], rs[0]
-    err[s] = _flash_error(sub, o.mu, Ts if rs[0] < tol else np.full_like(Ts, sub.T0[0]), sub_args)[0]
+    err[s] = _flash_error(sub, o.mu, Ts, rs < tol, sub_args)[0]
 
 
-def _flash_error(prep: Prepared, mu: np.ndarray, T_start: np.ndarray, args: tuple) -> np.ndarray:
-    r"""The estimated relative error of the flash-temperature friction ``mu`` on the nodes of ``prep``: the
-    root mean square of the two-level estimates (:func:`_relative_error`) from the even-numbered and from the
-    odd-numbered nodes (each with both end points),
+def _flash_error(prep: Prepared, mu: np.ndarray, T_q: np.ndarray, ok: np.ndarray, args: tuple) -> np.ndarray:
+    r"""The estimated relative error of the flash-temperature friction ``mu`` on the nodes of ``prep`` (temperature
+    profiles ``T_q``, converged where ``ok``): the root mean square of the two-level estimates
+    (:func:`_relative_error`) from the even-numbered and from the odd-numbered nodes (each with both end points),
+    plus the error of the temperature tables (:func:`_table_error`),
 
-    .. math:: \varepsilon = \sqrt{\tfrac12\left(\varepsilon_{\rm even}^2 + \varepsilon_{\rm odd}^2\right)}.
+    .. math:: \varepsilon = \sqrt{\tfrac12\left(\varepsilon_{\rm even}^2 + \varepsilon_{\rm odd}^2\right)}
+              + \varepsilon_T.
 
     Two levels only: a self-consistent temperature can rise by 100 K within a decade of q (heating softens the
     rubber, which raises the heating), and on every fourth node that front is often unresolved, so a third level
@@ -669,22 +671,97 @@ def _flash_error(prep: Prepared, mu: np.ndarray, T_start: np.ndarray, args: tupl
     changes sign between them): over the regime of ``benchmarks/accuracy.py``, without refinement, the even nodes
     alone read more than 3x low at 22 of 878 conditions with errors above 1e-6, the two interleaved grids together
     at 4: three speeds whose temperature did not converge (they are refined, :func:`_solve_group`) and one whose
-    modulus was clamped at the top of the shift table (now widened, :func:`_solve_once`).
+    modulus was clamped at the top of the shift table (now widened, :func:`_solve_once`). Every grid reads the
+    same temperature tables, so their error adds to the quadrature's: the two errors have different causes and
+    may add up.
 
-    Each coarse solve starts from ``T_start`` at its nodes: the fine solution where it converged, so that the
-    coarse solve converges in a few iterations; T0 where not (a coarse solve started from a fine non-solution
-    stays near it, and the estimate would read small).
+    Each coarse solve starts from the fine solution at its nodes where it converged, so that the coarse solve
+    converges in a few iterations; from T0 where not (a coarse solve started from a fine non-solution stays near
+    it, and the estimate would read small).
     """
     tol = args[4]
+    T_start = np.where(ok[:, None], T_q, prep.T0[:, None])
     err = []
     for idx in (prep.coarse, _odd_indices(prep.q.size)):
         sub = prep.nodes(idx)
-        out, _, _, res = _flash(sub, *args, T_start=T_start[:, idx])
+        out, T_c, _, res = _flash(sub, *args, T_start=T_start[:, idx])
         mu_c = out.mu
+        if idx is prep.coarse:  # the tables' error, on the even-numbered nodes (half the cost of the fine ones)
+            table = _table_error(sub, mu_c, T_c, res < tol, mu)
         if np.any(res >= tol):  # rare: a warm start that did not converge; again from T0, as the fine solve
             mu_c = np.where(res < tol, mu_c, _flash(sub, *args)[0].mu)
         err.append(_relative_error(mu, mu_c))
-    return np.sqrt(0.5 * (err[0] ** 2 + err[1] ** 2))
+    return np.sqrt(0.5 * (err[0] ** 2 + err[1] ** 2)) + table
+
+
+def _table_error(prep: Prepared, mu: np.ndarray, T_q: np.ndarray, ok: np.ndarray, mu_ref: np.ndarray) -> np.ndarray:
+    r"""The relative error (relative to ``mu_ref``) that the temperature tables add to the flash-temperature
+    friction ``mu`` on the nodes of ``prep`` at its converged temperature profiles ``T_q`` (n_speed, n_q; rows where
+    ``ok``, 0 elsewhere): ``mu`` against the friction on the same nodes with every table (log10 a_T, ln b_T and
+    per-scale modulus factors) interpolated quadratically instead of linearly between its nodes,
+
+    .. math:: \varepsilon_T = \left|\mu[f_{\rm lin} + \tfrac12 t(t-1)\,\Delta^2 f] - \mu[f_{\rm lin}]\right|
+              / |\mu_{\rm ref}|,
+
+    t the fraction of the table step h at each node's temperature and :math:`\Delta^2 f` the table's second
+    difference (mean of the two about the step). Linear interpolation errs by :math:`\tfrac12 t(1-t) h^2 f''`
+    (K. E. Atkinson, An Introduction to Numerical Analysis, 2nd ed., Wiley 1989, Thm. 3.2), always to the same side
+    where f is convex, and :math:`\Delta^2 f = h^2 f'' + O(h^4)`: for the WLF law
+    :math:`f'' = 2 C_1 C_2 / (C_2 + T - T_{ref})^3` with the steep constants C1 = 10.2, C2 = 86.4 K, 40 K below
+    T_ref, the error is up to 1.4e-4 decade at h = 0.25 K. The quadrature estimate cannot see it: every grid
+    reads the same tables.
+
+    One evaluation of the friction per speed on a fixed profile (no fixed-point iteration), on the even-numbered
+    nodes of the error estimate (about 5 % of the flash solve): the profile is not solved again with the
+    corrected tables, so the heating's feedback (a stiffer rubber heats differently, which moves the modulus
+    further) is left out; near a thermal runaway it amplifies the error (see ``docs/conventions.md``). Solving
+    again would cost a warm-started flash solve per speed (about a third of the whole solve).
+    """
+    st = prep.shift_table
+    nv, nq = T_q.shape
+    if st is None or not np.any(ok):
+        return np.zeros(nv)
+    # a speed whose temperature did not converge is refined anyway: evaluated at T0, its error left at 0
+    x = (np.where(ok[:, None], T_q, prep.T0[:, None]) - st.T_lo) / st.dT
+    (shift, d_shift), (vshift, d_vshift) = (_between_nodes(tab[None, :], x) for tab in (st.shift, st.vshift))
+    (f, d_f), (g, d_g) = _between_nodes(prep.f_tab, x), _between_nodes(prep.g_tab, x)
+    mu_quadratic = _friction_at(prep, shift + d_shift, vshift + d_vshift, f + d_f, g + d_g)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        rel = np.abs(mu_quadratic - mu) / np.abs(mu_ref)
+    return np.where(ok & (np.abs(mu_ref) > 0), rel, 0.0)
+
+
+def _between_nodes(tab: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The tables ``tab`` (one row per node, or one row for all) at the fractional indices ``x`` (n_speed, n_q)
+    as :func:`persson.engine.kernels.linear_at` reads them (clamped at the ends), and the quadratic term
+    t (t - 1) / 2 Delta^2 that the linear interpolation leaves out (zero at the nodes and outside the table)."""
+    n = tab.shape[1]
+    i = np.clip(np.floor(x).astype(np.int64), 0, n - 2)
+    t = np.clip(x - i, 0.0, 1.0)
+    rows = np.arange(x.shape[1])[None, :] if tab.shape[0] == x.shape[1] else 0
+    a, b = tab[rows, i], tab[rows, i + 1]
+    if n < 3 or np.all(tab == tab[0, 0]):  # a constant table (no vertical shift, no modulus factors): exact
+        return a + t * (b - a), np.zeros(x.shape)
+    d2 = tab[:, :-2] - 2.0 * tab[:, 1:-1] + tab[:, 2:]  # centred on nodes 1 .. n-2
+    c = 0.5 * (d2[rows, np.clip(i - 1, 0, n - 3)] + d2[rows, np.clip(i, 0, n - 3)])
+    return a + t * (b - a), 0.5 * t * (t - 1.0) * c
+
+
+def _friction_at(prep: Prepared, shift: np.ndarray, vshift: np.ndarray, f: np.ndarray, g: np.ndarray) -> np.ndarray:
+    """mu of every speed of ``prep`` on its nodes with the given log10 a_T, ln b_T and modulus factors at every
+    node (n_speed, n_q): the flash kernel's last evaluation (the same per-node factors and rules,
+    :func:`persson.engine.kernels.friction_parallel`) without its table look-ups."""
+    nv, nq = shift.shape
+    out = _outputs(nv, nq)
+    skip = np.zeros(0, dtype=np.int64)
+    arrays = {name: np.ascontiguousarray(a, dtype=float) for name, a in
+              (("lv10", prep.lv10), ("scale", prep.scale), ("shift", shift), ("vshift", vshift), ("f", f), ("g", g))}
+    kern = _kernels.friction_parallel if nv >= _PARALLEL_MIN_SPEEDS_FLASH else _kernels.friction_serial
+    kern(nodes=prep.kernel_nodes, rule=prep.quad, speeds=_kernels.SpeedFactors(**arrays),
+         angular=prep.kernel_angular, shape=prep.kernel_shape, law=prep.law, coarse=skip,
+         coarse_rule=prep.quad_coarse, coarser=skip, coarser_rule=prep.quad_coarse, out=out, mu_coarse=np.zeros(nv),
+         mu_coarser=np.zeros(nv))
+    return out.mu
 
 
 def _flash(prep, q_m, a_t0, D, heat_factor, tol, max_iter, T_start=None):
