@@ -94,6 +94,9 @@ REFERENCES: dict[str, str] = {
     "(1979).",
     "10.1111/j.2517-6161.1974.tb00994.x": "M. Stone, Cross-validatory choice and assessment of statistical "
     "predictions, J. R. Stat. Soc. B 36, 111 (1974).",
+    "isbn:9780120782505": "Y. Bard, Nonlinear Parameter Estimation, Academic Press, New York (1974).",
+    "isbn:9780471617600": "G. A. F. Seber, C. J. Wild, Nonlinear Regression, Wiley, New York (1989): asymptotic "
+    "confidence intervals for the regression function (ch. 5).",
     "isbn:9780198533689": "H. S. Carslaw, J. C. Jaeger, Conduction of Heat in Solids, 2nd ed., Oxford (1959).",
     "jaeger:jprsnsw-76-203-1942": "J. C. Jaeger, Moving sources of heat and the temperature at sliding contacts, "
     "J. Proc. R. Soc. N.S.W. 76, 203 (1942).",

@@ -180,6 +180,8 @@ def test_defaults_standing_in_for_thermal_properties_are_listed(folder, capsys, 
     says(err, "note:", "no thermal table")
     # the PSD table declares no roll-off: the fitted one sets the hot spots, and the result says so
     says(header, "roll-off fitted to it", "q_m = 2 x")
+    # the flash column is a rise above the background temperature, and the header says so
+    says(header, "max_flash_temperature_K = flash temperature RISE", "not an absolute temperature")
 
 
 def test_wet_with_adhesion_says_that_wet_removes_adhesion(folder):

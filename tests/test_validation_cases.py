@@ -185,6 +185,10 @@ def test_report_is_self_contained_and_escaped(example_loop, tmp_path):
     assert "src='http" not in html and 'src="http' not in html and "<script" not in html
     assert "note &lt;b&gt;&amp; &#x27;quoted&#x27;&lt;/b&gt;" in html
     assert "flash_temperature" in html and "Watch the error fall" in html and "<h2>Steps</h2>" in html
+    # the final model is drawn with the 68 % band of its fitted parameters (adhesion.tau_f0 and the added effect's)
+    final = imp.comparison(-1)
+    assert final.has_band and set(final.covariance.keys) >= {"adhesion.tau_f0"}
+    assert "Final model (" in html and "68 % (1 sigma) band" in html
     assert [p.name for p in tmp_path.iterdir()] == ["r.html"]
 
 

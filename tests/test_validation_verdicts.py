@@ -74,6 +74,8 @@ def test_six_rows_without_a_noise_estimate_are_undetermined(tmp_path):
     # the report says the noise is unknown
     html = validation.write_report([dx], tmp_path / "r.html").read_text()
     assert "<b>unknown</b>" in html and "v-undetermined" in html and "UNDETERMINED" in html
+    # the best model (the baseline: nothing fitted) is drawn, and the caption says why it has no band
+    assert "Best model: the baseline refitted" in html and "No uncertainty band: no parameter was fitted" in html
     # the improvement loop stops: nothing can be judged missing without a noise level
     imp = validation.improve(model, meas, diagnosis=dx)
     assert imp.verdict == "undetermined" and imp.added == () and math.isnan(imp.noise)

@@ -154,6 +154,9 @@ class Candidate:
     contact : persson.slip.Contact or None
     n_starts, n_good : int
         Local fits run; optima as good as the best among them.
+    covariance : validation.refit.ParameterCovariance or None
+        The joint covariance of every fitted parameter (the baseline's first), for the uncertainty band of the
+        model's curves.
     """
 
     effect: str
@@ -189,6 +192,7 @@ class Candidate:
     contact: object = None
     n_starts: int = 0
     n_good: int = 0
+    covariance: object = field(default=None, repr=False)
 
     @property
     def credible(self) -> bool:
@@ -456,7 +460,7 @@ def finish_candidate(trial: Trial, base: BaselineFit, settings: FitSettings, *, 
                      n_evals=trial.n_evals + fit.n_evals - trial.fit.n_evals, notes=tuple(notes),
                      estimates=fit.estimates[kb:], baseline_estimates=fit.estimates[:kb], plausible=not issues,
                      issues=issues, lack=lack, pattern=pattern_of(r1), contact=fit.contact,
-                     n_starts=fit.n_starts, n_good=fit.n_good)
+                     n_starts=fit.n_starts, n_good=fit.n_good, covariance=fit.covariance)
 
 
 # ==========================================================================================================

@@ -89,6 +89,12 @@ class Comparison:
         Notes of the friction results (extrapolated PSD tails, convergence).
     name : str
         Label of the model (e.g. the case name).
+    covariance : validation.refit.ParameterCovariance or None
+        The covariance of the model's fitted parameters (a fitted model: :meth:`validation.Improvement.comparison`):
+        the figures then draw the model's curves with a 68 % band (:mod:`validation.band`).
+    band_note : str
+        Why a fitted model's curves carry no band (shown under the figures; "" when there is a band, or when the
+        model was not fitted here).
     """
 
     model: object
@@ -103,6 +109,8 @@ class Comparison:
     tables: dict
     notes: tuple = ()
     name: str = ""
+    covariance: object = field(default=None, repr=False)
+    band_note: str = ""
     _predictor: object = field(default=None, repr=False)
 
     @property
@@ -113,13 +121,20 @@ class Comparison:
     def effects(self) -> tuple[str, ...]:
         return tuple(self.model.effect_names)
 
+    @property
+    def has_band(self) -> bool:
+        """Whether the model's curves are drawn with an uncertainty band (a covariance that identifies every
+        fitted parameter)."""
+        return self.covariance is not None and not self.band_note and not self.covariance.unavailable()
+
     def worst_groups(self, z_min: float = 3.0) -> list[GroupStat]:
         """Groups with |z| >= ``z_min`` (systematic deviations), largest |bias| first (series excluded)."""
         rows = [g for f, t in self.tables.items() if f != "series" for g in t if abs(g.z) >= z_min and g.n >= 2]
         return sorted(rows, key=lambda g: -abs(g.bias))
 
     def summary(self) -> str:
-        """A few lines: RMSE, bias, worst groups."""
+        """A few lines: RMSE, bias, and every systematic deviation (each group with |z| >= 3, largest |bias|
+        first; none is left out however many there are)."""
         m = self.measurements
         lines = [f"{self.name or 'model'}: effects {list(self.effects) or ['(none: hysteresis only)']}; "
                  f"{m.describe()}",
@@ -128,7 +143,7 @@ class Comparison:
         worst = self.worst_groups()
         if worst:
             lines.append("systematic deviations (|z| >= 3): " + "; ".join(
-                f"{g.factor} {g.label}: bias {g.bias:+.3f} (n={g.n})" for g in worst[:6]))
+                f"{g.factor} {g.label}: bias {g.bias:+.3f} (n={g.n})" for g in worst))
         else:
             lines.append("no group deviates systematically (all |z| < 3)")
         return "\n".join(lines)
@@ -236,8 +251,10 @@ def compare(model, measurements: Measurements, contact=None, *, name: str = "") 
 
 
 def comparison_from(model, measurements: Measurements, contact, prediction: Prediction, *, name: str = "",
-                    predictor=None) -> Comparison:
-    """A :class:`Comparison` from an existing prediction (no new engine calls)."""
+                    predictor=None, covariance=None, band_note: str = "") -> Comparison:
+    """A :class:`Comparison` from an existing prediction (no new engine calls); ``covariance`` (the fitted
+    parameters', :class:`validation.refit.ParameterCovariance`) gives its figures an uncertainty band, and
+    ``band_note`` says why a fitted model has none."""
     y = measurements.mu
     f = np.asarray(prediction.mu, dtype=float)
     r = y - f
@@ -246,7 +263,7 @@ def comparison_from(model, measurements: Measurements, contact, prediction: Pred
                       rmse=float(np.sqrt(np.mean(r * r))), bias=float(np.mean(r)),
                       max_abs=float(np.max(np.abs(r))), chi2=chi2,
                       tables=breakdown(measurements, r, f), notes=tuple(prediction.notes), name=name,
-                      _predictor=predictor)
+                      covariance=covariance, band_note=band_note, _predictor=predictor)
 
 
 # ==========================================================================================================

@@ -18,10 +18,11 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from .band import band_note
 from .compare import Comparison, comparison_from, json_text
 from .diagnose import Diagnosis, _unpack, diagnose_single
 from .errors import InputError
@@ -72,6 +73,9 @@ class Step:
     alternatives : tuple of str
         What the step's diagnosis named "or as well by": plausible candidates within 10 BIC units of the one
         added (for a swap: the effect swapped out).
+    covariance : validation.refit.ParameterCovariance or None
+        The joint covariance of the step's fitted parameters (None when none were fitted): the uncertainty band
+        of its curves in :meth:`Improvement.comparison`.
     """
 
     index: int
@@ -91,6 +95,7 @@ class Step:
     action: str = "added"
     removed: str | None = None
     alternatives: tuple = ()
+    covariance: object = field(default=None, repr=False)
 
     def describe(self) -> str:
         """What the step did, in words."""
@@ -173,11 +178,13 @@ class Improvement:
         return tuple(s.rmse for s in self.steps)
 
     def comparison(self, index: int = -1) -> Comparison:
-        """The comparison of step ``index`` (from predictions already computed; no engine calls)."""
+        """The comparison of step ``index`` (from predictions already computed; no engine calls), with the
+        covariance of the step's fitted parameters: its figures draw the model's 68 % band."""
         s = self.steps[index]
         pred = Prediction(mu=s.predicted, mu_local=s.predicted)
         return comparison_from(s.model, self.measurements, s.contact or self.contact, pred,
-                               name=f"{self.name} step {s.index}" if self.name else f"step {s.index}")
+                               name=f"{self.name} step {s.index}" if self.name else f"step {s.index}",
+                               covariance=s.covariance, band_note=band_note(s.covariance, s.fitted))
 
     def table_text(self) -> str:
         noise = f"{self.noise:.3g} from {self.noise_source}" if math.isfinite(self.noise) else "unknown"
@@ -347,7 +354,7 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
     steps = [Step(index=0, added=None, effects=tuple(b.model.effect_names), parameters=_params(b.model),
                   fitted=tuple(base_fit), rmse=b.rmse, bic=b.bic, delta_bic=0.0, model=b.model, diagnosis=dx,
                   predicted=b.predicted, contact=b.contact, estimates=b.estimates, lack_of_fit_p=b.lack.p_value,
-                  action="baseline")]
+                  action="baseline", covariance=None if b.fit is None else b.fit.covariance)]
     current: tuple = ()
     tried = {frozenset()}
     n_added = 0
@@ -422,7 +429,8 @@ def _step(index, action, added, removed, s, previous, base_fit, search, alternat
                 fitted=tuple(_fit_names(base_fit, s.effects, search)), rmse=s.rmse, bic=s.bic,
                 delta_bic=s.bic - previous.bic, model=s.model, diagnosis=None, predicted=s.predicted,
                 contact=s.contact, estimates=s.estimates if estimates is None else estimates,
-                lack_of_fit_p=s.lack.p_value, action=action, removed=removed, alternatives=tuple(alternatives))
+                lack_of_fit_p=s.lack.p_value, action=action, removed=removed, alternatives=tuple(alternatives),
+                covariance=s.covariance)
 
 
 def _fit_names(base_fit, effects, search) -> list:

@@ -19,7 +19,9 @@ def plot_mu_speed(cmp, curve_points: int = 40):
 
     One panel per pressure, one colour per temperature; wet rows hollow markers and dashed lines. Only the
     pure-sliding rows (slip = 1) are shown. Every curve comes from one prediction of the model's own path
-    (:class:`validation.predict.Predictor`: the contact patch with patch heating, ``Wet`` on wet rows).
+    (:class:`validation.predict.Predictor`: the contact patch with patch heating, ``Wet`` on wet rows). A fitted
+    model (``cmp.covariance``) is drawn with its 68 % band (shaded, :mod:`validation.band`); a fitted model
+    without one says why under the figure (``cmp.band_note``).
     """
     m = cmp.measurements
     sl = m.is_sliding
@@ -44,7 +46,7 @@ def plot_mu_speed(cmp, curve_points: int = 40):
                 if np.any(sel):
                     v = m.speed[sel]
                     curves[(p, T, wet)] = np.geomspace(v.min() / 1.5, v.max() * 1.5, curve_points)
-    mu = _predict_curves(cmp, {k: (np.ones(v.size), v, k[1], k[0], k[2]) for k, v in curves.items()})
+    mu, hw = _predict_curves(cmp, {k: (np.ones(v.size), v, k[1], k[0], k[2]) for k, v in curves.items()})
     for ax, p in zip(axes, pressures):
         for T in temps:
             for wet in (False, True):
@@ -61,14 +63,19 @@ def plot_mu_speed(cmp, curve_points: int = 40):
                 else:
                     ax.plot(v, m.mu[sel], "o", color=c, ms=4, label=lab, **kw)
                 if mu is not None:
-                    ax.plot(curves[(p, T, wet)], mu[(p, T, wet)], "--" if wet else "-", color=c, lw=1.2)
+                    key = (p, T, wet)
+                    ax.plot(curves[key], mu[key], "--" if wet else "-", color=c, lw=1.2)
+                    if hw is not None:
+                        ax.fill_between(curves[key], mu[key] - hw[key], mu[key] + hw[key], color=c, alpha=0.2,
+                                        lw=0)
         ax.set_xscale("log")
         ax.set_xlabel("sliding speed v (m/s)")
         ax.set_title(f"sigma0 = {p / 1e6:g} MPa", fontsize=9)
         ax.grid(alpha=0.3)
         if ax.get_legend_handles_labels()[0]:
-            ax.legend(fontsize=7, title="points: measured, lines: model", title_fontsize=7)
+            ax.legend(fontsize=7, title=_band_legend(cmp, hw), title_fontsize=7)
     axes[0].set_ylabel("friction coefficient mu")
+    _band_caption(fig, cmp, hw)
     fig.suptitle(f"{cmp.name}: mu(v), effects {', '.join(cmp.effects) or 'none'}", fontsize=10)
     return _light(fig)
 
@@ -81,8 +88,9 @@ def _temperature_colors(n: int):
 
 
 def plot_mu_slip(cmp, curve_points: int = 40):
-    """Measured (points) and predicted (lines) mu against slip ratio, one curve per series / condition (the
-    model's own prediction path: the brush model, with patch heating along the patch when the model has it)."""
+    """Measured (points, error bars from mu_std) and predicted (lines) mu against slip ratio, one curve per series
+    / condition (the model's own prediction path: the brush model, with patch heating along the patch when the
+    model has it); a fitted model with its 68 % band, as in :func:`plot_mu_speed`."""
     m = cmp.measurements
     rows = ~m.is_sliding
     fig, ax = plt.subplots(figsize=(6.4, 4.2))
@@ -100,7 +108,7 @@ def plot_mu_slip(cmp, curve_points: int = 40):
         ser, V, T, p, wet = k
         s = np.geomspace(max(float(m.slip[idx].min()) / 1.5, 1e-4), 1.0, curve_points)
         grids[k] = (s, np.full(s.size, V), T, p, wet)
-    mu = _predict_curves(cmp, grids)
+    mu, hw = _predict_curves(cmp, grids)
     for j, (k, idx) in enumerate(shown):
         ser, V, T, p, wet = k
         # the sliding rows (slip = 1) of the same condition belong to the curve
@@ -114,6 +122,8 @@ def plot_mu_slip(cmp, curve_points: int = 40):
             ax.plot(m.slip[idx], m.mu[idx], "o", color=c, ms=4, label=lab)
         if mu is not None:
             ax.plot(grids[k][0], mu[k], "-", color=c, lw=1.2)
+            if hw is not None:
+                ax.fill_between(grids[k][0], mu[k] - hw[k], mu[k] + hw[k], color=c, alpha=0.2, lw=0)
     if len(keys) > _MAX_SLIP_CURVES:
         ax.text(0.01, 0.01, f"{len(keys) - _MAX_SLIP_CURVES} more curves not shown", transform=ax.transAxes,
                 fontsize=7)
@@ -122,36 +132,69 @@ def plot_mu_slip(cmp, curve_points: int = 40):
     ax.set_ylabel("friction coefficient mu")
     ax.set_title(f"{cmp.name}: mu(slip)", fontsize=10)
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=7)
+    ax.legend(fontsize=7, title=_band_legend(cmp, hw), title_fontsize=7)
+    _band_caption(fig, cmp, hw)
     return _light(fig)
 
 
 def _predict_curves(cmp, curves: dict):
-    """``key -> mu`` of the model along each curve ``key -> (slip, speed, T, p, wet)``, in one prediction (None
-    when the model fails there: a plot must not hide the comparison)."""
+    """``(key -> mu, key -> band half-width or None)`` of the model along each curve ``key -> (slip, speed, T, p,
+    wet)``: the curves in one prediction (mu None when the model fails there: a plot must not hide the
+    comparison), and with a covariance (:attr:`Comparison.has_band`) the 68 % band by the delta method, 2 k more
+    predictions for k fitted parameters through the same path (:func:`validation.band.band_half_width`)."""
     import warnings
 
+    from .band import band_half_width
     from .measurements import Measurements
     from .predict import Predictor
 
     if not curves:
-        return {}
+        return {}, None
     parts = [[np.broadcast_to(np.asarray(x, dtype=float), np.shape(c[0])) for x in c] for c in curves.values()]
     cols = [np.concatenate([p[i] for p in parts]) for i in range(5)]
+    band = None
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             rows = Measurements.from_arrays(slip=cols[0], speed=cols[1], temperature=cols[2], pressure=cols[3],
                                             mu=np.zeros(cols[0].size), wet=cols[4].astype(bool),
                                             source="plotted curves")
-            mu = Predictor(rows, cmp.contact).predict(cmp.model).mu
+            predictor = Predictor(rows, cmp.contact)
+            mu = predictor.predict(cmp.model).mu
+            if cmp.has_band:
+                try:
+                    band = band_half_width(cmp.covariance, cmp.model, cmp.contact,
+                                           lambda model, contact: predictor.predict(model, contact=contact).mu)
+                except Exception:  # noqa: BLE001  (a perturbed model may fail: the curves still stand)
+                    band = None
     except Exception:  # noqa: BLE001
-        return None
-    out, k = {}, 0
+        return None, None
+    out, hw, k = {}, {}, 0
     for key, p in zip(curves, parts):
         out[key] = mu[k:k + p[0].size]
+        if band is not None:
+            hw[key] = band[k:k + p[0].size]
         k += p[0].size
-    return out
+    return out, (hw if band is not None else None)
+
+
+def _band_legend(cmp, hw) -> str:
+    """The legend's title: what points, lines and the shaded band are."""
+    m = cmp.measurements
+    title = "points: measured" + (" (bars: +- mu_std)" if m.mu_std is not None else "") + ", lines: model"
+    if hw is not None:
+        widest = max((float(np.max(a)) for a in hw.values() if np.size(a)), default=0.0)
+        # a narrow band is invisible at the scale of the plot: its size says that it is there
+        title += f"\nshaded: model 68 % band (1 sigma of the fitted parameters, at most +-{widest:.2g})"
+    return title
+
+
+def _band_caption(fig, cmp, hw) -> None:
+    """Under the figure, why a fitted model's curves carry no band."""
+    note = cmp.band_note or ("no uncertainty band: the band's predictions failed" if cmp.has_band and hw is None
+                             else "")
+    if note:
+        fig.text(0.01, 0.005, note, fontsize=6.5, color="0.3", va="bottom")
 
 
 def _light(fig):

@@ -34,7 +34,8 @@ import numpy as np
 
 from .fitting import BudgetExhausted, Fitter, halton
 
-__all__ = ["Estimate", "GlobalFit", "global_fit", "with_uncertainty", "issues_at", "DataRange", "data_range"]
+__all__ = ["Estimate", "GlobalFit", "ParameterCovariance", "global_fit", "with_uncertainty", "issues_at", "DataRange",
+           "data_range"]
 
 #: Distance in u below which a fitted parameter is "on its bound".
 BOUND_TOL = 2e-3
@@ -149,6 +150,56 @@ class Estimate:
 
 
 @dataclass(frozen=True, eq=False)
+class ParameterCovariance:
+    r"""The Gauss-Newton covariance of a fit's parameters, in the fit's coordinates ``u`` (module docstring,
+    item 2: :math:`C = s^2 (J^T W^2 J)^{-1}`, the Birge ratio included), with the map from ``u`` to the model.
+
+    It is what the uncertainty band of a fitted model's curves needs (:func:`validation.band.band_half_width`):
+    the curves' derivatives with respect to ``u`` and this matrix.
+
+    Attributes
+    ----------
+    space : validation.fitting.ParameterSpace
+        The fitted parameters and the map ``u -> model`` (and contact).
+    u : ndarray (k,)
+        The optimum.
+    matrix : ndarray (k, k)
+        Covariance in ``u`` (inf in rows and columns of directions the data do not determine).
+    estimates : tuple of Estimate
+        The parameters' estimates, in the order of ``space``.
+    """
+
+    space: object
+    u: np.ndarray
+    matrix: np.ndarray
+    estimates: tuple = ()
+
+    @property
+    def keys(self) -> tuple:
+        return self.space.keys
+
+    def in_parameters(self) -> np.ndarray:
+        r"""The covariance in the parameters' own units, :math:`D C D` with :math:`D = \mathrm{diag}(dx/du)`."""
+        d = np.asarray([p.dx_du(p.from_u(float(x))) for p, x in zip(self.space.params, self.u)], dtype=float)
+        return self.matrix * np.outer(d, d)
+
+    def unavailable(self) -> str:
+        """Why a linearised band from this covariance cannot be trusted ("" when it can): a parameter the data
+        do not determine, or whose 68 % interval spans the range searched."""
+        why = []
+        diag = np.diag(self.matrix)
+        for j, key in enumerate(self.keys):
+            est = self.estimates[j] if j < len(self.estimates) else None
+            if est is not None and est.method.startswith("no effect"):
+                why.append(f"{key} changes no prediction on the measured rows")
+            elif not (math.isfinite(float(diag[j])) and diag[j] >= 0):
+                why.append(f"the data do not determine {key} (its variance is infinite)")
+            elif est is not None and not est.identified:
+                why.append(f"{key} is not identified (its 68 % interval spans the range searched)")
+        return "; ".join(why)
+
+
+@dataclass(frozen=True, eq=False)
 class GlobalFit:
     """The outcome of :func:`global_fit`.
 
@@ -172,6 +223,9 @@ class GlobalFit:
     notes : tuple of str
     optima : tuple of (float, ndarray)
         chi2 and u of every local fit.
+    covariance : ParameterCovariance or None
+        The parameters' covariance (set by :func:`with_uncertainty`; None before, or when its budget ran out
+        before the Jacobian).
     """
 
     u: np.ndarray
@@ -186,6 +240,7 @@ class GlobalFit:
     n_evals: int
     notes: tuple = ()
     optima: tuple = ()
+    covariance: ParameterCovariance | None = None
 
     @property
     def values(self) -> dict:
@@ -331,9 +386,13 @@ def with_uncertainty(fitter: Fitter, fit: GlobalFit, *, s2: float, ranges: DataR
         if s2_eff > s2 * (1 + 1e-9):
             notes[f"standard errors include the misfit (scaled by the Birge ratio {math.sqrt(s2_eff / s2):.2f})"] = None
         estimates = _estimates(fitter, u, c, J, s2_eff, good, ranges, profile)
+        Jw = J * fitter.w[:, None]
+        covariance = ParameterCovariance(space=fitter.space, u=np.array(u, dtype=float),
+                                         matrix=_covariance(Jw.T @ Jw / s2_eff), estimates=estimates)
     except BudgetExhausted:
         notes["the uncertainty stopped at its budget of model evaluations"] = None
         estimates = _bare_estimates(fitter, u, ranges)
+        covariance = None
     # a distinct optimum just outside the 68 % range (1 < delta chi2 <= 4) is inside the 95 % one: the local
     # standard errors above do not see it, so say where the best such one is
     near = sorted(((cv - c) / s2, i) for i, (cv, v) in enumerate(fit.optima)
@@ -346,7 +405,7 @@ def with_uncertainty(fitter: Fitter, fit: GlobalFit, *, s2: float, ranges: DataR
               "range): the standard errors describe the best optimum only"] = None
     return GlobalFit(u=u, chi2=c, mu=fit.mu, model=fit.model, contact=fit.contact, estimates=estimates,
                      jacobian=J, n_starts=fit.n_starts, n_good=len(good), n_evals=fitter.n_evals,
-                     notes=tuple(notes), optima=fit.optima)
+                     notes=tuple(notes), optima=fit.optima, covariance=covariance)
 
 
 # ==========================================================================================================

@@ -110,7 +110,7 @@ def render_report(items, title: str | None = None) -> str:
         elif isinstance(it, Comparison):
             body.append(_comparison_html(it))
         elif isinstance(it, Diagnosis):
-            body.append(_diagnosis_html(it))
+            body.append(_diagnosis_html(it, best_model=not any(isinstance(i, Improvement) for i in items)))
         elif isinstance(it, Improvement):
             body.append(_improvement_html(it))
         elif isinstance(it, str):
@@ -202,6 +202,7 @@ def _comparison_html(cmp) -> str:
         out.append(_img(fig, f"{cmp.name} {name}"))
     out.append("<h3>Where the model fails</h3><p class='note'>Groups with |z| &ge; 3 (bias larger than three "
                "standard errors) are marked.</p>")
+    out.append(_deviations_html(cmp))
     for factor, rows in cmp.tables.items():
         if not rows:
             continue
@@ -213,7 +214,17 @@ def _comparison_html(cmp) -> str:
     return "\n".join(out)
 
 
-def _diagnosis_html(dx) -> str:
+def _deviations_html(cmp) -> str:
+    """Every systematic deviation (|z| >= 3), largest |bias| first, none left out."""
+    worst = cmp.worst_groups()
+    if not worst:
+        return "<p>No group deviates systematically (all |z| &lt; 3).</p>"
+    return (f"<p><b>Systematic deviations</b> (|z| &ge; 3, {len(worst)} group{'s' if len(worst) > 1 else ''}): "
+            + "; ".join(f"{_e(g.factor)} {_e(g.label)}: bias {_num(g.bias, '+.3f')} (n = {_num(g.n, 'd')}, "
+                        f"z = {_num(g.z, '+.1f')})" for g in worst) + ".</p>")
+
+
+def _diagnosis_html(dx, best_model: bool = False) -> str:
     b = dx.baseline
     v = dx.verdict
     ne = dx.noise_estimate
@@ -260,6 +271,8 @@ def _diagnosis_html(dx) -> str:
         out.append(_selection_html(dx.selection))
     for name, fig in dx.figures().items():
         out.append(_img(fig, f"diagnosis {name}"))
+    if best_model:
+        out.append(_best_model_html(dx))
     refs = dx.references()
     if refs:
         out.append("<h4>References</h4><ul class='note'>" + "".join(f"<li>{_e(r)}</li>" for r in refs) + "</ul>")
@@ -361,11 +374,67 @@ def _improvement_html(imp) -> str:
         out.append(_selection_html(imp.selection))
     for name, fig in imp.figures().items():
         out.append(_img(fig, f"improvement {name}"))
-    if len(imp.steps) > 1:
-        final = imp.comparison(-1)
-        out.append(f"<h3>Final model ({_e(', '.join(final.effects))}): RMSE {_num(final.rmse)}</h3>")
-        for name, fig in final.figures().items():
-            out.append(_img(fig, f"final {name}"))
+    final = imp.comparison(-1)
+    what = ", ".join(final.effects) or "none"
+    if len(imp.steps) == 1:
+        what += "; nothing added: the baseline refitted"
+    out.append(f"<h3>Final model ({_e(what)}): RMSE {_num(final.rmse)}</h3>")
+    out.append(_band_caption_html(final))
+    for name, fig in final.figures().items():
+        out.append(_img(fig, f"final {name}"))
     return "\n".join(out)
+
+
+def _best_model_html(dx) -> str:
+    """The diagnosis' best model (the best set of effects, else the explaining candidate, else the refitted
+    baseline) against the measurements, its curves with their 68 % band: the final model when no improvement
+    loop ran."""
+    from . import plots
+    from .band import band_note
+    from .compare import comparison_from
+    from .predict import Prediction
+
+    b = dx.baseline
+    if dx.selection is not None:
+        s = dx.selection.best
+        what, model, contact, mu, cov, est = (f"the best set of effects, {s.label}", s.model, s.contact,
+                                              s.predicted, s.covariance, s.estimates)
+    elif dx.explaining is not None:
+        c = dx.explaining
+        what, model, contact, mu, cov, est = (f"the baseline with {c.effect}, which explains the data", c.model,
+                                              c.contact, c.predicted, c.covariance,
+                                              tuple(c.baseline_estimates) + tuple(c.estimates))
+    else:
+        what, model, contact, mu, cov, est = ("the baseline refitted (no candidate explains the data)", b.model,
+                                              b.contact, b.predicted, None if b.fit is None else b.fit.covariance,
+                                              b.estimates)
+    m = dx.measurements
+    cmp = comparison_from(model, m, contact or dx.contact, Prediction(mu=mu, mu_local=mu),
+                          name=f"{dx.name} best model" if dx.name else "best model", covariance=cov,
+                          band_note=band_note(cov, tuple(e.key for e in est)))
+    out = [f"<h3>Best model: {_e(what)}: RMSE {_num(cmp.rmse)}</h3>", _band_caption_html(cmp),
+           _img(plots.plot_mu_speed(cmp), "best model mu_speed")]
+    if m.has_slip_rows:
+        out.append(_img(plots.plot_mu_slip(cmp), "best model mu_slip"))
+    return "\n".join(out)
+
+
+def _band_caption_html(cmp) -> str:
+    """The caption of a fitted model's figures: what the shaded band is, or why there is none."""
+    from .band import band_caveat
+
+    if cmp.has_band:
+        keys = ", ".join(cmp.covariance.keys)
+        caveat = band_caveat(cmp.covariance)
+        return ("<p class='note'>Points: measured" + (" with error bars of &plusmn; mu_std" if
+                                                      cmp.measurements.mu_std is not None else "")
+                + "; lines: the model; shaded: its <b>68 % (1 sigma) band</b> from the covariance of its fitted "
+                f"parameters ({_e(keys)}) by the delta method, J C J<sup>T</sup> with J the central-difference "
+                "derivative of each curve with respect to the fitted parameters through the fit's own prediction "
+                "path (Bard, Nonlinear Parameter Estimation (1974); Seber &amp; Wild, Nonlinear Regression (1989), "
+                "ch. 5). It shows the uncertainty of the model, not the scatter of the measurements."
+                + (f" Note: {_e(caveat)}." if caveat else "") + "</p>")
+    note = cmp.band_note or "no uncertainty band"
+    return f"<p class='note'>{_e(note[0].upper() + note[1:])}.</p>"
 
 

@@ -63,6 +63,8 @@ class EffectSet:
     source : str
         Where the fit comes from (``"diagnosis of step 2"``, ``"joint refit"``).
     notes : tuple of str
+    covariance : validation.refit.ParameterCovariance or None
+        The joint covariance of the fitted parameters (None when none were fitted).
     """
 
     effects: tuple
@@ -78,6 +80,7 @@ class EffectSet:
     pattern: object
     source: str = ""
     notes: tuple = ()
+    covariance: object = field(default=None, repr=False)
 
     @property
     def key(self) -> frozenset:
@@ -222,7 +225,7 @@ class SetSearch:
         self._keep(EffectSet(effects=tuple(effects), model=b.model, contact=b.contact, predicted=b.predicted,
                              rss=b.rss, bic=b.bic, rmse=b.rmse, n_params=b.n_params, estimates=b.estimates,
                              lack=b.lack, pattern=b.pattern, source=f"diagnosis of step {step}",
-                             notes=tuple(b.notes)))
+                             notes=tuple(b.notes), covariance=_covariance_of(b)))
         for c in dx.candidates:
             if c.status != "ok":
                 continue
@@ -232,7 +235,7 @@ class SetSearch:
                                  predicted=c.predicted, rss=c.rss, bic=c.bic, rmse=c.rmse,
                                  n_params=b.n_params + c.n_params, estimates=c.baseline_estimates + c.estimates,
                                  lack=c.lack, pattern=c.pattern, source=f"diagnosis of step {step}",
-                                 notes=tuple(c.notes)))
+                                 notes=tuple(c.notes), covariance=c.covariance))
 
     def _keep(self, s: EffectSet) -> EffectSet:
         old = self.sets.get(s.key)
@@ -276,7 +279,8 @@ class SetSearch:
         self.n_evals += (b.fit.n_evals - base.fit.n_evals) if b.fit is not None and base.fit is not None else 0
         return EffectSet(effects=effects, model=b.model, contact=b.contact, predicted=b.predicted, rss=b.rss,
                          bic=b.bic, rmse=b.rmse, n_params=b.n_params, estimates=b.estimates, lack=b.lack,
-                         pattern=b.pattern, source="joint refit", notes=tuple(b.notes))
+                         pattern=b.pattern, source="joint refit", notes=tuple(b.notes),
+                         covariance=_covariance_of(b))
 
     # ---- the search steps ------------------------------------------------------------------------------
     def prune(self, current: tuple, progress=None) -> list[tuple]:
@@ -357,3 +361,8 @@ class SetSearch:
         return Selection(best=best, supported=tuple(supported), drop_costs=costs, separations=tuple(seps),
                          separations_in_range=tuple(seps_in), visited=tuple(visited), removed=tuple(self.removed))
 
+
+def _covariance_of(baseline):
+    """The covariance of a refitted baseline's parameters (None when it has none)."""
+    fit = getattr(baseline, "fit", None)
+    return None if fit is None else fit.covariance

@@ -13,7 +13,9 @@ HELP = "compute mu(v), A/A0(v) for a case; writes CSV (and PNG with --plot)"
 
 def add_arguments(p):
     p.add_argument("case", help=CASE_HELP)
-    p.add_argument("-o", "--output", default=None, help="output CSV (default: <case name>_friction.csv here)")
+    p.add_argument("-o", "--output", default=None, help="output CSV (default: <case name>_friction.csv here); its "
+                   "max_flash_temperature_K column is the flash temperature rise above the background "
+                   "temperature, K")
     p.add_argument("--temperature", type=float, default=None, help="background temperature, deg C")
     p.add_argument("--pressure", type=float, default=None, help="nominal pressure, Pa")
     p.add_argument("--speeds", default=None, help=f"sliding speed(s), m/s: {VALUES_HELP}")
@@ -26,6 +28,7 @@ def add_arguments(p):
 def run(args) -> int:
     from .._checks import plausible_speed
     from ..case.loader import parse_case, read_case
+    from ..engine.results import FLASH_RISE_COMMENT
     from ..io import Outputs, write_csv
 
     scripts = effect_scripts(args)
@@ -49,7 +52,7 @@ def run(args) -> int:
         with status.phase(f"friction at {speeds.size} speeds"):
             r = spec.model.friction(speeds, temperature=T, pressure=p)
         comments = (f"case {spec.path}", f"temperature_C={T}", f"pressure_Pa={p}",
-                    f"effects={','.join(r.effects) or 'none'}", *spec.notes, *r.notes)
+                    f"effects={','.join(r.effects) or 'none'}", FLASH_RISE_COMMENT, *spec.notes, *r.notes)
         write_csv(csv, r.as_table(), comments=comments)
         if png is not None:
             from ..plots import plot_friction, save_figure

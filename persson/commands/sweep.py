@@ -48,7 +48,9 @@ def add_arguments(p):
                    help="sliding speed(s), m/s: v, v1,v2,... or min:max:n (log-spaced); default the case's")
     p.add_argument("--temperature", type=float, default=None, help="background temperature, deg C")
     p.add_argument("--pressure", type=float, default=None, help="nominal pressure, Pa")
-    p.add_argument("-o", "--output", default=None, help="output CSV (default: <case name>_sweep.csv here)")
+    p.add_argument("-o", "--output", default=None, help="output CSV (default: <case name>_sweep.csv here); its "
+                   "max_flash_temperature_K column is the flash temperature rise above the background "
+                   "temperature, K")
     p.add_argument("--scheduler", default=None,
                    help="serial (default), processes, or a Dask scheduler address such as tcp://host:8786")
     p.add_argument("--workers", type=int, default=None, help="processes for --scheduler processes")

@@ -8,7 +8,12 @@ from dataclasses import dataclass, field
 import numpy as np
 from ..notes import kinds
 
-__all__ = ["FrictionResult"]
+__all__ = ["FrictionResult", "FLASH_RISE_COMMENT"]
+
+#: The comment that tables with a ``max_flash_temperature_K`` column carry above their header: the column is a
+#: rise above the background temperature, not an absolute temperature.
+FLASH_RISE_COMMENT = ("max_flash_temperature_K = flash temperature RISE of the hottest length scale above the "
+                      "background temperature (K), not an absolute temperature")
 
 
 @dataclass(frozen=True, eq=False)
@@ -42,7 +47,14 @@ class FrictionResult:
     penetration_depth : float or ndarray or None
         Penetration depth of the road asperities into the rubber, m (None when not computed).
     max_flash_temperature : float or ndarray
-        Largest temperature over the scales minus T0, K (0 without flash temperature).
+        Flash temperature RISE, K: the temperature of the hottest length scale minus the background temperature
+        T0, max_q T(q) - T0 (Persson, J. Phys.: Condens. Matter 18, 7789 (2006)); not an absolute temperature
+        (the hottest scale is at T0 + this rise, deg C). 0 without flash temperature. The same values as
+        :attr:`flash_temperature_rise`; the name is kept for compatibility, and tables write it as
+        ``max_flash_temperature_K``.
+    flash_temperature_rise : float or ndarray
+        (property) The flash temperature rise above T0, K: the same values as ``max_flash_temperature``, under
+        a name that says what it is.
     q : ndarray (n_q,)
         Wavevector nodes, rad/m.
     area_q, G_q, temperature_q, dmu_dlnq : ndarray (n_speed, n_q)
@@ -117,6 +129,12 @@ class FrictionResult:
                 f"{self.q.size} q nodes{extra}{notes})")
 
     @property
+    def flash_temperature_rise(self) -> np.ndarray | float:
+        """Rise of the hottest length scale above the background temperature T0, K: max_q T(q) - T0 (0 without
+        flash temperature); the same values as ``max_flash_temperature``."""
+        return self.max_flash_temperature
+
+    @property
     def note_kinds(self) -> tuple:
         """The kind of every note (:data:`persson.notes.KINDS`; None for a plain-text note)."""
         return kinds(self.notes)
@@ -126,8 +144,10 @@ class FrictionResult:
         return dataclasses.replace(self, **changes)
 
     def as_table(self) -> dict[str, np.ndarray]:
-        """Columns ``speed_m_s, T_C, pressure_Pa, mu, mu_hysteresis, mu_adhesion, contact_area`` (+ flash,
-        separation, penetration) per speed."""
+        """Columns ``speed_m_s, T_C, pressure_Pa, mu, mu_hysteresis, mu_adhesion, contact_area``,
+        ``max_flash_temperature_K`` (the flash temperature RISE above ``T_C``, K; not an absolute temperature)
+        and, when computed, ``mean_separation_m``, ``penetration_depth_m``, ``strain_extrapolated_share`` per
+        speed."""
         cols = {
             "speed_m_s": self.speed,
             "T_C": np.broadcast_to(np.asarray(self.temperature, dtype=float), self.speed.shape),

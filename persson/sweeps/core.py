@@ -17,6 +17,7 @@ from ..engine.conditions import Conditions
 from .._checks import number
 from ..errors import InputError
 from ..engine.model import Model
+from ..engine.results import FLASH_RISE_COMMENT
 from .bands import (_BandRestriction, band_contributions, band_edges, check_bands, continuous_cells,
                     interp_ln_q, load_share)
 from .execute import Progress, SweepInterrupted, describe_scheduler, run_tasks
@@ -94,7 +95,8 @@ def grid(model, params=None, *, speed=1.0, temperature: float = 20.0, pressure: 
         ``q`` and ``dmu_dlog10q``; then ``mu``, ``mu_hysteresis``, ``mu_adhesion``, ``contact_area``, with
         bands ``fraction`` (band mu_hysteresis / total mu_hysteresis of the point and speed; NaN where that
         total is 0, and in a partial table for ``separate`` rows whose point's total had not finished),
-        ``max_flash_temperature_K`` and ``converged``. Rows are in task order whatever the scheduler.
+        ``max_flash_temperature_K`` (the flash temperature rise above ``temperature_C``, K) and ``converged``.
+        Rows are in task order whatever the scheduler.
 
         Band rows: in ``restrict`` rows ``mu_hysteresis`` is the band's share of the full surface's hysteresis
         (tiling bands add up to the total), ``contact_area`` is the full surface's A/A0 at ``q_high`` (the
@@ -488,4 +490,5 @@ def _comments(model, names, speeds, bands, n_bands, mode, scheduler, workers, n_
         kind = bands if isinstance(bands, str) else "explicit edges"
         out.append(f"bands: {kind}" + (f" (n = {n_bands})" if n_bands else "") + f"; mode: {mode}")
     out.append(f"run: {describe_scheduler(scheduler, workers)}")
+    out.append(FLASH_RISE_COMMENT)
     return tuple(out)
