@@ -1,12 +1,17 @@
 """Fixtures shared by several test files: expensive results computed once per test session, and effects defined
 in test modules kept to their own module."""
 
+import os
 import warnings
 from pathlib import Path
 
 import pytest
 
 import materials
+
+if os.environ.get("PYTEST_XDIST_WORKER"):
+    # one numba thread per test process: the processes already share the cores
+    os.environ.setdefault("NUMBA_NUM_THREADS", "1")
 
 DMA_DATA = Path(__file__).resolve().parents[1].parent / "shared" / "data" / "dma"
 
