@@ -353,7 +353,7 @@ def main(argv=None) -> int:
               f"{r['rows']:>3} rows {r['noise']:<18} -> {r['verdict']:<17} {'+'.join(r['found']) or '-':<36} "
               f"{'ok' if right(r) else 'WRONG'} ({r['seconds']:.0f} s)", flush=True)
         if args.out:
-            json_text(results, args.out)
+            json_text(results, args.out, overwrite=True)  # the study appends to its own file
     print()
     print(summarize(results))
     return 0
