@@ -33,7 +33,7 @@ from scipy import integrate, interpolate, special
 
 from frictioncite import doi
 
-from .reference import ReferenceResult
+from .reference import ReferenceResult, flash_fixed_point, heat_matrix
 
 __all__ = ["reference_directional_friction", "reference_directional_flash_friction"]
 
@@ -159,8 +159,6 @@ def reference_directional_flash_friction(surface, material, speed, direction_deg
     ReferenceResult
         With ``temperature_q`` on ``q_eval``.
     """
-    from .kernels import heat_kernel
-
     v = np.atleast_1d(np.asarray(speed, dtype=float))
     theta = math.radians(float(direction_deg))
     q0, q1 = (float(x) for x in surface.q_range)
@@ -202,19 +200,12 @@ def reference_directional_flash_friction(surface, material, speed, direction_deg
     ln_al = interpolate.CubicSpline(lw, np.column_stack([np.log(A), np.log(np.maximum(L, 1e-300))]))
     mus, areas, layers, Ts = [], [], [], []
     for vi in v:
-        a = D * d / vi
-        ex = special.erfcx(2.0 * q * math.sqrt(a))
-        g = np.zeros((q.size, q.size))
-        for i in range(q.size):
-            for j in range(i + 1):
-                g[i, j] = heat_kernel(q[i], q[j], a, D, ex[i], ex[j])
-        T = np.full(q.size, float(temperature))
         lv = math.log10(vi)
-        relax, res_prev = 1.0, np.inf
-        for _ in range(max_iter):
+
+        def heat_source(T, vi=vi, lv=lv):
             shift = np.asarray(material.log10_aT(T) - material.log10_aT(temperature), dtype=float)
 
-            def rhs(xx, y, shift=shift):
+            def rhs(xx, y):
                 qq = math.exp(xx)
                 f = float(np.interp(xx, x, fq))
                 w = xx / math.log(10.0) + lv + float(np.interp(xx, x, shift))
@@ -225,21 +216,13 @@ def reference_directional_flash_friction(surface, material, speed, direction_deg
 
             sol = integrate.solve_ivp(rhs, (x[0], x[-1]), [0.0, 0.0, 0.0], method="DOP853", rtol=1e-10,
                                       atol=1e-300, first_step=1e-12, dense_output=True)
-            G = sol.sol(x)[0]
-            P = special.erf(0.5 / np.sqrt(np.maximum(G, 1e-300)))
+            P = special.erf(0.5 / np.sqrt(np.maximum(sol.sol(x)[0], 1e-300)))
             Gm = float(sol.sol(math.log(q_m))[0])
             Pm = float(special.erf(0.5 / math.sqrt(Gm))) if Gm > 0 else 1.0
             w = x / math.log(10.0) + lv + shift
-            f = vi * q**4 * fq / rc * P / Pm * np.exp(ln_al(w)[:, 1]) / (1.0 - nu * nu)
-            T_new = float(temperature) + np.array([integrate.trapezoid(g[i, :i + 1] * f[:i + 1], q[:i + 1])
-                                                   if i else 0.0 for i in range(q.size)])
-            res = np.max(np.abs(T_new - T))
-            if res < tol:
-                T = T_new
-                break
-            relax = 0.5 * relax if res > res_prev else min(1.0, 1.25 * relax)
-            res_prev = res
-            T = T + relax * (T_new - T)
+            return vi * q**4 * fq / rc * P / Pm * np.exp(ln_al(w)[:, 1]) / (1.0 - nu * nu), sol
+
+        T, sol = flash_fixed_point(q, float(temperature), heat_matrix(q, D * d / vi, D), heat_source, tol, max_iter)
         mus.append(sol.y[1, -1])
         areas.append(float(special.erf(0.5 / math.sqrt(sol.y[0, -1]))) if sol.y[0, -1] > 0 else 1.0)
         layers.append(sol.y[2, -1] / sol.y[1, -1])

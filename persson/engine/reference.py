@@ -147,8 +147,6 @@ def reference_flash_friction(surface, material, speed, temperature=20.0, pressur
     ReferenceResult
         With ``temperature_q`` on ``q_eval`` = the grid.
     """
-    from .kernels import heat_kernel
-
     v = np.atleast_1d(np.asarray(speed, dtype=float))
     q0, q1 = (float(x) for x in surface.q_range)
     th = material.thermal
@@ -166,19 +164,12 @@ def reference_flash_friction(surface, material, speed, temperature=20.0, pressur
                           1e-10)
     mus, areas, layers, Ts = [], [], [], []
     for vi in v:
-        a = D * d / vi
-        ex = special.erfcx(2.0 * q * math.sqrt(a))
-        g = np.zeros((q.size, q.size))
-        for i in range(q.size):
-            for j in range(i + 1):
-                g[i, j] = heat_kernel(q[i], q[j], a, D, ex[i], ex[j])
-        T = np.full(q.size, float(temperature))
         lv = math.log10(vi)
-        relax, res_prev = 1.0, np.inf
-        for _ in range(max_iter):
+
+        def heat_source(T, vi=vi, lv=lv):
             shift = np.asarray(material.log10_aT(T) - material.log10_aT(temperature), dtype=float)
 
-            def rhs(xx, y, shift=shift):
+            def rhs(xx, y):
                 qq = math.exp(xx)
                 q4C = qq**4 * float(surface.C(qq))
                 w = xx / math.log(10.0) + lv + float(np.interp(xx, x, shift))
@@ -187,27 +178,56 @@ def reference_flash_friction(surface, material, speed, temperature=20.0, pressur
                 return [0.125 * q4C * tab.A(w) * s * s, dmu, dmu / qq]
 
             sol = _ode(rhs, x[0], x[-1], 3, 1e-10, dense=True)
-            G = sol.sol(x)[0]
-            P = np.array([_P(Gi) for Gi in G])
+            P = np.array([_P(Gi) for Gi in sol.sol(x)[0]])
             Pm = _P(float(sol.sol(math.log(q_m))[0]))
             w = x / math.log(10.0) + lv + shift
             f = vi * q**4 * surface.C(q) / rc * P / Pm * np.array([tab.L(wi) for wi in w]) / (1.0 - nu * nu)
-            T_new = float(temperature) + np.array([integrate.trapezoid(g[i, :i + 1] * f[:i + 1], q[:i + 1])
-                                                   if i else 0.0 for i in range(q.size)])
-            res = np.max(np.abs(T_new - T))
-            if res < tol:
-                T = T_new
-                break
-            # under-relaxation, halved whenever the residual grows (the fixed point can oscillate when hot)
-            relax = 0.5 * relax if res > res_prev else min(1.0, 1.25 * relax)
-            res_prev = res
-            T = T + relax * (T_new - T)
+            return f, sol
+
+        T, sol = flash_fixed_point(q, float(temperature), heat_matrix(q, D * d / vi, D), heat_source, tol, max_iter)
         mus.append(sol.y[1, -1])
         areas.append(_P(sol.y[0, -1]))
         layers.append(sol.y[2, -1] / sol.y[1, -1])
         Ts.append(T)
     return ReferenceResult(mu=np.array(mus), contact_area=np.array(areas), excited_layer=np.array(layers),
                            q_eval=q, temperature_q=np.array(Ts))
+
+
+def heat_matrix(q: np.ndarray, a: float, D: float) -> np.ndarray:
+    """The heat kernel g(q_i, q_j) for j <= i (zero above the diagonal) of Persson's flash temperature on the nodes
+    ``q``, with a = D t0 (:func:`persson.engine.kernels.heat_kernel`, its closed form)."""
+    from .kernels import heat_kernel
+
+    ex = special.erfcx(2.0 * q * math.sqrt(a))
+    g = np.zeros((q.size, q.size))
+    for i in range(q.size):
+        for j in range(i + 1):
+            g[i, j] = heat_kernel(q[i], q[j], a, D, ex[i], ex[j])
+    return g
+
+
+def flash_fixed_point(q: np.ndarray, T0: float, g: np.ndarray, heat_source, tol: float, max_iter: int):
+    r"""Plain fixed-point iteration of :math:`T_q = T_0 + \int_{q_0}^{q} dq'\, g(q, q') f(q')` (trapezoid rule on
+    ``q``), where ``heat_source(T)`` returns f on the nodes and the solution it was computed with; under-relaxed,
+    the relaxation halved whenever the residual grows (the fixed point can oscillate when hot).
+
+    Returns
+    -------
+    (T, solution) : the temperatures on ``q`` (deg C) and ``heat_source``'s solution at the last evaluation.
+    """
+    T = np.full(q.size, T0)
+    relax, res_prev = 1.0, np.inf
+    for _ in range(max_iter):
+        f, sol = heat_source(T)
+        T_new = T0 + np.array([integrate.trapezoid(g[i, :i + 1] * f[:i + 1], q[:i + 1]) if i else 0.0
+                               for i in range(q.size)])
+        res = np.max(np.abs(T_new - T))
+        if res < tol:
+            return T_new, sol
+        relax = 0.5 * relax if res > res_prev else min(1.0, 1.25 * relax)
+        res_prev = res
+        T = T + relax * (T_new - T)
+    return T, sol
 
 
 # ---------------------------------------------------------------------------------------------------------
