@@ -235,6 +235,17 @@ def test_failing_user_effect_is_reported_not_raised(registry):
     assert dx.top.status.startswith("failed") and "boom" in dx.top.status and not dx.top.significant
 
 
+def test_a_baseline_fit_that_runs_out_of_evaluations_still_gives_its_derivatives():
+    """The budget bounds the search; the derivatives at the best point found are part of the result."""
+    model = persson.Model(SURFACE, TREAD, effects=[persson.effects.Adhesion(tau_f0=0.5e6)])
+    rows = _rows(n_speed=5)
+    m = rows.with_mu(validation.predict(model.with_effect(persson.effects.Adhesion(tau_f0=1e6)), rows).mu)
+    dx = validation.diagnose(model, m, fit=["adhesion.tau_f0"], candidates=["flash_temperature"], probe=False,
+                             max_evals=3)
+    assert dx.baseline.n_params == 1 and "adhesion.tau_f0" in dx.baseline.fitted
+    assert any("budget" in n for n in dx.baseline.notes), dx.baseline.notes
+
+
 def test_bad_arguments():
     model = persson.Model(SURFACE, TREAD)
     m = _rows()

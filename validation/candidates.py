@@ -325,6 +325,8 @@ def fit_baseline(model, space: ParameterSpace, settings: FitSettings, global_sea
             fit = global_fit(fitter, u0, seed=s.seed, n_local=s.n_local, extra_starts=extra_starts)
         else:
             fit = global_fit(fitter, u0, seed=s.seed, n_screen=0, n_local=1, extra_starts=extra_starts)
+        # the derivatives at the optimum belong to the result, not to the search: they never run out of budget
+        fitter.max_evals = max(fitter.max_evals, fitter.n_evals + 2 * len(space))
         J = fitter.jacobian(fit.u) * s.w[:, None]
         evals += fitter.n_evals
         norms = np.linalg.norm(J, axis=0)
