@@ -12,6 +12,7 @@ is missing, add it and watch the error fall::
     validation.write_report([cmp, dx, imp], "report.html")
 """
 
+from .band import band_half_width
 from .case import Case, case_path, load_case, shipped_cases
 from .compare import Comparison, GroupStat, compare
 from .diagnose import (SIGNIFICANCE_RULE, Ambiguity, Baseline, Candidate, Diagnosis, Separation, diagnose_single)
@@ -20,7 +21,7 @@ from .improve import Improvement, Step, diagnose, improve
 from .measurements import Measurements, read_measurements
 from .noise import LackOfFit, NoiseEstimate, Pattern, estimate_noise, lack_of_fit, remaining_pattern
 from .predict import Prediction, predict
-from .refit import Estimate
+from .refit import Estimate, ParameterCovariance
 from .report import write_report
 from .select import EffectSet, Selection
 from .verdict import VERDICTS, Verdict
@@ -31,7 +32,7 @@ __all__ = [
     "Prediction", "predict", "Comparison", "GroupStat", "compare",
     "Diagnosis", "Baseline", "Candidate", "Ambiguity", "Separation", "diagnose", "diagnose_single",
     "SIGNIFICANCE_RULE",
-    "Verdict", "VERDICTS", "Estimate", "NoiseEstimate", "LackOfFit", "Pattern", "estimate_noise", "lack_of_fit",
-    "remaining_pattern",
+    "Verdict", "VERDICTS", "Estimate", "ParameterCovariance", "band_half_width", "NoiseEstimate", "LackOfFit",
+    "Pattern", "estimate_noise", "lack_of_fit", "remaining_pattern",
     "Improvement", "Step", "improve", "write_report", "EffectSet", "Selection",
 ]
