@@ -180,3 +180,23 @@ def test_a_heated_patch_beyond_the_fitted_range_warns_once_per_slip_curve(fitted
     assert float(np.max(r.patch.temperature)) > 61.0
     assert sum(materials.SHIFT_RANGE_NOTE in str(w.message) for w in caught) == 1
     assert sum(materials.SHIFT_RANGE_NOTE in n for n in r.notes) == 1
+
+
+def test_a_case_file_hands_the_wlf_law_over_to_arrhenius_above_T_upper_C(tmp_path):
+    from persson.case import read_case
+
+    case = tmp_path / "case.toml"
+    case.write_text('[surface]\nexample = "road"\n[material]\nexample = "tread"\nT_upper_C = 90\n')
+    m = read_case(case).model.material
+    wlf = materials.example_tread().wlf
+    # WLF's apparent activation energy at the hand-over, E = R ln10 C1 C2 T^2 / (C2 + T - T_ref)^2 (T in K)
+    Tu = 90.0 + 273.15
+    E = R * LN10 * wlf.C1 * wlf.C2 * Tu**2 / (wlf.C2 + 90.0 - wlf.T_ref) ** 2
+    for T in (100.0, 150.0, 200.0):
+        arrhenius = float(wlf.log10_aT(90.0)) + E / (R * LN10) * (1.0 / (T + 273.15) - 1.0 / Tu)
+        assert float(m.log10_aT(T)) == pytest.approx(arrhenius, abs=1e-9)
+    for T in (-20.0, 20.0, 89.0):
+        assert float(m.log10_aT(T)) == pytest.approx(float(wlf.log10_aT(T)), abs=1e-12)
+    case.write_text('[surface]\nexample = "road"\n[material]\nexample = "tread"\nT_upper_C = -90\n')
+    with pytest.raises(persson.InputError, match="T_upper_C"):
+        read_case(case)

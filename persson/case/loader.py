@@ -353,6 +353,8 @@ def build_material(tab: dict, base: Path, path: Path, *, progress: Callable | No
         m = _master_curve_from_dma(tab, base, path, progress, notes)
     if thermal is not None:
         m = _with_thermal(m, thermal)
+    if "T_upper_C" in tab:
+        m = _with_upper(m, float(tab["T_upper_C"]), path)
     return m
 
 
@@ -496,6 +498,15 @@ def _expand_dma(source) -> list[Path]:
         else:
             out.append(p)
     return out
+
+
+def _with_upper(material, T_upper: float, path: Path):
+    """``material`` with its shift law handing over to an Arrhenius law above ``T_upper`` (deg C)
+    (:func:`materials.with_arrhenius_above`: a WLF law, a tabulated one beyond its table)."""
+    import materials
+
+    with _key(path, "material", "T_upper_C"):
+        return materials.with_arrhenius_above(material, T_upper)
 
 
 def _with_thermal(material, thermal):

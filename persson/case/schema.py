@@ -490,6 +490,10 @@ KEYS: tuple[Key, ...] = (
     Key("material", "Tg_C", NUMBER_OR_AUTO, "Glass transition temperature, deg C, or \"auto\" (estimated from "
         "the DMA data): below it an Arrhenius law may take over from WLF.", "none"),
     Key("material", "Tg", NUMBER_OR_AUTO, "Older spelling of `Tg_C` (accepted)."),
+    Key("material", "T_upper_C", NUMBER, "Temperature, deg C, above which the WLF shift law hands over to an "
+        "Arrhenius law, continuous in log10 aT and its slope (WLF holds up to about Tg + 100 K; Ferry 1980, ch. 11). "
+        "For flash and patch temperatures far above the DMA range; applies to a WLF law (given or fitted) and to "
+        "the continuation of `shift_factors` beyond their table.", "none"),
     Key("material", "wlf_range_C", PAIR, "Temperatures [low, high], deg C, over which the WLF law is fitted.",
         "all isotherms"),
     Key("material", "shift_options", _options_of("materials:shift_isotherms"),
