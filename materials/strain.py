@@ -677,7 +677,9 @@ def _expand_sweeps(path, expand) -> list:
     return expand(path)
 
 
-def _temperature_of(path: Path, T) -> float:
+def _temperature_of(path: Path, T, hint: str = "columns naming a temperature column") -> float:
+    """``T`` (deg C) checked, or the temperature in ``path``'s name (``T20``, ``T-5.5C``); ``hint`` says in the
+    error what else the caller accepts."""
     if T is not None:
         try:
             T = float(T)
@@ -689,7 +691,7 @@ def _temperature_of(path: Path, T) -> float:
     m = re.search(r"(?:^|[_\-\s])T_?(-?\d+(?:\.\d+)?)(?:C)?(?:$|[_\-\s])", path.stem)
     if not m:
         raise InputError(f"{path}: no temperature column and none in the file name (e.g. T20.txt); pass T= "
-                         "(deg C) or columns naming a temperature column")
+                         f"(deg C) or {hint}")
     return float(m.group(1))
 
 

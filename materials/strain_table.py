@@ -12,7 +12,6 @@ either can drive the per-scale modulus of the friction engine.
 from __future__ import annotations
 
 import math
-import re
 from pathlib import Path
 
 import numpy as np
@@ -20,9 +19,9 @@ import numpy as np
 from frictioncite import doi
 
 from ._dma_formats import expand, natural_key
-from ._tables import _norm, _role_of, read_table
+from ._tables import _column_index, _norm, _role_of, read_table
 from .errors import InputError
-from .strain import StrainFactors
+from .strain import StrainFactors, _temperature_of
 from .units import check_strains, check_temperatures, normalise_units, split_unit_suffix, to_celsius, unit_factor
 
 __all__ = ["read_strain_factors"]
@@ -114,7 +113,7 @@ def read_strain_factors(path, *, columns=None, units=None, T: float | None = Non
             check_temperatures(temp, where=f"{p}, column {table.label(j_T)}", lines=table.lines,
                                trusted="T" in units)
         elif len(files) > 1 or T is not None:
-            temp = np.full(e.size, _temperature_of(p, T))
+            temp = np.full(e.size, _temperature_of(p, T, "give every file a temperature column"))
         else:
             temp = np.full(e.size, math.nan)  # one table for every temperature
         Ts.append(temp)
@@ -151,7 +150,7 @@ def _columns(table, columns) -> dict[str, int]:
             for role, ref in columns.items():
                 if role not in ("strain", "f", "g", "T"):
                     raise InputError(f"columns: unknown role {role!r} (expected strain, f, g or T)")
-                found[role] = _index(table, ref)
+                found[role] = _column_index(table, ref)
         else:
             if isinstance(columns, str):
                 raise InputError(f"columns: expected a sequence of column names or a mapping, got {columns!r}")
@@ -198,35 +197,6 @@ def _role(name: str) -> str | None:
         return "g"
     role, _ = _role_of(name)
     return role if role in ("strain", "T") else None
-
-
-def _index(table, ref) -> int:
-    if isinstance(ref, (int, np.integer)) and not isinstance(ref, bool):
-        if not 0 <= int(ref) < table.n_columns:
-            raise InputError(f"columns: index {ref} outside the table's {table.n_columns} columns ({table.path})")
-        return int(ref)
-    if isinstance(ref, str) and table.names is not None:
-        low = [n.lower() for n in table.names]
-        if ref.lower() in low:
-            return low.index(ref.lower())
-        raise InputError(f"columns: no column {ref!r} in {table.path} (found {', '.join(table.names)})")
-    raise InputError(f"columns: expected a column name or a 0-based index, got {ref!r}")
-
-
-def _temperature_of(path: Path, T) -> float:
-    if T is not None:
-        try:
-            T = float(T)
-        except (TypeError, ValueError):
-            raise InputError(f"T: expected a temperature in deg C, got {T!r}") from None
-        if not math.isfinite(T) or T < -273.15:
-            raise InputError(f"T: expected a temperature in deg C above -273.15, got {T!r}")
-        return T
-    m = re.search(r"(?:^|[_\-\s])T_?(-?\d+(?:\.\d+)?)(?:C)?(?:$|[_\-\s])", path.stem)
-    if not m:
-        raise InputError(f"{path}: no temperature column and none in the file name (e.g. T20.txt); pass T= (deg C) "
-                         "or give every file a temperature column")
-    return float(m.group(1))
 
 
 def _grid(e, T, F, G, tol, source) -> StrainFactors:

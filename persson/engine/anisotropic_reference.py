@@ -77,9 +77,7 @@ def reference_directional_friction(surface, material, speed, direction_deg, temp
     cpsi = np.cos(psi)
 
     def weights(q):
-        """C(q, theta +- psi ...) summed over the four folded copies, at the quadrature angles."""
-        phis = (theta + psi, theta - psi, theta + math.pi - psi, theta + math.pi + psi)
-        return wpsi * sum(np.asarray(surface.C2d(q * np.cos(p), q * np.sin(p)), dtype=float) for p in phis)
+        return _folded_weights(surface, theta, psi, wpsi, q)
 
     if per_step is None:
         ref = weights(q0) / max(float(np.sum(weights(q0))), 1e-300)
@@ -95,11 +93,7 @@ def reference_directional_friction(surface, material, speed, direction_deg, temp
         c0 = float(surface.C2d(q0 * math.cos(phi_k), q0 * math.sin(phi_k)))
         lw_lo, lw_hi = math.log10(q0 * v.min()) - 0.1, math.log10(q1 * v.max()) + 0.1
         lw = np.linspace(lw_lo, lw_hi, max(8, int(math.ceil((lw_hi - lw_lo) * omega_per_decade)) + 1))
-        A, L = np.empty(lw.size), np.empty(lw.size)
-        for i in range(0, lw.size, 16):  # blocks of frequencies: vectorised, bounded memory
-            E = np.asarray(material.E(10.0 ** lw[i:i + 16, None] * cpsi, temperature), dtype=complex)
-            A[i:i + 16] = np.abs(E) ** 2 @ shape
-            L[i:i + 16] = E.imag @ (shape * cpsi)
+        A, L = _frequency_tables(material, temperature, shape, cpsi, lw)
         lnA = interpolate.CubicSpline(lw, np.log(A))
         lnL = interpolate.CubicSpline(lw, np.log(np.maximum(L, 1e-300)))
     for vi in v:
@@ -166,8 +160,7 @@ def reference_directional_flash_friction(surface, material, speed, direction_deg
     cpsi = np.cos(psi)
 
     def weights(q):
-        phis = (theta + psi, theta - psi, theta + math.pi - psi, theta + math.pi + psi)
-        return wpsi * sum(np.asarray(surface.C2d(q * np.cos(p), q * np.sin(p)), dtype=float) for p in phis)
+        return _folded_weights(surface, theta, psi, wpsi, q)
 
     shape = weights(q0)
     for qq in (math.sqrt(q0 * q1), q1):
@@ -191,11 +184,7 @@ def reference_directional_flash_friction(surface, material, speed, direction_deg
                                                  - float(material.log10_aT(temperature)))
     lw_hi = math.log10(q1 * v.max()) + 0.1
     lw = np.linspace(lw_lo, lw_hi, max(8, int(math.ceil((lw_hi - lw_lo) * omega_per_decade)) + 1))
-    A, L = np.empty(lw.size), np.empty(lw.size)
-    for i in range(0, lw.size, 16):
-        E = np.asarray(material.E(10.0 ** lw[i:i + 16, None] * cpsi, temperature), dtype=complex)
-        A[i:i + 16] = np.abs(E) ** 2 @ shape
-        L[i:i + 16] = E.imag @ (shape * cpsi)
+    A, L = _frequency_tables(material, temperature, shape, cpsi, lw)
     # one spline of both logarithms: a single evaluation per ODE step
     ln_al = interpolate.CubicSpline(lw, np.column_stack([np.log(A), np.log(np.maximum(L, 1e-300))]))
     mus, areas, layers, Ts = [], [], [], []
@@ -229,6 +218,23 @@ def reference_directional_flash_friction(surface, material, speed, direction_deg
         Ts.append(T)
     return ReferenceResult(mu=np.array(mus), contact_area=np.array(areas), excited_layer=np.array(layers),
                            q_eval=q, temperature_q=np.array(Ts))
+
+
+def _folded_weights(surface, theta: float, psi: np.ndarray, wpsi: np.ndarray, q: float) -> np.ndarray:
+    """C(q, theta +- psi ...) summed over the four folded copies, times the weights, at the quadrature angles."""
+    phis = (theta + psi, theta - psi, theta + math.pi - psi, theta + math.pi + psi)
+    return wpsi * sum(np.asarray(surface.C2d(q * np.cos(p), q * np.sin(p)), dtype=float) for p in phis)
+
+
+def _frequency_tables(material, temperature: float, shape: np.ndarray, cpsi: np.ndarray, lw: np.ndarray):
+    """sum_psi shape |E(omega cos psi)|^2 and sum_psi shape cos(psi) E''(omega cos psi) at omega = 10^lw, in blocks
+    of frequencies (vectorised, bounded memory)."""
+    A, L = np.empty(lw.size), np.empty(lw.size)
+    for i in range(0, lw.size, 16):
+        E = np.asarray(material.E(10.0 ** lw[i:i + 16, None] * cpsi, temperature), dtype=complex)
+        A[i:i + 16] = np.abs(E) ** 2 @ shape
+        L[i:i + 16] = E.imag @ (shape * cpsi)
+    return A, L
 
 
 def _angular_rule(n_psi_panels: int = 32, n_gauss: int = 8, t_split: float = 1.0, t_max: float = 24.0):
