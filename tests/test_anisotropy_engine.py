@@ -251,15 +251,25 @@ def test_a_case_file_carries_the_stretch_and_the_sliding_direction(tmp_path):
 
 
 # --- the flash temperature against the sliding direction ------------------------------------------------------
+FLASH_CORNERS = {
+    # name: (material, temperature C, pressure Pa, speeds m/s, smallest rise of the hottest scale at the top speed, K)
+    "tread, middle": (lambda: TREAD, 10.0, 0.2e6, [1e-3, 0.3, 10.0], 1.0),
+    "glassy cold fast low pressure": (glassy, -20.0, 0.02e6, [1e-2, 3.0, 30.0], 1.0),
+    "soft hot slow high pressure": (soft, 80.0, 2e6, [1e-8, 1e-3, 1.0], 0.05),
+}
+
+
 @pytest.mark.parametrize("surface", [surfaces.stretched(BASE, 1.0, 30.0), Isotropic2D(BASE)],
                          ids=["stretched by 1", "general 2-D"])
-def test_an_isotropic_psd_in_2d_reproduces_the_isotropic_flash_temperature_in_every_direction(surface):
-    v = np.array([1e-3, 0.3, 10.0])
+@pytest.mark.parametrize("corner", list(FLASH_CORNERS))
+def test_an_isotropic_psd_in_2d_reproduces_the_isotropic_flash_temperature_in_every_direction(surface, corner):
+    make, T, p, v, rise = FLASH_CORNERS[corner]
+    v = np.array(v)
     effects = [persson.effects.FlashTemperature(tol=1e-8)]
-    iso = persson.Model(BASE, TREAD, effects=effects).friction(v, temperature=10.0, pressure=0.2e6)
-    r = persson.Model(surface, TREAD, effects=effects).friction(v, temperature=10.0, pressure=0.2e6,
-                                                                 direction_deg=[0.0, 17.0, 90.0])
-    assert iso.max_flash_temperature[-1] > 1.0  # the flash temperature does something here
+    iso = persson.Model(BASE, make(), effects=effects).friction(v, temperature=T, pressure=p)
+    r = persson.Model(surface, make(), effects=effects).friction(v, temperature=T, pressure=p,
+                                                                  direction_deg=[0.0, 17.0, 90.0])
+    assert iso.max_flash_temperature[-1] > rise  # the flash temperature does something here
     for res in r.results:
         np.testing.assert_allclose(res.mu, iso.mu, rtol=1e-6)
         np.testing.assert_allclose(res.max_flash_temperature, iso.max_flash_temperature, rtol=1e-6)
@@ -301,3 +311,23 @@ def test_the_estimate_covers_the_error_where_the_shape_has_kinks_in_angle():
     err = abs(r.mu_hysteresis / fine.mu_hysteresis - 1.0)
     assert fine.error_estimate < 0.1 * err  # the converged value, by its own estimate
     assert 1e-6 < err <= 3.0 * r.error_estimate
+
+
+@pytest.mark.slow
+def test_the_flash_temperature_of_soft_rubber_hot_and_slow_matches_the_fixed_point_iteration():
+    """Soft compound at 80 C and 2 MPa sliding at 1 cm/s across the ridges of a rough road stretched 3x: the
+    corner where the rubber is rubbery and the heating small (about 1 K); reference extrapolated from 20 and 40
+    nodes per decade as above."""
+    from persson.engine.anisotropic_reference import reference_directional_flash_friction
+
+    base = surfaces.SelfAffine(hurst=0.8, q0=2 * math.pi / 5e-3, q1=1e6, hrms=0.2e-3)
+    s = surfaces.stretched(base, 3.0, 0.0)
+    kw = dict(temperature=80.0, pressure=2e6)
+    r = persson.Model(s, soft(), effects=[persson.effects.FlashTemperature(tol=1e-7)]).friction(
+        1e-2, direction_deg=90.0, **kw)
+    coarse, fine = (reference_directional_flash_friction(s, soft(), 1e-2, 90.0, nodes_per_decade=n, tol=1e-4, **kw)
+                    for n in (20, 40))
+    mu_ref = fine.mu[0] + (fine.mu[0] - coarse.mu[0]) / 3.0
+    assert np.max(fine.temperature_q) - 80.0 > 0.5
+    assert r.mu_hysteresis == pytest.approx(mu_ref, rel=1e-3)
+    assert r.max_flash_temperature == pytest.approx(np.max(fine.temperature_q) - 80.0, rel=1e-3)
