@@ -80,8 +80,8 @@ REFERENCES: dict[str, str] = {
     "arxiv:1102.5412": "A. Almqvist, C. Campana, N. Prodanov, B. N. J. Persson, Interfacial separation between "
     "elastic solids with randomly rough surfaces: comparison between theory and numerical techniques, J. Mech. "
     "Phys. Solids 59, 2355 (2011).",
-    "wang-muser:tribol-lett-65-2017": "A. Wang, M. H. Müser, Gauging Persson theory on adhesion, Tribol. Lett. 65 "
-    "(2017).",
+    "wang-muser:tribol-lett-65-2017": "A. Wang, M. H. Müser, Gauging Persson theory on adhesion, Tribol. Lett. "
+    "65(3) (2017).",
     "10.1098/rspa.1966.0242": "J. A. Greenwood, J. B. P. Williamson, Contact of nominally flat surfaces, Proc. R. "
     "Soc. A 295, 300 (1966).",
     "10.1007/BF01520701": "H. C. Booij, G. P. J. M. Thoone, Generalization of Kramers-Kronig transforms and some "
@@ -104,9 +104,12 @@ REFERENCES: dict[str, str] = {
     "under oiliness lubricating conditions, General Discussion on Lubrication and Lubricants, IMechE, vol. 2, 222 "
     "(1937).",
     "10.3390/lubricants11070277": "Study on the influence of environmental conditions on road friction "
-    "characteristics, Lubricants 11(7), 277 (2023) (Nihon University, Nagoya University, Osaka Sangyo University "
-    "and co-workers): road-friction trailer with three fixed-slip tires, load-cell force balance (Eqs. 4-10), "
-    "tire offset correction, three-point Magic Formula identification of peak and locked mu along the road.",
+    "characteristics, Lubricants 11(7), 277 (2023), published 26 June 2023 (authors not identified here; "
+    "affiliations: College of Industrial Technology, Nihon University; Consortium on Advanced Road-Friction "
+    "Database; Institute of Innovation for Future Society, Nagoya University; Faculty of Engineering, Osaka Sangyo "
+    "University; Absolute Co., Ltd.): road-friction trailer with three fixed-slip tires, load-cell force balance "
+    "(Eqs. 4-10), tire offset correction, three-point Magic Formula identification of peak and locked mu along the "
+    "road.",
     "jcgm:100-2008": "JCGM 100:2008, Evaluation of measurement data - Guide to the expression of uncertainty in "
     "measurement (GUM), section 5.1 (law of propagation of uncertainty).",
     "vonneumann:ams-12-153-1941": "J. von Neumann, R. H. Kent, H. R. Bellinson, B. I. Hart, The mean square "
