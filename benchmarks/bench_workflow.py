@@ -6,7 +6,7 @@
 * with ``--sweep``: ``persson sweep`` of the example case over 6 decade bands x 3 pressures.
 
 Each command runs in a fresh process (numba cache warm after a first untimed run), wall time from start to exit,
-and the CPU time of the process (user + system, all threads): on a machine shared with other work the wall time
+and the CPU time of the process (user + system, all threads; Python's bytecode cache on, as in an installation): on a machine shared with other work the wall time
 grows with the load while the CPU time barely does, so the CPU time is the fairer figure to compare.
 
 ``--baseline PATH`` times a second checkout (e.g. ``git worktree add /tmp/base <commit>``, or an exported tree)
@@ -31,6 +31,9 @@ ROOT = Path(__file__).resolve().parents[1]
 def timed(args: list[str], cwd: str, tree: Path) -> tuple[float, float]:
     """(wall s, CPU s) of ``python ARGS`` in a new process importing the packages of ``tree``."""
     env = dict(os.environ, PYTHONPATH=str(tree))
+    # warm caches include Python's bytecode: a shell that switches it off (PYTHONDONTWRITEBYTECODE) would make every
+    # command compile the packages' sources again (about 0.3 s), which an installed package never does
+    env.pop("PYTHONDONTWRITEBYTECODE", None)
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t = time.perf_counter()
     subprocess.run([sys.executable, *args], cwd=cwd, check=True, capture_output=True, text=True, env=env)

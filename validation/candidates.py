@@ -32,10 +32,10 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy import stats
 
 from frictioncite import doi
 
+from . import distributions
 from .errors import InputError
 from .fitting import Fitter, ParameterSpace, free_parameters, halton
 from .refit import GlobalFit, global_fit, with_uncertainty
@@ -456,7 +456,7 @@ def finish_candidate(trial: Trial, base: BaselineFit, settings: FitSettings, *, 
                      free=trial.free, baseline_parameters=base.space.values(fit.model, fit.contact) if kb else {},
                      rmse=float(np.sqrt(np.mean(r1 ** 2))), rss=rss1, bic=bic1, delta_bic=float(dbic), p_value=p,
                      test="chi2" if s.sigma_known else "F", score_z=trial.score_z,
-                     score_p=float(2 * stats.norm.sf(abs(trial.score_z))), cosine=trial.cosine,
+                     score_p=float(2 * distributions.norm_sf(abs(trial.score_z))), cosine=trial.cosine,
                      explained=float(1.0 - rss1 / rss0) if rss0 > 0 else 0.0, significant=significant, status="ok",
                      signature=trial.signature, change=f1 - base.predicted, predicted=f1, n_params=k_eff_c,
                      n_evals=trial.n_evals + fit.n_evals - trial.fit.n_evals, notes=tuple(notes),
@@ -483,9 +483,9 @@ def _likelihood_ratio_p(rss0, rss1, dfc, dfd, sigma_known) -> float:
     if rss1 >= rss0:
         return 1.0
     if sigma_known:
-        return float(stats.chi2.sf(rss0 - rss1, dfc))
+        return distributions.chi2_sf(rss0 - rss1, dfc)
     F = ((rss0 - rss1) / dfc) / max(rss1 / max(dfd, 1), 1e-300)
-    return float(stats.f.sf(F, dfc, max(dfd, 1)))
+    return distributions.f_sf(F, dfc, max(dfd, 1))
 
 
 def not_applicable(effect, measurements, contact) -> str:

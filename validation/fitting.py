@@ -18,6 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import optimize
 
+from . import distributions
 from .errors import InputError
 
 __all__ = ["FreeParameter", "ParameterSpace", "free_parameters", "contact_parameters", "contact_value", "Fitter",
@@ -487,10 +488,8 @@ class Fitter:
 
 
 def halton(k: int, n: int, seed: int = 0) -> np.ndarray:
-    """``n`` scrambled Halton points in [0, 1]^k (reproducible for a given seed), kept off the bounds."""
+    """``n`` randomized Halton points in [0, 1]^k (reproducible for a given seed), kept off the bounds
+    (:func:`validation.distributions.halton`)."""
     if k == 0 or n <= 0:
         return np.zeros((0, k))
-    from scipy.stats import qmc
-
-    pts = qmc.Halton(d=k, scramble=True, seed=seed).random(n)
-    return 0.02 + 0.96 * pts
+    return 0.02 + 0.96 * distributions.halton(k, n, seed=seed)

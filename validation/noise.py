@@ -41,10 +41,10 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import stats
 
 from frictioncite import doi
 
+from . import distributions
 from .errors import InputError
 from .measurements import Measurements
 
@@ -233,7 +233,7 @@ def lack_of_fit(residual, n_params: int, noise: NoiseEstimate) -> LackOfFit:
                          ratio=math.nan, consistent=True)
     if noise.source == "mu_std":
         chi2 = float(np.sum((r / noise.row_sigma) ** 2))
-        p = float(stats.chi2.sf(chi2, dof1))
+        p = distributions.chi2_sf(chi2, dof1)
         return LackOfFit(test="chi2", statistic=chi2, dof=(dof1, math.inf), p_value=p,
                          ratio=math.sqrt(chi2 / dof1), consistent=p >= ALPHA)
     rss = float(np.sum(r * r))
@@ -245,10 +245,10 @@ def lack_of_fit(residual, n_params: int, noise: NoiseEstimate) -> LackOfFit:
             return LackOfFit(test="none", statistic=math.nan, dof=(df_lof, df_pe), p_value=math.nan, ratio=ratio,
                              consistent=True)
         F = (max(rss - noise.pure_error, 0.0) / df_lof) / (noise.pure_error / df_pe)
-        p = float(stats.f.sf(F, df_lof, df_pe))
+        p = distributions.f_sf(F, df_lof, df_pe)
         return LackOfFit(test="F", statistic=F, dof=(df_lof, df_pe), p_value=p, ratio=ratio, consistent=p >= ALPHA)
     F = (rss / dof1) / noise.sigma ** 2
-    p = float(stats.f.sf(F, dof1, noise.dof))
+    p = distributions.f_sf(F, dof1, noise.dof)
     return LackOfFit(test="F", statistic=F, dof=(dof1, noise.dof), p_value=p, ratio=ratio, consistent=p >= ALPHA)
 
 
@@ -389,7 +389,7 @@ def _group_findings(r, m, sig, dof):
                 continue
             mean = float(np.sum(w[sel] * r[sel]) / np.sum(w[sel]))
             z = mean * math.sqrt(float(np.sum(w[sel])))
-            p = float(2 * stats.t.sf(abs(z), dof)) if math.isfinite(dof) else float(2 * stats.norm.sf(abs(z)))
+            p = 2 * distributions.t_sf(abs(z), dof) if math.isfinite(dof) else 2 * distributions.norm_sf(abs(z))
             tests.append((p, factor, lab, mean, z))
     if not tests:
         return 1.0, []
@@ -427,7 +427,7 @@ def _runs_finding(r, m, sig, dof):
     if V <= 0:
         return 1.0, []
     z = (R - E) / math.sqrt(V)
-    p = float(stats.norm.cdf(z))
+    p = distributions.norm_cdf(z)
     if p >= _FAMILY_ALPHA:
         return p, []
     return p, [(p, f"the residual keeps its sign along the series ({R:.0f} sign runs where {E:.0f} are expected "
@@ -454,9 +454,9 @@ def _trend_findings(r, m, sig, dof):
         ss = float(np.sum((A @ coef) ** 2))     # explained, in noise units
         k = deg + 1
         if math.isfinite(dof):
-            p = float(stats.f.sf(ss / k, k, dof))
+            p = distributions.f_sf(ss / k, k, dof)
         else:
-            p = float(stats.chi2.sf(ss, k))
+            p = distributions.chi2_sf(ss, k)
         tt = np.linspace(-1, 1, 201)
         curve = np.vander(tt, deg + 1) @ coef
         xx = 0.5 * (lo + hi) + tt * 0.5 * (hi - lo)

@@ -151,9 +151,10 @@ class Predictor:
                 self.n_calls = other.n_calls
         if not (hasattr(model, "friction") and hasattr(model, "effect_names")):
             raise InputError(f"model: expected a persson.Model, got {type(model).__name__}")
-        from persson.solver import reuse_solutions
+        from persson.solver import friction_only, reuse_solutions
 
-        with reuse_solutions(self._solutions):
+        # predictions read the friction alone: the contact geometry of each result would cost a fifth of a solve
+        with reuse_solutions(self._solutions), friction_only():
             return self._predict(model)
 
     def _predict(self, model) -> Prediction:

@@ -288,7 +288,7 @@ class FixedPoint(NamedTuple):
     tol : float
         Converged when max |T_new - T| over the nodes is below it, K.
     max_iter : int
-        Iterations of the first start (residual-growth relaxation) and of the second (Aitken's relaxation).
+        Iterations of the first start (Anderson mixing) and of the second (Aitken's relaxation).
     """
 
     tol: float

@@ -245,7 +245,9 @@ class Model:
         out = _shape
         C_nodes = np.asarray(surface.C(solved.q), dtype=float)
         hrms = math.sqrt(solver.psd_moment(surface, solved.q, 1))
-        if hrms > 0:
+        if not solver.wants_contact_geometry():  # inside solver.friction_only(): the friction alone
+            u_bar = depth = None
+        elif hrms > 0:
             u_bar, per_load = solver.derived(
                 solved, ("separation_and_energy", self.gamma, self.correction),
                 lambda: separation.separation_and_energy(solved.q, C_nodes, solved.G, self.gamma,
@@ -264,8 +266,8 @@ class Model:
             contact_area=out(solved.P[:, -1], scalar),
             q=solved.q, area_q=solved.P, G_q=solved.G, temperature_q=solved.T_q, dmu_dlnq=solved.dmu,
             max_flash_temperature=out(np.max(solved.T_q, axis=1) - T0, scalar),
-            mean_separation=out(u_bar, scalar),
-            penetration_depth=out(depth, scalar),
+            mean_separation=None if u_bar is None else out(u_bar, scalar),
+            penetration_depth=None if depth is None else out(depth, scalar),
             excited_layer_thickness=out(solved.excited_layer, scalar),
             mu_cumulative=solved.mu_cumulative * np.broadcast_to(np.asarray(load_share, dtype=float), v.shape)[:, None],
             load_share=out(np.broadcast_to(np.asarray(load_share, dtype=float), v.shape).copy(), scalar),

@@ -31,7 +31,7 @@ from .quadrature import cumulative_moment, psd_breakpoints, psd_moment, quadratu
 from .tabulate import angular_table, relative_shifts, shift_table
 
 __all__ = ["Solved", "Prepared", "solve", "prepare", "run_plain", "run_flash", "run_temperature",
-           "temperature_options", "reuse_solutions"]
+           "temperature_options", "reuse_solutions", "friction_only"]
 
 #: Speeds below which a call runs on one thread (thread start-up costs more than it saves). The flash solver
 #: costs milliseconds per speed, so it goes parallel from two speeds.
@@ -196,6 +196,27 @@ def reuse_solutions(memo: OrderedDict | None = None, size: int = 8):
     finally:
         _MEMO.reset(token)
 
+
+@contextlib.contextmanager
+def friction_only():
+    """Inside this context, :meth:`persson.Model.friction` skips the contact geometry: the mean separation and
+    the penetration depth (their own quadrature over q, about a fifth of a plain solve) are left out, and the
+    results carry None there. For callers that read the friction alone many times over, such as the fits of the
+    diagnosis; everything else in the result is unchanged."""
+    token = _FRICTION_ONLY.set(True)
+    try:
+        yield
+    finally:
+        _FRICTION_ONLY.reset(token)
+
+
+def wants_contact_geometry() -> bool:
+    """False inside :func:`friction_only`."""
+    return not _FRICTION_ONLY.get()
+
+
+#: Set by :func:`friction_only`.
+_FRICTION_ONLY: contextvars.ContextVar = contextvars.ContextVar("persson_friction_only", default=False)
 
 #: The store of :func:`reuse_solutions` in the current context (None: every call solves).
 _MEMO: contextvars.ContextVar = contextvars.ContextVar("persson_solver_memo", default=None)
