@@ -56,6 +56,7 @@ import math
 import numpy as np
 from numba import njit, prange
 
+from .jit import serial_twin
 from .kernel_arrays import (AngularShape, AngularTables, ContactLaw, FixedPoint, FlashSpeeds, HeatSource, Nodes,
                             Outputs, QuadratureRule, SpeedFactors, TemperatureTables)
 
@@ -760,7 +761,7 @@ def _friction_all(nodes, rule, speeds, angular, shape, law, coarse, coarse_rule,
 #: Hysteresis friction and contact area of every speed, in parallel over the speeds (see :func:`_friction_all`).
 friction_parallel = njit(cache=True, parallel=True)(_friction_all)
 #: The same on one thread, for calls with few speeds (no thread start-up).
-friction_serial = njit(cache=True)(_friction_all)
+friction_serial = njit(cache=True)(serial_twin(_friction_all))
 
 
 # ==================================================================================================== flash temperature
@@ -818,7 +819,7 @@ def _flash_all(nodes, rule, speeds, angular, shape, law, temperature, heat, iter
 #: Flash-temperature solver for every speed, in parallel over the speeds (see :func:`_flash_all`).
 flash_parallel = njit(cache=True, parallel=True)(_flash_all)
 #: The same on one thread, for calls with few speeds.
-flash_serial = njit(cache=True)(_flash_all)
+flash_serial = njit(cache=True)(serial_twin(_flash_all))
 
 
 @njit(cache=True)

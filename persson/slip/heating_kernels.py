@@ -21,6 +21,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
+from ..engine.jit import serial_twin
 from .heating_arrays import MarchOutputs
 
 
@@ -60,7 +61,7 @@ def _march_all(rows, patch, lattice, axis, profiles):
 
 #: The march on every row in parallel (prange over the rows), and on one thread for few rows.
 _march_parallel = njit(cache=True, parallel=True)(_march_all)
-_march_serial = njit(cache=True)(_march_all)
+_march_serial = njit(cache=True)(serial_twin(_march_all))
 
 
 @njit(cache=True)
