@@ -194,8 +194,11 @@ class DirectionalFriction:
         return self.results[k]
 
     def as_table(self) -> dict[str, np.ndarray]:
-        """Columns ``direction_deg, speed_m_s, T_C, pressure_Pa, mu, mu_hysteresis, mu_adhesion, contact_area,
-        error_estimate``, one row per direction and speed."""
+        """Columns ``direction_deg``, then those of :meth:`persson.FrictionResult.as_table` (``speed_m_s, T_C,
+        pressure_Pa, mu, mu_hysteresis, mu_adhesion, contact_area, max_flash_temperature_K`` -- the flash
+        temperature RISE above ``T_C``, K, not an absolute temperature -- and the contact geometry where computed),
+        and ``error_estimate``, one row per direction and speed. A file written from it should carry
+        :data:`persson.engine.results.FLASH_RISE_COMMENT` above its header, as ``persson friction`` does."""
         rows: dict[str, list] = {}
         for th, r in zip(self.direction_deg, self.results):
             cols = {"direction_deg": np.full(r.speed.size, th)} | r.as_table()
