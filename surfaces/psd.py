@@ -26,7 +26,7 @@ from frictioncite import doi
 from ._util import atomic_write_text
 from ._util import finite_float, positive, powerlaw_segments_integral
 from .errors import InputError
-from .powerlaw import self_affine_line
+from .powerlaw import rolloff_line, self_affine_line
 
 __all__ = ["SelfAffine", "PSD", "Cutoffs", "read_psd"]
 
@@ -380,7 +380,11 @@ class PSD:
         hurst : float, optional
             Hurst exponent of the tail. Default: fitted (log-log least squares) on ``fit_band``.
         fit_band : (float, float), optional
-            Band (rad/m) for the fit of H; default the last decade below ``q_s``.
+            Band (rad/m) for the fit of H. Default: the last decade below ``q_s``, above the roll-off where the PSD
+            records one (``q_rolloff``: the flat part below it is not the tail's power law); where that band is not
+            self-affine (a roll-off inside it that the PSD does not record), the roll-off law -- flat below
+            :math:`q_0`, the power law above -- fitted on the whole table below ``q_s``
+            (:func:`surfaces.powerlaw.rolloff_line`), whose H is that of the part above the roll-off.
         n_per_decade : int
             Points per decade of the new tail.
 
@@ -394,9 +398,7 @@ class PSD:
         if q1 <= q_s * (1 + 1e-9):
             return self.with_cutoff(q1=q1)
         if hurst is None:
-            lo, hi = fit_band if fit_band is not None else (q_s / 10.0, q_s)
-            hurst = self_affine_line(self.q, self.C_values, "isotropic", max(lo, self.q0), min(hi, q_s),
-                                     where=self.source or type(self).__name__).hurst
+            hurst = self._tail_hurst(q_s, fit_band)
         H = finite_float(hurst, "hurst")
         if not 0.0 < H <= 1.0:
             raise InputError(f"hurst: expected 0 < H <= 1 for the extrapolated tail, got {H:g}")
@@ -406,6 +408,24 @@ class PSD:
         C_tail = measured.C_values[-1] * (q_tail / q_s) ** (-2.0 * (1.0 + H))
         return PSD(np.concatenate([measured.q, q_tail]), np.concatenate([measured.C_values, C_tail]), q_r=q_s,
                    extrapolated=True, source=self.source, qL=self.qL, q_rolloff=self.q_rolloff, hurst=H)
+
+    def _tail_hurst(self, q_s: float, fit_band) -> float:
+        """H of the tail for :meth:`extrapolate` (see its ``fit_band``)."""
+        where = self.source or type(self).__name__
+        if fit_band is not None:
+            lo, hi = fit_band
+            return self_affine_line(self.q, self.C_values, "isotropic", max(lo, self.q0), min(hi, q_s),
+                                    where=where).hurst
+        lo = q_s / 10.0
+        if self.q_rolloff is not None and lo < self.q_rolloff < q_s:
+            lo = self.q_rolloff
+        try:
+            return self_affine_line(self.q, self.C_values, "isotropic", max(lo, self.q0), q_s, where=where).hurst
+        except InputError as first:
+            try:
+                return rolloff_line(self.q, self.C_values, "isotropic", None, q_s, where=where).hurst
+            except InputError:
+                raise first from None
 
     def to_csv(self, path, *, overwrite: bool = False) -> Path:
         """Write the PSD table of ``docs/conventions.md`` (``q,C`` with ``#`` metadata comments), atomically.

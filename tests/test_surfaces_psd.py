@@ -132,6 +132,26 @@ def test_extrapolate_tail_and_flags():
     assert steep.C(1e6) / steep.C(5e4) == pytest.approx((1e6 / 5e4) ** (-3.0), rel=1e-9)
 
 
+def test_extrapolate_fits_the_tail_above_a_rolloff_inside_the_last_decade():
+    """A short scan whose roll-off lies in its last decade (a fine sandpaper measured to 4e4 rad/m, roll-off at
+    2.9e4): the last decade is mostly the plateau, whose log-log line is not the tail's power law. With the
+    roll-off recorded, H comes from the part above it; without, from the roll-off law fitted on the table. Both
+    against the closed form C = C0 (q/q0)^(-2(1+H)), H = 0.8."""
+    H, q0, C0 = 0.8, 2.9e4, 1e-22
+    q = np.geomspace(2.4e3, 4e4, 22)
+    C = C0 * np.where(q < q0, 1.0, (q / q0) ** (-2 * (1 + H)))
+    truth = C0 * (np.array([1e5, 6e5]) / q0) ** (-2 * (1 + H))
+    with pytest.raises(surfaces.InputError, match="not self-affine"):   # the old default band
+        surfaces.PSD(q, C).extrapolate(6e5, fit_band=(4e3, 4e4))
+    for psd in (surfaces.PSD(q, C, q_rolloff=q0), surfaces.PSD(q, C)):
+        ext = psd.extrapolate(6e5)
+        assert ext.hurst == pytest.approx(H, abs=1e-6)
+        np.testing.assert_allclose(ext.C([1e5, 6e5]), truth, rtol=1e-5)
+    # a table with no power law at all is still refused
+    with pytest.raises(surfaces.InputError, match="not self-affine"):
+        surfaces.PSD(q, np.full(q.size, C0)).extrapolate(6e5)
+
+
 def test_selfaffine_carries_cutoffs():
     c = SURFACE.cutoffs
     assert (c.qL, c.q0, c.q_r, c.q1, c.extrapolated) == (1e2, 1e3, None, 1e6, False)
