@@ -258,7 +258,8 @@ class Microtexture(Effect):
 
     (self-affine fractal PSD, Persson et al., J. Phys.: Condens. Matter 17, R1 (2005), Eq. 10), through
     :meth:`surfaces.PSD.extrapolate`: H is fitted on the last decade below q_r (or the table end) by least
-    squares in log-log, unless given. A :class:`surfaces.SelfAffine` continues its own power law.
+    squares in log-log, above the roll-off where that lies inside the decade, unless given. A
+    :class:`surfaces.SelfAffine` continues its own power law.
 
     Parameters
     ----------
