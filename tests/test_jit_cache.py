@@ -10,11 +10,11 @@ import pytest
 from persson.engine import kernels
 from persson.slip import heating_kernels
 
-PAIRS = [(kernels.friction_parallel, kernels.friction_serial), (kernels.flash_parallel, kernels.flash_serial),
+PAIRS = [(kernels.friction_parallel, kernels.friction_serial),
          (heating_kernels._march_parallel, heating_kernels._march_serial)]
 
 
-@pytest.mark.parametrize("parallel, serial", PAIRS, ids=["friction", "flash", "march"])
+@pytest.mark.parametrize("parallel, serial", PAIRS, ids=["friction", "march"])
 def test_parallel_and_serial_kernels_are_cached_apart(parallel, serial):
     assert parallel.targetoptions.get("parallel") and not serial.targetoptions.get("parallel")
     assert parallel.py_func.__qualname__ != serial.py_func.__qualname__

@@ -34,7 +34,7 @@ __all__ = ["Solved", "Prepared", "solve", "prepare", "run_plain", "run_flash", "
            "temperature_options", "reuse_solutions", "friction_only"]
 
 #: Speeds below which a call runs on one thread (thread start-up costs more than it saves). The flash solver
-#: costs milliseconds per speed, so it goes parallel from two speeds.
+#: costs milliseconds per speed, so it always runs in parallel, and its final friction evaluation from two speeds.
 _PARALLEL_MIN_SPEEDS = 16
 _PARALLEL_MIN_SPEEDS_FLASH = 2
 #: Most halvings of the first wavevector step towards q0 with the flash temperature (see :func:`_graded_nodes`).
@@ -798,19 +798,19 @@ def _flash(prep, q_m, a_t0, D, heat_factor, tol, max_iter, T_start=None):
     EX = erfcx(2.0 * prep.q[None, :] * np.sqrt(a_t0)[:, None])
     st = prep.shift_table
     S1, S2 = _kernels.heat_kernel_factors(prep.q)
-    kern = _kernels.flash_parallel if nv >= _PARALLEL_MIN_SPEEDS_FLASH else _kernels.flash_serial
-    kern(nodes=prep.kernel_nodes, rule=prep.quad,
-         speeds=_kernels.FlashSpeeds(lv10=prep.lv10, v=prep.v, scale=prep.scale, T0=prep.T0,
-                                           T_start=np.ascontiguousarray(T_start, dtype=float)),
-         angular=prep.kernel_angular, shape=prep.kernel_shape, law=prep.law,
-         temperature=_kernels.TemperatureTables(T_lo=st.T_lo, inv_dT=1.0 / st.dT, shift=st.shift,
-                                                      vshift=st.vshift, f=prep.f_tab, g=prep.g_tab),
-         heat=_kernels.HeatSource(erfcx=np.ascontiguousarray(EX), S1=S1, S2=S2,
-                                        a_t0=np.ascontiguousarray(a_t0, dtype=float), D=float(D),
-                                        heat_factor=np.ascontiguousarray(heat_factor, dtype=float),
-                                        x_m=math.log(q_m)),
-         iteration=_kernels.FixedPoint(tol=float(tol), max_iter=int(max_iter)),
-         out=out, T_out=T_q, it_out=it, res_out=res)
+    _kernels.flash_parallel(
+        nodes=prep.kernel_nodes, rule=prep.quad,
+        speeds=_kernels.FlashSpeeds(lv10=prep.lv10, v=prep.v, scale=prep.scale, T0=prep.T0,
+                                    T_start=np.ascontiguousarray(T_start, dtype=float)),
+        angular=prep.kernel_angular, shape=prep.kernel_shape, law=prep.law,
+        temperature=_kernels.TemperatureTables(T_lo=st.T_lo, inv_dT=1.0 / st.dT, shift=st.shift,
+                                               vshift=st.vshift, f=prep.f_tab, g=prep.g_tab),
+        heat=_kernels.HeatSource(erfcx=np.ascontiguousarray(EX), S1=S1, S2=S2,
+                                 a_t0=np.ascontiguousarray(a_t0, dtype=float), D=float(D),
+                                 heat_factor=np.ascontiguousarray(heat_factor, dtype=float),
+                                 x_m=math.log(q_m)),
+        iteration=_kernels.FixedPoint(tol=float(tol), max_iter=int(max_iter)),
+        out=out, T_out=T_q, it_out=it, res_out=res)
     return out, T_q, it, res
 
 
