@@ -1,22 +1,59 @@
-"""Each kernel compiled in parallel and on one thread has its own entry in numba's on-disk cache.
+"""The engine's kernels run their speeds (or rows) in interleaved shares on threads, compiled once.
 
-numba keys a cached function by its qualified name and first line, not by ``parallel=True``: two compilations
-of one Python function would share one entry, and a cache filled by a one-thread process would serve the serial
-code to the parallel dispatcher (every "parallel" kernel then ran on one thread).
+A ``parallel=True`` compilation would cost as much again as the serial one on every first run, and numba keys
+its on-disk cache by a function's name and line only, so a serial and a parallel compilation of one function
+shared one entry (a cache filled by a one-thread process made every "parallel" kernel serial). The kernels are
+compiled once, without ``parallel``, releasing the GIL; :func:`persson.engine.jit.threaded` runs the shares.
 """
 
+import numpy as np
 import pytest
 
-from persson.engine import kernels
+import materials
+import persson
+import surfaces
+from persson.engine import jit, kernels
 from persson.slip import heating_kernels
 
-PAIRS = [(kernels.friction_parallel, kernels.friction_serial),
-         (heating_kernels._march_parallel, heating_kernels._march_serial)]
+KERNELS = [kernels.friction_kernel, kernels.flash_kernel, heating_kernels._march_kernel]
 
 
-@pytest.mark.parametrize("parallel, serial", PAIRS, ids=["friction", "march"])
-def test_parallel_and_serial_kernels_are_cached_apart(parallel, serial):
-    assert parallel.targetoptions.get("parallel") and not serial.targetoptions.get("parallel")
-    assert parallel.py_func.__qualname__ != serial.py_func.__qualname__
-    assert parallel.py_func.__code__ is serial.py_func.__code__          # the same code, compiled twice
-    assert serial.py_func.__doc__ == parallel.py_func.__doc__
+@pytest.mark.parametrize("kernel", KERNELS, ids=["friction", "flash", "march"])
+def test_kernels_are_compiled_once_without_parallel_and_release_the_gil(kernel):
+    assert not kernel.targetoptions.get("parallel") and kernel.targetoptions.get("nogil")
+
+
+def test_threaded_runs_every_share_once_with_the_calling_thread_taking_the_first(monkeypatch):
+    seen = []
+
+    def kernel(*, out, first, stride):
+        seen.append((first, stride))
+        out[first::stride] += 1.0
+
+    for threads in (1, 2, 3):
+        seen.clear()
+        out = np.zeros(7)
+        monkeypatch.setattr(jit, "_numba_threads", lambda t=threads: t)   # the thread count numba would give
+        jit.threaded(kernel, out.size, min_items=2, out=out)
+        np.testing.assert_array_equal(out, np.ones(7))                 # each item exactly once
+        assert sorted(seen) == [(k, threads) if threads > 1 else (0, 1) for k in range(threads)]
+    seen.clear()
+    jit.threaded(kernel, 1, min_items=2, out=np.zeros(1))             # too few items: one share, here
+    assert seen == [(0, 1)]
+
+
+def test_results_do_not_depend_on_the_number_of_threads():
+    import numba
+
+    m = persson.Model(surfaces.example_road(), materials.example_tread(), effects=[persson.effects.FlashTemperature()])
+    v = np.geomspace(1e-4, 3.0, 24)
+    before = numba.get_num_threads()
+    try:
+        numba.set_num_threads(1)
+        one = m.friction(v)
+        numba.set_num_threads(min(2, numba.config.NUMBA_NUM_THREADS))
+        many = m.friction(v)
+    finally:
+        numba.set_num_threads(before)
+    np.testing.assert_array_equal(one.mu, many.mu)
+    np.testing.assert_array_equal(one.temperature_q, many.temperature_q)

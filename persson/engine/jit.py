@@ -1,26 +1,72 @@
-"""Compiling one kernel both in parallel and on one thread, each with its own entry in numba's on-disk cache.
+"""Running a numba kernel over independent speeds (or rows) on several threads.
 
-numba names a function's cache files after its qualified name and first line, and keys the entries inside by the
-signature and the machine, not by the compilation flags (``numba.core.caching._CacheImpl``,
-``IndexDataCacheFile._index_key``, numba 0.58-0.68). ``njit(cache=True, parallel=True)(f)`` and
-``njit(cache=True)(f)`` of one function therefore share one entry: whichever is compiled first is loaded for both
-afterwards, and a cache filled by a one-thread process (a test run) left every "parallel" kernel serial, at half
-the speed on two cores. :func:`serial_twin` gives the one-thread compilation a function of its own name.
+The kernels loop over their problems with a start and a stride (``first``, ``stride``) and are compiled once,
+without ``parallel=True``, releasing the GIL (``nogil=True``): :func:`threaded` runs the shares
+``first = 0, 1, ..., T - 1`` with stride T on T threads, each writing its own rows of the outputs. Interleaved
+shares balance problems whose cost grows along the list (speeds sorted by value: hot, slow-to-converge flash
+temperatures at the fast end).
+
+Why not ``prange``: a ``parallel=True`` compilation costs as much again as the serial one (4.8 s more for the
+friction kernel, 13 s for the flash kernel on the development machine), paid on every first run, and numba keys
+its on-disk cache by the function's name and line, not by its flags, so a serial and a parallel compilation of
+one function shared one cache entry (whichever was compiled first served both: a cache filled by a one-thread
+process made every "parallel" kernel serial). Threads also leave nothing spinning between calls.
+
+The number of threads is numba's (``NUMBA_NUM_THREADS``, or ``numba.set_num_threads``), so that settings made for
+numba, e.g. one thread per process in a distributed sweep, apply here as well.
 """
 
 from __future__ import annotations
 
-import types
+import concurrent.futures
+import threading
 
-__all__ = ["serial_twin"]
+__all__ = ["threaded"]
 
 
-def serial_twin(func: types.FunctionType) -> types.FunctionType:
-    """A copy of the plain Python function ``func`` (same code, globals and docstring) named ``<name>_serial``, to be
-    compiled without ``parallel=True`` next to ``func`` compiled with it."""
-    twin = types.FunctionType(func.__code__, func.__globals__, func.__name__ + "_serial", func.__defaults__,
-                              func.__closure__)
-    twin.__qualname__ = func.__qualname__ + "_serial"
-    twin.__doc__ = func.__doc__
-    twin.__module__ = func.__module__
-    return twin
+def threaded(kernel, n: int, *, min_items: int = 2, **arguments) -> None:
+    """``kernel(**arguments, first=k, stride=T)`` for k = 0 .. T-1 on T threads (the calling thread takes k = 0).
+
+    Parameters
+    ----------
+    kernel : numba dispatcher
+        Compiled with ``nogil=True``; loops over its problems ``first, first + stride, ...`` and writes only their
+        rows of the outputs.
+    n : int
+        Number of problems.
+    min_items : int
+        Fewer problems than this run on the calling thread alone (starting threads would cost more than it saves).
+    **arguments
+        The kernel's other arguments, by keyword.
+    """
+    threads = min(_numba_threads(), int(n))
+    if threads <= 1 or n < min_items:
+        kernel(**arguments, first=0, stride=1)
+        return
+    pool = _pool(threads - 1)
+    futures = [pool.submit(kernel, **arguments, first=k, stride=threads) for k in range(1, threads)]
+    try:
+        kernel(**arguments, first=0, stride=threads)
+    finally:
+        for f in futures:
+            f.result()
+
+
+def _numba_threads() -> int:
+    import numba
+
+    return int(numba.get_num_threads())
+
+
+def _pool(workers: int) -> concurrent.futures.ThreadPoolExecutor:
+    """A thread pool of ``workers`` threads, kept for the next calls (threads are reused, not started per call)."""
+    with _POOL_LOCK:
+        pool = _POOLS.get(workers)
+        if pool is None:
+            pool = _POOLS[workers] = concurrent.futures.ThreadPoolExecutor(max_workers=workers,
+                                                                          thread_name_prefix="persson-kernel")
+        return pool
+
+
+_POOLS: dict[int, concurrent.futures.ThreadPoolExecutor] = {}
+_POOL_LOCK = threading.Lock()

@@ -54,17 +54,16 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit, prange
+from numba import njit
 
-from .jit import serial_twin
 from .kernel_arrays import (AngularShape, AngularTables, ContactLaw, FixedPoint, FlashSpeeds, HeatSource, Nodes,
                             Outputs, QuadratureRule, SpeedFactors, TemperatureTables)
 
 __all__ = ["QuadratureRule", "ContactLaw", "AngularTables", "AngularShape", "Nodes", "SpeedFactors", "Outputs",
            "angular_convolution", "angular_at", "shape_factors", "cumulative_weighted", "area", "contact_weight",
            "interval_node_weights", "friction_cumulative", "linear_at", "scale_factors", "contact_and_friction",
-           "friction_parallel", "friction_serial", "heat_matrix", "integrands_at", "heated_temperature",
-           "flash_parallel", "heat_kernel", "heat_kernel_factors", "FlashSpeeds", "TemperatureTables",
+           "friction_kernel", "heat_matrix", "integrands_at", "heated_temperature",
+           "flash_kernel", "heat_kernel", "heat_kernel_factors", "FlashSpeeds", "TemperatureTables",
            "HeatSource", "FixedPoint"]
 
 
@@ -721,10 +720,9 @@ def _coarse_mu(q, K, R, law, index, rule):
 
 
 def _friction_all(nodes, rule, speeds, angular, shape, law, coarse, coarse_rule, coarser, coarser_rule, out, mu_coarse,
-                  mu_coarser):
-    """Hysteresis friction and contact area of every speed at its background temperature, one speed per
-    iteration of a ``prange`` loop (see :func:`_solve_speed`; the loop body only calls it: numba's parallel loops
-    lose writes made through a named tuple's field in the body itself).
+                  mu_coarser, first, stride):
+    """Hysteresis friction and contact area of the speeds ``first, first + stride, ...`` at their background
+    temperature (see :func:`_solve_speed`): one thread's share (:func:`persson.engine.jit.threaded`).
 
     Parameters
     ----------
@@ -752,16 +750,19 @@ def _friction_all(nodes, rule, speeds, angular, shape, law, coarse, coarse_rule,
         Filled for every speed.
     mu_coarse, mu_coarser : ndarray (n_speed,)
         Filled with mu on ``coarse`` and on ``coarser`` (left alone without sub-grids).
+    first : int
+        The first speed of this share.
+    stride : int
+        Step between the speeds of this share (the number of shares).
     """
-    for iv in prange(speeds.lv10.shape[0]):
+    for iv in range(first, speeds.lv10.shape[0], stride):
         _solve_speed(iv, nodes, rule, speeds, angular, shape, law, coarse, coarse_rule, coarser, coarser_rule, out,
                      mu_coarse, mu_coarser)
 
 
-#: Hysteresis friction and contact area of every speed, in parallel over the speeds (see :func:`_friction_all`).
-friction_parallel = njit(cache=True, parallel=True)(_friction_all)
-#: The same on one thread, for calls with few speeds (no thread start-up).
-friction_serial = njit(cache=True)(serial_twin(_friction_all))
+#: Hysteresis friction and contact area of a share of the speeds (see :func:`_friction_all`); releases the GIL, so
+#: that :func:`persson.engine.jit.threaded` runs the shares on several threads.
+friction_kernel = njit(cache=True, nogil=True)(_friction_all)
 
 
 # ==================================================================================================== flash temperature
@@ -777,10 +778,10 @@ friction_serial = njit(cache=True)(serial_twin(_friction_all))
 _MIN_RELAX = 1e-4
 
 
-def _flash_all(nodes, rule, speeds, angular, shape, law, temperature, heat, iteration, out, T_out, it_out, res_out):
-    """The self-consistent flash temperature and the friction of every speed, one speed per iteration of a
-    ``prange`` loop (see :func:`_flash_speed`; the loop body only calls it: numba's parallel loops lose writes
-    made through a named tuple's field in the body itself).
+def _flash_all(nodes, rule, speeds, angular, shape, law, temperature, heat, iteration, out, T_out, it_out, res_out,
+               first, stride):
+    """The self-consistent flash temperature and the friction of the speeds ``first, first + stride, ...`` (see
+    :func:`_flash_speed`): one thread's share (:func:`persson.engine.jit.threaded`).
 
     Parameters
     ----------
@@ -810,16 +811,19 @@ def _flash_all(nodes, rule, speeds, angular, shape, law, temperature, heat, iter
         Filled with the iterations used.
     res_out : ndarray (n_speed,)
         Filled with the last max |T_new - T|, K.
+    first : int
+        The first speed of this share.
+    stride : int
+        Step between the speeds of this share (the number of shares).
     """
-    for iv in prange(speeds.lv10.shape[0]):
+    for iv in range(first, speeds.lv10.shape[0], stride):
         _flash_speed(iv, nodes, rule, speeds, angular, shape, law, temperature, heat, iteration, out, T_out, it_out,
                      res_out)
 
 
-#: Flash-temperature solver for every speed, in parallel over the speeds (see :func:`_flash_all`). There is no
-#: one-thread twin: a speed costs milliseconds, so a parallel loop over one speed is as fast as a serial one (3.2-3.9
-#: ms either way on the example road), and a twin would cost about 5 s of compilation on a first run.
-flash_parallel = njit(cache=True, parallel=True)(_flash_all)
+#: Flash-temperature solver for a share of the speeds (see :func:`_flash_all`); releases the GIL, so that
+#: :func:`persson.engine.jit.threaded` runs the shares on several threads.
+flash_kernel = njit(cache=True, nogil=True)(_flash_all)
 
 
 @njit(cache=True)

@@ -6,7 +6,7 @@ friction, the temperature at each scale and a quadrature-error estimate per spee
 integration in log frequency), the contact weight S(P) P dG integrated exactly in G, and an embedded coarse-grid
 estimate of the q-quadrature error. With a temperature effect the solver asks the effect for its settings
 (``temperature_solver_options``, a :class:`~persson.engine.conditions.TemperatureSolverOptions`) and runs the
-self-consistent flash temperature itself (:func:`run_temperature`, :func:`persson.engine.kernels.flash_parallel`).
+self-consistent flash temperature itself (:func:`run_temperature`, :func:`persson.engine.kernels.flash_kernel`).
 """
 
 from __future__ import annotations
@@ -26,6 +26,7 @@ from . import kernels as _kernels
 from .conditions import Conditions, TemperatureSolverOptions
 from ..errors import ConvergenceWarning, InputError
 from .grid import GridSettings
+from .jit import threaded
 from ..notes import Note
 from .quadrature import cumulative_moment, psd_breakpoints, psd_moment, quadrature_rule  # noqa: F401 (public here too)
 from .tabulate import angular_table, relative_shifts, shift_table
@@ -33,8 +34,8 @@ from .tabulate import angular_table, relative_shifts, shift_table
 __all__ = ["Solved", "Prepared", "solve", "prepare", "run_plain", "run_flash", "run_temperature",
            "temperature_options", "reuse_solutions", "friction_only"]
 
-#: Speeds below which a call runs on one thread (thread start-up costs more than it saves). The flash solver
-#: costs milliseconds per speed, so it always runs in parallel, and its final friction evaluation from two speeds.
+#: Speeds below which a call runs on one thread (handing shares to threads costs more than it saves). The flash
+#: solver costs milliseconds per speed, so it goes to threads from two speeds.
 _PARALLEL_MIN_SPEEDS = 16
 _PARALLEL_MIN_SPEEDS_FLASH = 2
 #: Most halvings of the first wavevector step towards q0 with the flash temperature (see :func:`_graded_nodes`).
@@ -529,21 +530,20 @@ def _graded_nodes(q: np.ndarray, surface, table, lw_speed: np.ndarray, ln_b: np.
 
 def run_plain(prep: Prepared, *, estimate: bool = True) -> Solved:
     """Hysteresis friction and contact area at the background temperature of each speed
-    (:func:`persson.engine.kernels.friction_parallel`), with the three-level error estimate (``estimate=False``:
+    (:func:`persson.engine.kernels.friction_kernel`), with the three-level error estimate (``estimate=False``:
     without it, the error estimate zero; the anisotropic engine's coarser angular grids need mu alone)."""
     nv, nq = prep.n_speed, prep.q.size
     out = _outputs(nv, nq)
     mu_c = np.zeros(nv)
     mu_cc = np.zeros(nv)
     skip = np.zeros(0, dtype=np.int64)
-    kern = _kernels.friction_parallel if nv >= _PARALLEL_MIN_SPEEDS else _kernels.friction_serial
-    kern(nodes=prep.kernel_nodes, rule=prep.quad,
-         speeds=_kernels.SpeedFactors(lv10=prep.lv10, scale=prep.scale, shift=prep.shift, vshift=prep.vshift,
-                                      f=prep.fq, g=prep.gq),
-         angular=prep.kernel_angular, shape=prep.kernel_shape, law=prep.law,
-         coarse=prep.coarse if estimate else skip, coarse_rule=prep.quad_coarse,
-         coarser=prep.coarser if estimate else skip, coarser_rule=prep.quad_coarser, out=out, mu_coarse=mu_c,
-         mu_coarser=mu_cc)
+    threaded(_kernels.friction_kernel, nv, min_items=_PARALLEL_MIN_SPEEDS, nodes=prep.kernel_nodes, rule=prep.quad,
+             speeds=_kernels.SpeedFactors(lv10=prep.lv10, scale=prep.scale, shift=prep.shift, vshift=prep.vshift,
+                                          f=prep.fq, g=prep.gq),
+             angular=prep.kernel_angular, shape=prep.kernel_shape, law=prep.law,
+             coarse=prep.coarse if estimate else skip, coarse_rule=prep.quad_coarse,
+             coarser=prep.coarser if estimate else skip, coarser_rule=prep.quad_coarser, out=out, mu_coarse=mu_c,
+             mu_coarser=mu_cc)
     T_q = np.repeat(prep.T0[:, None], nq, axis=1)
     ok = np.ones(nv, dtype=bool)
     err = _relative_error(out.mu, mu_c, mu_cc) if estimate else np.zeros(nv)
@@ -771,17 +771,16 @@ def _between_nodes(tab: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.ndarr
 def _friction_at(prep: Prepared, shift: np.ndarray, vshift: np.ndarray, f: np.ndarray, g: np.ndarray) -> np.ndarray:
     """mu of every speed of ``prep`` on its nodes with the given log10 a_T, ln b_T and modulus factors at every
     node (n_speed, n_q): the flash kernel's last evaluation (the same per-node factors and rules,
-    :func:`persson.engine.kernels.friction_parallel`) without its table look-ups."""
+    :func:`persson.engine.kernels.friction_kernel`) without its table look-ups."""
     nv, nq = shift.shape
     out = _outputs(nv, nq)
     skip = np.zeros(0, dtype=np.int64)
     arrays = {name: np.ascontiguousarray(a, dtype=float) for name, a in
               (("lv10", prep.lv10), ("scale", prep.scale), ("shift", shift), ("vshift", vshift), ("f", f), ("g", g))}
-    kern = _kernels.friction_parallel if nv >= _PARALLEL_MIN_SPEEDS_FLASH else _kernels.friction_serial
-    kern(nodes=prep.kernel_nodes, rule=prep.quad, speeds=_kernels.SpeedFactors(**arrays),
-         angular=prep.kernel_angular, shape=prep.kernel_shape, law=prep.law, coarse=skip,
-         coarse_rule=prep.quad_coarse, coarser=skip, coarser_rule=prep.quad_coarse, out=out, mu_coarse=np.zeros(nv),
-         mu_coarser=np.zeros(nv))
+    threaded(_kernels.friction_kernel, nv, min_items=_PARALLEL_MIN_SPEEDS_FLASH, nodes=prep.kernel_nodes,
+             rule=prep.quad, speeds=_kernels.SpeedFactors(**arrays), angular=prep.kernel_angular,
+             shape=prep.kernel_shape, law=prep.law, coarse=skip, coarse_rule=prep.quad_coarse, coarser=skip,
+             coarser_rule=prep.quad_coarse, out=out, mu_coarse=np.zeros(nv), mu_coarser=np.zeros(nv))
     return out.mu
 
 
@@ -798,8 +797,8 @@ def _flash(prep, q_m, a_t0, D, heat_factor, tol, max_iter, T_start=None):
     EX = erfcx(2.0 * prep.q[None, :] * np.sqrt(a_t0)[:, None])
     st = prep.shift_table
     S1, S2 = _kernels.heat_kernel_factors(prep.q)
-    _kernels.flash_parallel(
-        nodes=prep.kernel_nodes, rule=prep.quad,
+    threaded(
+        _kernels.flash_kernel, nv, min_items=_PARALLEL_MIN_SPEEDS_FLASH, nodes=prep.kernel_nodes, rule=prep.quad,
         speeds=_kernels.FlashSpeeds(lv10=prep.lv10, v=prep.v, scale=prep.scale, T0=prep.T0,
                                     T_start=np.ascontiguousarray(T_start, dtype=float)),
         angular=prep.kernel_angular, shape=prep.kernel_shape, law=prep.law,

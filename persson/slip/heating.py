@@ -52,6 +52,7 @@ at :math:`T_0` (a DRFT track warmed by earlier turns is a higher :math:`T_0`); c
 
 from __future__ import annotations
 
+import functools
 import math
 import warnings
 from dataclasses import dataclass
@@ -65,7 +66,7 @@ from ..effects.base import Effect, Parameter
 from ..errors import InputError
 from ..notes import Note, kinds
 from .heating_arrays import Patch, PatchRows
-from .heating_kernels import _march_parallel, _march_serial
+from .heating_kernels import march as _march
 from .heating_tables import _Tables, _speed_nodes, _unit_weights
 from .references import BLOK_1937, CARSLAW_JAEGER, JAEGER_1942, PERSSON_TREAD_2026
 
@@ -364,8 +365,7 @@ def patch_friction(model, heating: PatchHeating, contact, slip, speed, temperatu
     gg = np.ascontiguousarray(contact._g)
     rows = PatchRows(sweep=sweep.astype(np.int64), log_speed=np.log(vs), stick_slope=a, heat_factor=lam)
     patch = Patch(xi=xi, g=gg, abel=_unit_weights(xi.size))
-    # each row costs about N^2 operations (the Abel sums): threads pay off from a few rows on
-    march = _march_parallel if n >= _PARALLEL_MIN_ROWS else _march_serial
+    march = functools.partial(_march, min_rows=_PARALLEL_MIN_ROWS)
     if heated and not tab.has_heated():
         # the heating with the friction held at T0 bounds the temperature range the rows need (a kept table
         # with heated nodes goes straight to the march below, which grows it if the patch is hotter)

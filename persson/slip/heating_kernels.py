@@ -19,17 +19,17 @@ every access to a tuple's field, which in the loop over the nodes cost a fifth o
 from __future__ import annotations
 
 import numpy as np
-from numba import njit, prange
+from numba import njit
 
-from ..engine.jit import serial_twin
+from ..engine.jit import threaded
 from .heating_arrays import MarchOutputs
 
 
 # ==================================================================================================== march
-def _march_all(rows, patch, lattice, axis, profiles):
-    """March along the patch for every row (see :func:`persson.slip.patch_friction`), one row per iteration of a
-    ``prange`` loop whose body only calls :func:`_march_row` (numba's parallel loops lose writes made through a
-    named tuple's field in the body itself).
+def march(rows, patch, lattice, axis, profiles: bool, min_rows: int = 4) -> MarchOutputs:
+    """March along the patch for every row (see :func:`persson.slip.patch_friction`), the rows shared between
+    threads (:func:`persson.engine.jit.threaded`; each row costs about N^2 operations, the Abel sums, so threads pay
+    off from ``min_rows`` rows on).
 
     Parameters
     ----------
@@ -43,6 +43,8 @@ def _march_all(rows, patch, lattice, axis, profiles):
         Their temperature coordinate.
     profiles : bool
         Whether to fill the per-node profiles.
+    min_rows : int
+        Fewer rows than this are marched on the calling thread alone.
 
     Returns
     -------
@@ -53,15 +55,41 @@ def _march_all(rows, patch, lattice, axis, profiles):
     m = n if profiles else 1
     out = MarchOutputs(np.empty(n), np.empty(n), np.zeros(n), np.zeros(n), np.zeros((m, N)), np.zeros((m, N)),
                        np.zeros((m, N)))
-    g_first, g_weights = _pressure_stencils(patch.g, lattice.g_nodes)
-    for r in prange(n):
-        _march_row(r, rows, patch, lattice, axis, profiles, g_first, g_weights, out)
+    threaded(_march_kernel, n, min_items=min_rows, rows=rows, patch=patch, lattice=lattice, axis=axis,
+             profiles=bool(profiles), out=out)
     return out
 
 
-#: The march on every row in parallel (prange over the rows), and on one thread for few rows.
-_march_parallel = njit(cache=True, parallel=True)(_march_all)
-_march_serial = njit(cache=True)(serial_twin(_march_all))
+def _march_all(rows, patch, lattice, axis, profiles, out, first, stride):
+    """March along the patch for the rows ``first, first + stride, ...`` (see :func:`_march_row`): one thread's
+    share (:func:`march`).
+
+    Parameters
+    ----------
+    rows : PatchRows
+        The rows.
+    patch : Patch
+        The patch nodes and pressure.
+    lattice : FrictionLattice
+        The friction tables.
+    axis : TemperatureAxis
+        Their temperature coordinate.
+    profiles : bool
+        Whether to fill the per-node profiles.
+    out : MarchOutputs
+        Filled for the rows of this share.
+    first : int
+        The first row of this share.
+    stride : int
+        Step between the rows of this share (the number of shares).
+    """
+    g_first, g_weights = _pressure_stencils(patch.g, lattice.g_nodes)
+    for r in range(first, rows.sweep.size, stride):
+        _march_row(r, rows, patch, lattice, axis, profiles, g_first, g_weights, out)
+
+
+#: The march over a share of the rows; releases the GIL, so that :func:`march` runs the shares on several threads.
+_march_kernel = njit(cache=True, nogil=True)(_march_all)
 
 
 @njit(cache=True)
