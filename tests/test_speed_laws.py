@@ -105,6 +105,10 @@ def test_closed_forms_of_the_other_laws():
     assert np.allclose(ps.la_torre(V, 0.3, 0.5, -4, 0.01, 2), ps.la_torre(V, 0.8, -0.5, 4, -0.01, 2), rtol=1e-13)
     assert np.allclose(ps.la_torre(V, 0.3, 0.5, -4, 0.01, 2, mu_ref=0.7), 0.7 * ps.la_torre(V, 0.3, 0.5, -4, 0.01, 2))
     assert ps.la_torre(0.0, 0.3, 0.5, -4.0, 0.01, 2.0) == pytest.approx(0.3 + 0.5 / (1 + math.exp(-4.0)))
+    # coefficients published for V in km/h: b3 (m/s) = b3 (km/h) 3.6^b4 gives the same law in m/s
+    b3_kmh, b4 = 0.002, 1.3
+    assert np.allclose(ps.la_torre(V, 0.3, 0.5, -4.0, b3_kmh * 3.6**b4, b4),
+                       0.3 + 0.5 / (1 + np.exp(-4.0 + b3_kmh * (3.6 * V) ** b4)), rtol=1e-13)
     # three zones: the shares add up to 1, and mu = mu_dry A3 / (A1 + A2 + A3) (Do et al. eq. 1)
     a1, a2, a3 = ps.three_zone_fractions(V, 45.0, 60.0)
     assert np.allclose(a1 + a2 + a3, 1.0) and np.allclose(a1, (V / 45.0) ** 2) and np.allclose(a2, V / 60.0)

@@ -130,7 +130,8 @@ def la_torre(speed, b0, b1, b2, b3, b4, mu_ref=1.0):
     b2 : float
         Dimensionless.
     b3 : float
-        (s/m)^b4.
+        (s/m)^b4. Coefficients published for V in km/h convert as :math:`b_3 = b_{3,\mathrm{km/h}}\,3.6^{b_4}`
+        (the road-friction literature of this law quotes speeds in km/h).
     b4 : float
         Exponent of V (> 0).
     mu_ref : float
