@@ -57,3 +57,25 @@ def test_results_do_not_depend_on_the_number_of_threads():
         numba.set_num_threads(before)
     np.testing.assert_array_equal(one.mu, many.mu)
     np.testing.assert_array_equal(one.temperature_q, many.temperature_q)
+
+
+def test_a_forked_child_runs_its_kernels_on_threads_of_its_own():
+    """multiprocessing with "fork" after the engine ran: the child's pool must not be the parent's (whose threads
+    do not exist in the child), or the child would wait forever."""
+    import multiprocessing as mp
+    import sys
+
+    if sys.platform == "win32" or "fork" not in mp.get_all_start_methods():
+        pytest.skip("no fork on this platform")
+    jit._pool(1).submit(lambda: None).result()          # the parent's pool, with a live thread
+    ctx = mp.get_context("fork")
+    with ctx.Pool(1) as pool:
+        result = pool.apply_async(_child_threaded)
+        assert result.get(timeout=60) == 6.0
+
+
+def _child_threaded():
+    jit._numba_threads = lambda: 2                       # two shares, whatever numba's setting in this process
+    out = np.zeros(6)
+    jit.threaded(lambda *, out, first, stride: out.__setitem__(slice(first, None, stride), 1.0), 6, out=out)
+    return float(out.sum())

@@ -19,6 +19,7 @@ numba, e.g. one thread per process in a distributed sweep, apply here as well.
 from __future__ import annotations
 
 import concurrent.futures
+import os
 import threading
 
 __all__ = ["threaded"]
@@ -70,3 +71,15 @@ def _pool(workers: int) -> concurrent.futures.ThreadPoolExecutor:
 
 _POOLS: dict[int, concurrent.futures.ThreadPoolExecutor] = {}
 _POOL_LOCK = threading.Lock()
+
+
+def _forget_pools_in_child() -> None:
+    # a forked child (multiprocessing with "fork") inherits the pools without their threads: work handed to them
+    # would never run, so the child starts its own
+    global _POOL_LOCK
+    _POOLS.clear()
+    _POOL_LOCK = threading.Lock()
+
+
+if hasattr(os, "register_at_fork"):
+    os.register_at_fork(after_in_child=_forget_pools_in_child)
