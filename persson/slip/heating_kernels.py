@@ -33,16 +33,9 @@ def march(rows, patch, lattice, axis, profiles: bool, min_rows: int = 4) -> Marc
 
     Parameters
     ----------
-    rows : PatchRows
-        The rows.
-    patch : Patch
-        The patch nodes and pressure.
-    lattice : FrictionLattice
-        The friction tables.
-    axis : TemperatureAxis
-        Their temperature coordinate.
-    profiles : bool
-        Whether to fill the per-node profiles.
+    rows, patch, lattice, axis, profiles
+        As for :func:`_march_all` (the rows, the patch, the friction tables, their temperature axis, and whether to
+        fill the per-node profiles).
     min_rows : int
         Fewer rows than this are marched on the calling thread alone.
 
