@@ -6,8 +6,9 @@
 * with ``--sweep``: ``persson sweep`` of the example case over 6 decade bands x 3 pressures.
 
 Each command runs in a fresh process (numba cache warm after a first untimed run), wall time from start to exit,
-and the CPU time of the process (user + system, all threads; Python's bytecode cache on, as in an installation): on a machine shared with other work the wall time
-grows with the load while the CPU time barely does, so the CPU time is the fairer figure to compare.
+and the CPU time of the process (user + system, all threads; Python's bytecode cache on, as in an installation):
+on a machine shared with other work the wall time grows with the load while the CPU time barely does, so the CPU
+time is the fairer figure to compare.
 
 ``--baseline PATH`` times a second checkout (e.g. ``git worktree add /tmp/base <commit>``, or an exported tree)
 with the same commands, each pair back to back (the two trees alternate, ``--repeat`` times; the best of each is

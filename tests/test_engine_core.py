@@ -303,3 +303,20 @@ def test_per_speed_temperature_without_shift_law_is_evaluated_per_temperature():
 def test_bad_per_speed_conditions_raise(benchmark_model, kwargs, word):
     with pytest.raises(persson.InputError, match=word):
         benchmark_model.friction(**kwargs)
+
+
+def test_friction_only_leaves_out_the_contact_geometry_and_nothing_else():
+    """Inside ``persson.solver.friction_only()`` (the diagnosis's predictions) the results carry no mean separation
+    and penetration depth; every friction number is the one computed outside it."""
+    from persson.solver import friction_only
+
+    m = persson.Model(surfaces.example_road(), materials.example_tread(), effects=[persson.effects.FlashTemperature()])
+    v = np.geomspace(1e-3, 3.0, 5)
+    full = m.friction(v, temperature=0.0)
+    with friction_only():
+        lean = m.friction(v, temperature=0.0)
+    assert lean.mean_separation is None and lean.penetration_depth is None
+    assert np.all(full.mean_separation > 0) and np.all(full.penetration_depth >= 0)
+    for name in ("mu", "mu_hysteresis", "contact_area", "max_flash_temperature", "error_estimate"):
+        np.testing.assert_array_equal(getattr(lean, name), getattr(full, name))
+    assert "mean_separation_m" not in lean.as_table() and "mean_separation_m" in full.as_table()

@@ -773,7 +773,8 @@ friction_kernel = njit(cache=True, nogil=True)(_friction_all)
 # against the quadratic in G of g(q, q') 2 q' R, as the friction integral is. The modulus at each scale is taken
 # at that scale's temperature, so T_q is a fixed point, found per speed by _flash_speed in named steps: the
 # heat-kernel matrix (heat_matrix), the integrands at a temperature profile (integrands_at), the temperature that
-# profile's heat gives (heated_temperature), and the relaxation of the iteration (_aitken, _relax_step).
+# profile's heat gives (heated_temperature), and the acceleration of the iteration (_anderson_step; _aitken and
+# _relax_step where the mixing fails).
 #: Smallest relaxation factor of the flash iteration (Aitken's factor is clamped to [_MIN_RELAX, 1]).
 _MIN_RELAX = 1e-4
 
@@ -907,7 +908,7 @@ def _flash_speed(iv, nodes, rule, speeds, angular, shape, law, temperature, heat
         if it <= max_iter:
             # undamped: a damping factor cut at each growth of the residual (tried) stalls the mixing on the
             # period-2 oscillation of a hot contact (a cold profile heats by hundreds of K, a hot one barely)
-            n_hist = _anderson_step(T_new, T, T_prev, r_prev, dT, dR, n_hist, 1.0)
+            n_hist = _anderson_step(T_new, T, T_prev, r_prev, dT, dR, n_hist)
             continue
         if it > max_iter + 1:
             relax = _aitken(T_new, T, r_prev, relax)
@@ -1111,18 +1112,19 @@ _ANDERSON_DEPTH = 3
 
 
 @njit(cache=True)
-def _anderson_step(T_new, T, T_prev, r_prev, dT, dR, n_hist, relax):
+def _anderson_step(T_new, T, T_prev, r_prev, dT, dR, n_hist):
     r"""One step of Anderson mixing (type II, Walker & Ni 2011) for the fixed point T = g(T).
 
     With the residual :math:`r_k = g(T_k) - T_k` and the columns :math:`\Delta T_i = T_{i+1} - T_i`,
     :math:`\Delta r_i = r_{i+1} - r_i` of the last ``_ANDERSON_DEPTH`` steps,
 
-    .. math:: T_{k+1} = T_k + \beta r_k - (\Delta T + \beta\,\Delta r)\,\gamma,\qquad
+    .. math:: T_{k+1} = T_k + r_k - (\Delta T + \Delta r)\,\gamma,\qquad
               \gamma = \arg\min_\gamma \lVert r_k - \Delta r\,\gamma \rVert_2,
 
-    :math:`\beta` the relaxation factor: without history the relaxed step :math:`T_k + \beta r_k`. The least
-    squares are solved by the normal equations with a relative ridge of 1e-10 on their diagonal; a singular system
-    falls back to the relaxed step.
+    undamped (mixing factor 1); without history the plain step :math:`T_k + r_k`. The least squares are solved by
+    the normal equations with a relative ridge of 1e-10 on their diagonal (:func:`_solve_small`); a singular
+    system falls back to the plain step. On a linear map the iteration is GMRES in disguise (Walker & Ni 2011):
+    with a history as long as the dimension it lands on the fixed point.
 
     Parameters
     ----------
@@ -1137,9 +1139,7 @@ def _anderson_step(T_new, T, T_prev, r_prev, dT, dR, n_hist, relax):
     dT, dR : ndarray (_ANDERSON_DEPTH, n_q)
         Ring buffers of the differences of profiles and of residuals (row ``i % _ANDERSON_DEPTH`` is step i).
     n_hist : int
-        Steps in the history; -1 when the previous step must not be differenced (first step, or after a reset).
-    relax : float
-        The relaxation factor :math:`\beta`, in (0, 1].
+        Steps in the history; -1 on the first step (no previous step to difference against).
 
     Returns
     -------
@@ -1181,9 +1181,9 @@ def _anderson_step(T_new, T, T_prev, r_prev, dT, dR, n_hist, relax):
             gamma = _solve_small(A, b)
     for i in range(nq):
         r = T_new[i] - T[i]
-        step = relax * r
+        step = r
         for a in range(k):
-            step -= (dT[a, i] + relax * dR[a, i]) * gamma[a]
+            step -= (dT[a, i] + dR[a, i]) * gamma[a]
         T_prev[i] = T[i]
         r_prev[i] = r
         T[i] = T[i] + step
@@ -1192,8 +1192,8 @@ def _anderson_step(T_new, T, T_prev, r_prev, dT, dR, n_hist, relax):
 
 @njit(cache=True)
 def _solve_small(A, b):
-    """The solution of the small symmetric system A x = b by Gaussian elimination with partial pivoting; zeros
-    when A is singular to working precision.
+    """The solution of the small system A x = b by Gaussian elimination with partial pivoting; zeros when A is
+    singular to working precision (where ``np.linalg.solve`` would raise inside a kernel running on a thread).
 
     Parameters
     ----------

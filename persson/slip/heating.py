@@ -52,7 +52,6 @@ at :math:`T_0` (a DRFT track warmed by earlier turns is a higher :math:`T_0`); c
 
 from __future__ import annotations
 
-import functools
 import math
 import warnings
 from dataclasses import dataclass
@@ -71,10 +70,6 @@ from .heating_tables import _Tables, _speed_nodes, _unit_weights
 from .references import BLOK_1937, CARSLAW_JAEGER, JAEGER_1942, PERSSON_TREAD_2026
 
 __all__ = ["PatchHeating", "PatchSolution", "patch_friction"]
-
-
-_PARALLEL_MIN_ROWS = 4
-
 
 _P_FLOOR = 0.02  # pressures below 2 % of sigma0 (the patch edges) are evaluated at 2 % of sigma0
 
@@ -365,14 +360,13 @@ def patch_friction(model, heating: PatchHeating, contact, slip, speed, temperatu
     gg = np.ascontiguousarray(contact._g)
     rows = PatchRows(sweep=sweep.astype(np.int64), log_speed=np.log(vs), stick_slope=a, heat_factor=lam)
     patch = Patch(xi=xi, g=gg, abel=_unit_weights(xi.size))
-    march = functools.partial(_march, min_rows=_PARALLEL_MIN_ROWS)
     if heated and not tab.has_heated():
         # the heating with the friction held at T0 bounds the temperature range the rows need (a kept table
         # with heated nodes goes straight to the march below, which grows it if the patch is hotter)
-        pre = march(rows=rows, patch=patch, lattice=tab.args(), axis=tab.targs(), profiles=False)
+        pre = _march(rows=rows, patch=patch, lattice=tab.args(), axis=tab.targs(), profiles=False)
         tab.fill(pre.rise, vs, sweep)
     for _ in range(6):
-        out = march(rows=rows, patch=patch, lattice=tab.args(), axis=tab.targs(), profiles=bool(profiles))
+        out = _march(rows=rows, patch=patch, lattice=tab.args(), axis=tab.targs(), profiles=bool(profiles))
         mu, xc, rise, umax, Tprof, shear, muprof = out
         over = np.zeros(keys.shape[0], dtype=bool)
         for c in range(keys.shape[0]):
