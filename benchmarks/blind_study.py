@@ -18,14 +18,17 @@ Each case is drawn at random and made by a path independent of the diagnosis:
   temperature table, a brush model with 1601 nodes), never the diagnosis's settings;
 * **noise**: Gaussian, its level set by an effect-to-noise ratio (rms of the hidden physics' change of mu over the
   noise; for a pair, that of the weaker effect) drawn log-uniformly from 0.5-20 (0.004-0.02 in mu without hidden
-  physics); given as ``mu_std`` in 30 %
-  of the cases, as replicate rows in 20 %, else left to the local-difference estimate.
+  physics); given as ``mu_std`` in 30 % of the cases, as replicate rows in 20 %, else left to the local-difference
+  estimate;
+* **distinguishable ratio**: what is left of the hidden effect after a refit of every other free parameter (the
+  case's fitted ones, those of the other hidden effect of a pair) to the noise-free truth, over the noise: the part
+  a diagnosis can see at all (a strain softening under a fitted adhesion is largely absorbed by it).
 
 The diagnosis sees the case as a user would (:func:`validation.improve` with the default candidates) and the
 outcome is compared with the truth. Printed: the confusion matrix (hidden physics against the set of effects
-found), false alarms on null and wet cases, physics outside the candidates called ``explained``, detection against
-the effect-to-noise ratio, and the coverage of the reported 68 % and 95 % intervals of the parameters of a hidden
-effect found alone.
+found), the misses named among the equally supported sets, false alarms on null and wet cases, physics outside the
+candidates called ``explained``, detection against the effect-to-noise and the distinguishable ratios, and the
+coverage of the reported 68 % and 95 % intervals of the parameters of a hidden effect found alone.
 """
 
 from __future__ import annotations
@@ -71,6 +74,7 @@ class BlindCase:
     fit: tuple
     ratio: float                       # effect-to-noise ratio (nan without hidden physics)
     sigma: float
+    distinguishable: float             # the part of the effect no refit of the other parameters absorbs, / sigma
     noise_kind: str
     notes: dict = field(default_factory=dict)
 
@@ -142,30 +146,56 @@ def draw(index: int, seed: int) -> BlindCase:
         mu_true = validation.predict(truth, skeleton, contact_truth).mu
         # the size of the hidden physics: the truth's change of mu when it is taken away (for a pair, each effect
         # alone, and the weaker one counts)
-        withouts = []
+        withouts, free = [], []
         if len(hidden) > 1:
             for n in hidden:
                 surf = case_surface if n == "microtexture" else truth_surface
                 eff = [e for e in truth_effects if e.name != n]
                 withouts.append(persson.Model(surf, truth_material, effects=eff, grid=TRUTH_GRID))
+                # what a diagnosis would refit with the other hidden effect in the model
+                free.append(tuple(fit) + tuple(f"{m}.{q.name}" for m in hidden if m not in (n, "microtexture")
+                                               for q in fx.get(m).parameters if q.fittable))
         else:
             withouts.append(persson.Model(case_surface, material, effects=base_true, grid=TRUTH_GRID))
+            free.append(tuple(fit))
         effect_rms = min(float(np.sqrt(np.mean((mu_true - validation.predict(w, skeleton, contact_truth).mu) ** 2)))
                          for w in withouts)
+        unabsorbed = math.nan
+        if kind in ("single", "pair"):
+            truth_rows = validation.Measurements.from_arrays(slip=slip, speed=V, temperature=T, pressure=p, mu=mu_true,
+                                                             wet=wet.astype(bool), contact=contact_case)
+            unabsorbed = min(_unabsorbed_rms(w, truth_rows, contact_case, names) for w, names in zip(withouts, free))
     if kind in ("null", "wet"):
         ratio, sigma = math.nan, 10 ** rng.uniform(math.log10(0.004), math.log10(0.02))
     else:
         ratio = 10 ** rng.uniform(math.log10(0.5), math.log10(20.0))
         sigma = float(np.clip(effect_rms / ratio, 0.002, 0.05))
         ratio = effect_rms / sigma
+    distinguishable = unabsorbed / sigma if kind in ("single", "pair") else math.nan
     mu = np.clip(mu_true + rng.normal(0.0, sigma, mu_true.size), 0.0, None)
     meas = validation.Measurements.from_arrays(slip=slip, speed=V, temperature=T, pressure=p, mu=np.round(mu, 6),
                                                mu_std=np.full(mu.size, sigma) if use_std else None,
                                                wet=wet.astype(bool), source=f"blind case {index}", contact=contact_case)
     return BlindCase(index=index, kind=kind, hidden=hidden, model=case_model, measurements=meas,
-                     contact=contact_case, fit=fit, ratio=ratio, sigma=sigma,
+                     contact=contact_case, fit=fit, ratio=ratio, sigma=sigma, distinguishable=distinguishable,
                      noise_kind="mu_std" if use_std else "replicates" if replicate else "local differences",
                      notes=notes)
+
+
+def _unabsorbed_rms(without, truth_rows, contact, names) -> float:
+    """rms of the truth minus the best fit of ``without`` (the truth less one hidden effect, at the diagnosis's
+    default grid) with the parameters ``names`` free (the case's fitted ones and those of its other hidden effect):
+    the part of the hidden effect that nothing else in the model absorbs, which is what a diagnosis can detect."""
+    from validation.candidates import FitSettings, fit_baseline
+    from validation.diagnose import _baseline_params
+    from validation.fitting import ParameterSpace
+    from validation.predict import Predictor
+
+    model = persson.Model(without.surface, without.material, effects=list(without.effects))
+    settings = FitSettings(predictor=Predictor(truth_rows, contact), y=truth_rows.mu, w=np.ones(truth_rows.n),
+                           sigma_known=False, contact=contact)
+    base = fit_baseline(model, ParameterSpace(_baseline_params(model, names, contact)), settings)
+    return math.sqrt(base.rss / truth_rows.n)
 
 
 @dataclass(frozen=True, eq=False)
@@ -256,7 +286,8 @@ def run(case: BlindCase) -> dict:
     found = tuple(sorted(imp.added))
     truth = tuple(sorted(case.hidden))
     out = {"index": case.index, "kind": case.kind, "hidden": truth, "found": found, "verdict": imp.verdict,
-           "ratio": case.ratio, "sigma": case.sigma, "noise": case.noise_kind, "rows": case.measurements.n,
+           "ratio": case.ratio, "distinguishable": case.distinguishable, "sigma": case.sigma,
+           "noise": case.noise_kind, "rows": case.measurements.n,
            "noise_estimate": imp.noise, "seconds": time.perf_counter() - t0,
            "supported": [list(s.effects) for s in imp.selection.supported] if imp.selection else [],
            "coverage": []}
@@ -301,6 +332,11 @@ def summarize(results: list) -> str:
             counts["(none)" if not f else f[0] if len(f) == 1 else "two or more"] += 1
         lines.append(f"  {name:<40}" + "".join(f"{counts[c]:>8}" for c in cols)
                      + f"{sum(right(r) for r in sel):>5}/{len(sel)}")
+    hid = [r for r in results if r["kind"] in ("single", "pair")]
+    named = [r for r in hid if not right(r) and sorted(r["hidden"]) in [sorted(x) for x in r["supported"]]]
+    lines.append(f"Hidden effects missed but named among the equally supported sets (the verdict says the data cannot "
+                 f"tell them apart): {len(named)} of {sum(not right(r) for r in hid)} misses"
+                 + (" (cases " + ", ".join(str(r["index"]) for r in named) + ")" if named else ""))
     nw = [r for r in results if r["kind"] in ("null", "wet")]
     fa = [r for r in nw if not right(r)]
     lines.append(f"False alarms on null and wet cases: {len(fa)} of {len(nw)}" + (
@@ -308,15 +344,21 @@ def summarize(results: list) -> str:
     out = [r for r in results if r["kind"] == "outside"]
     lines.append(f"Physics outside the candidates called explained: {sum(r['verdict'] == 'explained' for r in out)} "
                  f"of {len(out)} (verdicts: {', '.join(r['verdict'] for r in out) or '-'})")
-    lines.append("Detection against the effect-to-noise ratio (right / cases)")
-    for kind in ("single", "pair"):
-        sel = [r for r in results if r["kind"] == kind]
-        parts = []
-        for lo, hi in zip(RATIO_BINS[:-1], RATIO_BINS[1:]):
-            b = [r for r in sel if lo <= r["ratio"] < hi]
-            parts.append(f"{lo:g}-{hi:g}: {sum(right(r) for r in b)}/{len(b)}")
-        ge2 = [r for r in sel if r["ratio"] >= 2]
-        lines.append(f"  {kind:<7} " + ", ".join(parts) + f"; at ratio >= 2: {sum(right(r) for r in ge2)}/{len(ge2)}")
+    for key, title in (("ratio", "the effect-to-noise ratio (the truth's change of mu without the effect)"),
+                       ("distinguishable", "the distinguishable ratio (what a refit of the other parameters leaves "
+                                           "of that change)")):
+        if not any(key in r for r in results):
+            continue
+        lines.append(f"Detection against {title} (right / cases)")
+        for kind in ("single", "pair"):
+            sel = [r for r in results if r["kind"] == kind and key in r]
+            parts = []
+            for lo, hi in zip((0.0,) + RATIO_BINS[1:-1], RATIO_BINS[1:-1] + (math.inf,)):
+                b = [r for r in sel if lo <= r[key] < hi]
+                parts.append(f"{lo:g}-{hi:g}: {sum(right(r) for r in b)}/{len(b)}")
+            ge2 = [r for r in sel if r[key] >= 2]
+            lines.append(f"  {kind:<7} " + ", ".join(parts)
+                         + f"; at ratio >= 2: {sum(right(r) for r in ge2)}/{len(ge2)}")
     cov = [c for r in results for c in r["coverage"]]
     if cov:
         lines.append(f"Coverage of the reported intervals (parameters of hidden effects found exactly, {len(cov)} "
@@ -350,6 +392,7 @@ def main(argv=None) -> int:
         r = run(case)
         results.append(r)
         print(f"case {i:>3} {case.kind:<8} hidden {'+'.join(r['hidden']) or '-':<36} ratio {r['ratio']:6.2f} "
+              f"({r['distinguishable']:6.2f}) "
               f"{r['rows']:>3} rows {r['noise']:<18} -> {r['verdict']:<17} {'+'.join(r['found']) or '-':<36} "
               f"{'ok' if right(r) else 'WRONG'} ({r['seconds']:.0f} s)", flush=True)
         if args.out:

@@ -158,6 +158,12 @@ class StrainSoftened:
         return self.material.thermal
 
     @property
+    def scaled_modulus(self) -> tuple:
+        """(wrapped material, f, g): E of this material is f Re E + i g Im E of the wrapped one at every omega
+        and T, so tables of the wrapped material serve it, scaled (the engine's angular tables do so)."""
+        return self.material, float(self.storage_factor), float(self.loss_factor)
+
+    @property
     def log10_aT(self):
         # a property, so that hasattr() reflects the wrapped material
         return self.material.log10_aT

@@ -205,3 +205,30 @@ def test_two_parallel_candidates_are_both_named_with_the_measurement_that_separa
     assert "Equally supported" in sel.text() and "measure at" in sel.text()
     data = imp.as_dict()
     assert data["equally_supported"][0]["effects"] == [other] and data["set_separations"]
+
+
+def test_a_set_that_fits_better_but_is_not_credible_is_reported_as_set_aside():
+    """A set with a lower BIC than the best whose parameter ran to its search bound is not the answer, but the user
+    reads that it fitted better and why it was set aside (the effect may act beyond the range searched)."""
+    from validation.refit import Estimate
+    from validation.select import EffectSet, Selection
+
+    def effect_set(effects, bic, issue=""):
+        est = tuple(Estimate(key=f"{e}.p", value=1.0, std=0.1, interval=(0.9, 1.1), method="quadratic",
+                             issue=issue if e == effects[-1] else "") for e in effects)
+        return EffectSet(effects=effects, model=None, contact=None, predicted=np.zeros(3), rss=1.0, bic=bic,
+                         rmse=0.1, n_params=len(effects), estimates=est, lack=None, pattern=None)
+
+    best = effect_set(("flash",), -100.0)
+    aside = effect_set(("flash", "adhesion"), -106.7, issue="on the upper search bound 1e+06")
+    worse_odd = effect_set(("adhesion",), -50.0, issue="outside the plausible range")
+    sel = Selection(best=best, visited=(aside, best, worse_odd))
+    assert sel.set_aside == (aside,)
+    text = sel.text()
+    assert "Set aside although they fit better (not credible): flash + adhesion (-6.7: adhesion.p = 1: on the upper " \
+           "search bound 1e+06)" in text
+    assert "Other sets fitted: adhesion (+50.0)." in text
+    d = sel.as_dict()["set_aside"]
+    assert d == [{"effects": ["flash", "adhesion"], "delta_bic": pytest.approx(-6.7), "issues":
+                  ["adhesion.p = 1: on the upper search bound 1e+06"]}]
+    assert Selection(best=best, visited=(best, worse_odd)).set_aside == ()

@@ -297,7 +297,7 @@ class Fitter:
     """Weighted least squares of ``predictor.predict(space.apply(model, u))`` against ``y``.
 
     Every prediction is cached by ``u`` (rounded to 1e-12), so revisiting a point is free, and the best point
-    seen is remembered.
+    seen is remembered, as are the warnings of each evaluation (:meth:`notes_at`; all of them in ``notes``).
 
     Parameters
     ----------
@@ -328,6 +328,7 @@ class Fitter:
         self.best = (math.inf, None)
         self.errors: dict[str, None] = {}
         self.notes: dict[str, None] = {}
+        self._notes_at: dict = {}
         self._penalty = (np.abs(self.y) + 10.0) * self.w * 10.0
         self.last_hessian = None
 
@@ -344,8 +345,10 @@ class Fitter:
             with warnings.catch_warnings(record=True) as caught:
                 warnings.simplefilter("always")
                 mu = self._predict(u)
-            for w in caught:
-                self.notes[f"{w.category.__name__}: {w.message}"] = None
+            here = tuple(dict.fromkeys(f"{w.category.__name__}: {w.message}" for w in caught))
+            self.notes.update(dict.fromkeys(here))
+            if here:
+                self._notes_at[key] = here
             if not np.all(np.isfinite(mu)):
                 raise InputError("non-finite prediction")
         except Exception as exc:  # noqa: BLE001  (an effect may fail at some parameters; the fit avoids them)
@@ -372,6 +375,15 @@ class Fitter:
                     self.best = (c, u)
         self.errors.update(other.errors)
         self.notes.update(other.notes)
+        for key, here in other._notes_at.items():
+            u = np.concatenate([prefix, np.asarray(key, dtype=float)])
+            self._notes_at.setdefault(tuple(np.round(u, 12)), here)
+
+    def notes_at(self, u) -> tuple:
+        """The warnings the model gave at ``u`` (an evaluated point; empty otherwise), as ``"Category: message"``.
+        :attr:`notes` holds those of every evaluation, trial points of the search included."""
+        u = np.clip(np.asarray(u, dtype=float), 0.0, 1.0)
+        return self._notes_at.get(tuple(np.round(u, 12)), ())
 
     def chi2(self, u) -> float:
         """Weighted residual sum of squares at ``u`` (inf where the model failed)."""

@@ -331,8 +331,11 @@ def global_fit(fitter: Fitter, u_given, *, seed: int = 0, n_screen: int | None =
     if fitter.errors:
         notes["the model failed at some trial parameters (avoided by the fit): "
               + "; ".join(list(fitter.errors)[:2])] = None
-    notes.update(dict.fromkeys(n for n in fitter.notes))
-    return GlobalFit(u=u_best, chi2=c_best, mu=fitter.mu(u_best), model=fitter.model_at(u_best),
+    # the warnings of the fitted model, not those of trial points the search moved away from (a rough tail tried on
+    # the way to the optimum says nothing about the model reported)
+    mu_best = fitter.mu(u_best)
+    notes.update(dict.fromkeys(fitter.notes_at(u_best)))
+    return GlobalFit(u=u_best, chi2=c_best, mu=mu_best, model=fitter.model_at(u_best),
                      contact=fitter.contact_at(u_best), estimates=(), jacobian=np.zeros((fitter.y.size, 0)),
                      n_starts=n_starts, n_good=0, n_evals=fitter.n_evals, notes=tuple(notes),
                      optima=tuple(optima))

@@ -312,6 +312,10 @@ def _selection_html(sel) -> str:
     if sel.supported:
         out.append("<p><b>The data support these sets equally</b>; the measurement that would separate them:</p>")
         out.append(_probe_table(tuple(sel.separations) + tuple(sel.separations_in_range)))
+    if sel.set_aside:
+        out.append("<p class='note'>Set aside although they fit better (not credible): " + _e("; ".join(
+            f"{s.label} ({s.bic - sel.best.bic:+.1f} BIC units: {'; '.join(s.issues)})" for s in sel.set_aside))
+            + ".</p>")
     if sel.removed:
         out.append("<p class='note'>Removed on the way: " + _e("; ".join(sel.removed)) + ".</p>")
     return "\n".join(out)

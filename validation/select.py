@@ -159,6 +159,13 @@ class Selection:
     def equally_supported(self) -> bool:
         return bool(self.supported)
 
+    @property
+    def set_aside(self) -> tuple:
+        """Sets fitted on the way that fit better than the best (lower BIC) but are not credible (a parameter on a
+        search bound or outside its plausible range), lowest BIC first: the data may be saying that an effect acts
+        beyond the range its parameters were searched in, which the user should see."""
+        return tuple(s for s in self.visited if s.bic < self.best.bic - 1e-9 and not s.plausible)
+
     def as_dict(self) -> dict:
         b = self.best.bic
         return {"best_set": self.best.as_dict(b), "equally_supported": [s.as_dict(b) for s in self.supported],
@@ -167,6 +174,8 @@ class Selection:
                 "set_separations_in_measured_range": [s.as_dict() for s in self.separations_in_range],
                 "sets": [{"effects": list(s.effects), "bic": s.bic, "delta_bic": s.bic - b, "rmse": s.rmse,
                           "plausible": s.plausible, "source": s.source} for s in self.visited],
+                "set_aside": [{"effects": list(s.effects), "delta_bic": s.bic - b, "issues": list(s.issues)}
+                              for s in self.set_aside],
                 "removed": list(self.removed)}
 
     def text(self) -> str:
@@ -187,7 +196,11 @@ class Selection:
                 lines.append(f"  inside the measured conditions the largest difference is at {sep.describe()}")
         if self.removed:
             lines.append("Removed on the way: " + "; ".join(self.removed) + ".")
-        ranked = [s for s in self.visited if s is not self.best][:6]
+        aside = self.set_aside
+        if aside:
+            lines.append("Set aside although they fit better (not credible): " + "; ".join(
+                f"{s.label} ({s.bic - self.best.bic:+.1f}: {'; '.join(s.issues)})" for s in aside) + ".")
+        ranked = [s for s in self.visited if s is not self.best and s not in aside][:6]
         if ranked:
             lines.append("Other sets fitted: " + "; ".join(f"{s.label} ({s.bic - self.best.bic:+.1f})"
                                                           for s in ranked) + ".")

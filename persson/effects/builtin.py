@@ -112,11 +112,11 @@ def _fitted_rolloff(surface, q, ratio: float) -> tuple[float, str]:
     self-affine above), with a note; where no plateau can be fitted, the first q, with a note and a PhysicsWarning."""
     import warnings
 
-    from ..engine.quadrature import _per_surface
+    from ..engine.memo import per_object
     from ..errors import PhysicsWarning
 
     table = _table_of(surface)
-    fitted = None if table is None else _per_surface(table, ("fitted_rolloff",), lambda: (_fit_rolloff(table),))[0]
+    fitted = None if table is None else per_object(table, ("fitted_rolloff",), lambda: (_fit_rolloff(table),))[0]
     if fitted is not None and q[0] <= fitted < q[-1]:
         return fitted, Note(f"flash temperature: the PSD declares no roll-off; the roll-off fitted to it "
                             f"(surfaces.fit_rolloff), {fitted:.4g} rad/m, sets the macro-asperity scale q_m = "

@@ -7,11 +7,11 @@ from __future__ import annotations
 
 import functools
 import math
-import weakref
 
 import numpy as np
 
 from .kernel_arrays import QuadratureRule
+from .memo import per_object
 
 __all__ = ["quadrature_rule", "psd_moment", "cumulative_moment", "psd_breakpoints"]
 
@@ -19,25 +19,7 @@ __all__ = ["quadrature_rule", "psd_moment", "cumulative_moment", "psd_breakpoint
 def quadrature_rule(surface, x: np.ndarray, n_gauss: int = 6) -> QuadratureRule:
     """:func:`_quadrature_rule`, memoised per surface object and nodes (a pure function of both: repeated calls
     on one surface, as in fits and sweeps, skip the PSD quadrature)."""
-    return _per_surface(surface, ("rule", x.tobytes(), n_gauss), lambda: _quadrature_rule(surface, x, n_gauss))
-
-
-def _per_surface(surface, key, compute):
-    """``compute()``, memoised under ``key`` for ``surface`` (for pure functions of the surface and the key)."""
-    try:
-        memo = _RULES.setdefault(surface, {})
-    except TypeError:  # not weak-referenceable: no memo
-        return compute()
-    value = memo.get(key)
-    if value is None:
-        if len(memo) > 32:
-            memo.clear()
-        value = memo[key] = compute()
-    return value
-
-
-#: Quadrature rules and PSD moments by surface (weakly: they live as long as their surface) and nodes.
-_RULES: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
+    return per_object(surface, ("rule", x.tobytes(), n_gauss), lambda: _quadrature_rule(surface, x, n_gauss))
 
 
 def _quadrature_rule(surface, x: np.ndarray, n_gauss: int = 6) -> QuadratureRule:
@@ -103,7 +85,7 @@ def psd_moment(surface, q: np.ndarray, n: int) -> float:
     """Spectral moment 2 pi int_{q0}^{q1} q^n C(q) dq over the nodes' range (see :func:`cumulative_moment`),
     memoised per surface object and nodes like :func:`quadrature_rule`."""
     q = np.asarray(q, dtype=float)
-    return _per_surface(surface, ("moment", q.tobytes(), int(n)),
+    return per_object(surface, ("moment", q.tobytes(), int(n)),
                         lambda: float(cumulative_moment(surface, q, n)[-1]))
 
 

@@ -19,6 +19,7 @@ import numpy as np
 from materials.shift import EXTRAPOLATED_SHIFT
 
 from ..errors import InputError
+from .memo import per_object
 
 __all__ = ["ModulusTable", "ShiftTable", "AngularTable", "modulus_table", "shift_table", "relative_shifts",
            "angular_table", "convolution_weights"]
@@ -169,17 +170,34 @@ def angular_table(material, T0: float, log10_omega_min: float, log10_omega_max: 
     :math:`\int_0^\infty K(t)\, F(\log_{10}\omega - t)\, dt` with
     :math:`K(t) = 4\ln 10\; 10^{-(1+p)t} / \sqrt{1 - 10^{-2t}}` (p = 0 for A, 1 for L), evaluated by
     :func:`persson.engine.kernels.angular_convolution` with the weights of :func:`convolution_weights` (exact for the
-    cubic interpolant of F between the table nodes).
+    cubic interpolant of F between the table nodes). Memoised per material object and arguments
+    (:func:`persson.engine.memo.per_object`); a material with ``scaled_modulus`` (base, f, g), whose modulus is
+    f E' + i g E'' of a base material (:class:`materials.StrainSoftened`), gets the base's table scaled.
 
     Raises
     ------
     InputError
         If the material returns non-finite values, E' <= 0 or E'' < 0 for omega > 0.
     """
-    from . import kernels as _kernels
-
+    scaled = getattr(material, "scaled_modulus", None)
+    if scaled is not None:
+        # E = f E'_base + i g E''_base: A_re, A_im and L scale by f^2, g^2 and g (a fit of f and g builds one table)
+        base, f, g = scaled
+        t = angular_table(base, T0, log10_omega_min, log10_omega_max, per_decade)
+        return AngularTable(lw0=t.lw0, dlw=t.dlw, ln_are=t.ln_are + 2.0 * math.log(f),
+                            ln_aim=t.ln_aim + 2.0 * math.log(g), ln_l=t.ln_l + math.log(g), T0=t.T0,
+                            lw_valid=t.lw_valid)
     lo = math.floor((log10_omega_min - ANGULAR_PAD_DECADES) * per_decade) / per_decade
     hi = math.ceil(log10_omega_max * per_decade) / per_decade + 3.0 / per_decade
+    # a pure function of the material and these numbers: fits evaluate one material hundreds of times
+    key = ("angular", float(T0), lo, hi, int(per_decade), float(log10_omega_min), float(log10_omega_max))
+    return per_object(material, key, lambda: _angular_table(material, float(T0), lo, hi, int(per_decade),
+                                                            (float(log10_omega_min), float(log10_omega_max))))
+
+
+def _angular_table(material, T0: float, lo: float, hi: float, per_decade: int, valid: tuple) -> AngularTable:
+    from . import kernels as _kernels
+
     table = modulus_table(material, T0, lo, hi, per_decade)
     Er = np.exp(table.ln_re)
     Ei = np.exp(table.ln_im)
@@ -191,8 +209,7 @@ def angular_table(material, T0: float, log10_omega_min: float, log10_omega_max: 
         a = np.empty(n)
         _kernels.angular_convolution(np.ascontiguousarray(F), c, a)
         out.append(np.log(np.maximum(a, 1e-300)))
-    return AngularTable(lw0=table.lw0, dlw=dlw, ln_are=out[0], ln_aim=out[1], ln_l=out[2], T0=float(T0),
-                        lw_valid=(float(log10_omega_min), float(log10_omega_max)))
+    return AngularTable(lw0=table.lw0, dlw=dlw, ln_are=out[0], ln_aim=out[1], ln_l=out[2], T0=T0, lw_valid=valid)
 
 
 def _max_weights(per_decade: int) -> int:

@@ -77,8 +77,9 @@ def _march_all(rows, patch, lattice, axis, profiles, out, first, stride):
         Step between the rows of this share (the number of shares).
     """
     g_first, g_weights = _pressure_stencils(patch.g, lattice.g_nodes)
+    abel_weights = _combined_abel_weights(patch.abel)
     for r in range(first, rows.sweep.size, stride):
-        _march_row(r, rows, patch, lattice, axis, profiles, g_first, g_weights, out)
+        _march_row(r, rows, patch, lattice, axis, profiles, g_first, g_weights, abel_weights, out)
 
 
 #: The march over a share of the rows; releases the GIL, so that :func:`march` runs the shares on several threads.
@@ -86,7 +87,7 @@ _march_kernel = njit(cache=True, nogil=True)(_march_all)
 
 
 @njit(cache=True)
-def _march_row(r, rows, patch, lattice, axis, profiles, g_first, g_weights, out):
+def _march_row(r, rows, patch, lattice, axis, profiles, g_first, g_weights, abel_weights, out):
     """March along the patch for row r: the stick zone, then the temperature and shear at every sliding point,
     solved point by point from the leading edge; writes the row's outputs.
 
@@ -108,6 +109,8 @@ def _march_row(r, rows, patch, lattice, axis, profiles, g_first, g_weights, out)
         First pressure node of the stencil of every patch node (:func:`_pressure_stencils`).
     g_weights : ndarray (N + 1, 4)
         Its interpolation weights.
+    abel_weights : ndarray (N,)
+        The Abel weights of a shear value at each distance (:func:`_combined_abel_weights`).
     out : MarchOutputs
         Row r is filled.
     """
@@ -151,16 +154,15 @@ def _march_row(r, rows, patch, lattice, axis, profiles, g_first, g_weights, out)
     values, value_offset, n_temperature = lattice.values, lattice.value_offset, lattice.n_temperature
     y_fine, cap, dT_fine, h_y, mu_max = axis.y_fine, axis.cap, axis.dT_fine, axis.h, axis.mu_max[c]
     for k in range(1, n_slide):
-        known, own_weight = _abel_known_part(k, y, shear, abel, sqrt_h, edge_point, h_first)
+        known, own_weight = _abel_known_part(k, y, shear, abel, abel_weights, sqrt_h, edge_point, h_first)
         # the temperature at point k solves T = T0 + lam (known + own_weight g mu(T))
         j = k + first_node - (1 if edge_point else 0)  # the patch node of point k
         base = T0 + lam * known
         coef = lam * own_weight * g_slide[k]
-        T = _node_temperature(base, coef, T_slide[k - 1], T0, mu_max, c, iv, w_speed, mv, g_first[j], g_weights[j],
-                              mg, values, value_offset, n_temperature, y_fine, cap, dT_fine, h_y, w_temperature)
+        T, mu = _node_temperature(base, coef, T_slide[k - 1], T0, mu_max, c, iv, w_speed, mv, g_first[j],
+                                  g_weights[j], mg, values, value_offset, n_temperature, y_fine, cap, dT_fine, h_y,
+                                  w_temperature)
         x = _x_at(y_fine, c, T - T0, cap, dT_fine, h_y)
-        mu = _mu_at(iv, w_speed, mv, g_first[j], g_weights[j], mg, x, values, value_offset, n_temperature,
-                    w_temperature)
         use = _table_use(x, h_y, y_top)
         if use > top_use:
             top_use = use
@@ -404,10 +406,15 @@ def _slide_points(i, t, xc, pure, iv, w_speed, mv, mg, lattice, w_temperature, m
 
 
 @njit(cache=True, inline="always")
-def _abel_known_part(k, y, shear, abel, sqrt_h, edge_point, h_first):
+def _abel_known_part(k, y, shear, abel, abel_weights, sqrt_h, edge_point, h_first):
     r"""The Abel integral :math:`\int_{y_0}^{y_k} \tau(y')/\sqrt{y_k - y'}\,dy'` at sliding point k, split into
     the part of the points before k (known) and the weight of the unknown shear at k itself; the shear is linear
     between points, the kernel integrated exactly (:func:`_segment_weights`).
+
+    Each shear value before k enters through the two segments it ends, with the weight
+    ``abel_weights[k - m]`` (:func:`_combined_abel_weights`); the first point of the uniform run only through the
+    segment it starts. The sum, N^2 / 2 terms per row and most of the march's time, runs in four independent
+    partial sums (a single one waits on the latency of every addition).
 
     Parameters
     ----------
@@ -419,6 +426,8 @@ def _abel_known_part(k, y, shear, abel, sqrt_h, edge_point, h_first):
         Shear / sigma0 at the points before k.
     abel : ndarray (2, N)
         The unit Abel weights of the uniform spacing (:class:`~persson.slip.heating_arrays.Patch`).
+    abel_weights : ndarray (N,)
+        Their sums per shear value (:func:`_combined_abel_weights`).
     sqrt_h : float
         sqrt of the node spacing.
     edge_point : bool
@@ -432,31 +441,58 @@ def _abel_known_part(k, y, shear, abel, sqrt_h, edge_point, h_first):
         The known part and the weight of the shear at k.
     """
     known = 0.0
-    own = 0.0
     start = 0
     if edge_point:
         wl, wr = _segment_weights(y[k] - y[0], y[k] - y[1], h_first)
         if k == 1:
-            known += wl * shear[0]
-            own = wr
-        else:
-            known += wl * shear[0] + wr * shear[1]
+            return wl * shear[0], wr
+        known += wl * shear[0] + wr * shear[1]
         start = 1
-    for jj in range(start, k):
-        dd = k - jj
-        if jj + 1 == k:
-            known += sqrt_h * abel[0, dd] * shear[jj]
-            own = sqrt_h * abel[1, dd]
-        else:
-            known += sqrt_h * (abel[0, dd] * shear[jj] + abel[1, dd] * shear[jj + 1])
-    return known, own
+    # the uniform segments start .. k: shear[start] ends none of them, shear[m > start] ends segment m - 1
+    s0 = abel[0, k - start] * shear[start]
+    s1 = 0.0
+    s2 = 0.0
+    s3 = 0.0
+    m = start + 1
+    while m + 3 < k:
+        s0 += abel_weights[k - m] * shear[m]
+        s1 += abel_weights[k - m - 1] * shear[m + 1]
+        s2 += abel_weights[k - m - 2] * shear[m + 2]
+        s3 += abel_weights[k - m - 3] * shear[m + 3]
+        m += 4
+    while m < k:
+        s0 += abel_weights[k - m] * shear[m]
+        m += 1
+    return known + sqrt_h * ((s0 + s1) + (s2 + s3)), sqrt_h * abel[1, 1]
+
+
+@njit(cache=True)
+def _combined_abel_weights(abel):
+    """The weight of a shear value at distance d before the point evaluated, from both segments it ends and
+    starts: ``abel[0, d] + abel[1, d + 1]`` (the second term absent at the last distance).
+
+    Parameters
+    ----------
+    abel : ndarray (2, N)
+        The unit Abel weights (:class:`~persson.slip.heating_arrays.Patch`).
+
+    Returns
+    -------
+    ndarray (N,)
+    """
+    N = abel.shape[1]
+    w = np.zeros(N)
+    for d in range(1, N):
+        w[d] = abel[0, d] + (abel[1, d + 1] if d + 1 < N else 0.0)
+    return w
 
 
 @njit(cache=True, inline="always")
 def _node_temperature(base, coef, T_prev, T0, mu_max, c, iv, w_speed, mv, ig, w_pressure, mg, values, value_offset,
                       n_temperature, y_fine, cap, dT_fine, h, w_temperature):
     """The temperature at a sliding point: the root of F(T) = T - base - coef mu(T), by the secant method from
-    the previous point's temperature, with bisection on [base, base + 1.5 coef mu_max] where the secant fails.
+    the previous point's temperature, with bisection on [base, base + 1.5 coef mu_max] where the secant fails;
+    and the friction there (the last evaluation of the root search, not repeated by the caller).
 
     Parameters
     ----------
@@ -499,8 +535,8 @@ def _node_temperature(base, coef, T_prev, T0, mu_max, c, iv, w_speed, mv, ig, w_
 
     Returns
     -------
-    float
-        The temperature, deg C.
+    (float, float)
+        The temperature, deg C, and mu there.
     """
     Ta = T_prev if T_prev > base else base
     ma = _mu_at(iv, w_speed, mv, ig, w_pressure, mg, _x_at(y_fine, c, Ta - T0, cap, dT_fine, h), values,
@@ -508,13 +544,13 @@ def _node_temperature(base, coef, T_prev, T0, mu_max, c, iv, w_speed, mv, ig, w_
     Fa = Ta - base - coef * ma
     Tb = base + coef * ma
     if abs(Fa) <= 1e-10 * (1.0 + abs(Ta)):
-        return Ta
+        return Ta, ma
     for _ in range(40):
         mb = _mu_at(iv, w_speed, mv, ig, w_pressure, mg, _x_at(y_fine, c, Tb - T0, cap, dT_fine, h), values,
                     value_offset, n_temperature, w_temperature)
         Fb = Tb - base - coef * mb
         if abs(Fb) <= 1e-10 * (1.0 + abs(Tb)):
-            return Tb
+            return Tb, mb
         if Fb == Fa:
             break
         Tn = Tb - Fb * (Tb - Ta) / (Fb - Fa)
@@ -533,7 +569,9 @@ def _node_temperature(base, coef, T_prev, T0, mu_max, c, iv, w_speed, mv, ig, w_
             lo = mid
         if hi - lo < 1e-10 * (1.0 + abs(mid)):
             break
-    return 0.5 * (lo + hi)
+    T = 0.5 * (lo + hi)
+    return T, _mu_at(iv, w_speed, mv, ig, w_pressure, mg, _x_at(y_fine, c, T - T0, cap, dT_fine, h), values,
+                     value_offset, n_temperature, w_temperature)
 
 
 @njit(cache=True, inline="always")

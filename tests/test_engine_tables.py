@@ -1,0 +1,97 @@
+"""Tables the engine reuses between calls, and the sums of the heated-patch march, specified by what they must equal:
+a reused table is the table computed afresh, a scaled table the table of the scaled modulus, and the Abel sums of the
+march integrate linear shear exactly.
+"""
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import pytest
+
+import materials
+import persson
+import surfaces
+from persson.engine import tabulate
+from persson.slip import heating_kernels as hk
+from persson.slip.heating_tables import _unit_weights
+
+FIELDS = ("ln_are", "ln_aim", "ln_l")
+
+
+@dataclass(frozen=True, eq=False)
+class SameModulus:
+    """Another object with the modulus of ``material`` (nothing for the tables to recognise)."""
+
+    material: object
+    f: float = 1.0
+    g: float = 1.0
+
+    def E(self, omega, T=None):
+        E = self.material.E(omega, T)
+        return self.f * E.real + 1j * self.g * E.imag
+
+    @property
+    def log10_aT(self):
+        return self.material.log10_aT
+
+    @property
+    def thermal(self):
+        return self.material.thermal
+
+
+def test_a_strain_softened_material_gets_the_angular_table_of_its_scaled_modulus():
+    """A_re, A_im and L of f E' + i g E'' are f^2, g^2 and g times those of E: the scaled table of the wrapped
+    material equals the table computed from the softened modulus itself."""
+    m = materials.example_tread()
+    for f, g in ((0.6, 0.8), (0.1, 1.5), (1.0, 1.0)):
+        scaled = tabulate.angular_table(materials.StrainSoftened(m, f, g), 10.0, -2.0, 9.0, 40)
+        direct = tabulate.angular_table(SameModulus(m, f, g), 10.0, -2.0, 9.0, 40)
+        assert scaled.lw0 == direct.lw0 and scaled.ln_are.size == direct.ln_are.size
+        for name in FIELDS:
+            np.testing.assert_allclose(getattr(scaled, name), getattr(direct, name), rtol=0, atol=1e-12)
+
+
+def test_a_reused_table_is_the_table_computed_afresh_and_only_exact_repeats_are_reused():
+    m = materials.example_tread()
+    first = tabulate.angular_table(m, 20.0, 1.0, 8.0, 40)
+    assert tabulate.angular_table(m, 20.0, 1.0, 8.0, 40) is first
+    other = tabulate.angular_table(m, 20.0, 1.0, 8.5, 40)             # another range: its own table
+    assert other is not first and other.lw_valid == (1.0, 8.5)
+    fresh = tabulate.angular_table(SameModulus(m), 20.0, 1.0, 8.0, 40)
+    for name in FIELDS:
+        np.testing.assert_array_equal(getattr(first, name), getattr(fresh, name))
+
+
+def test_friction_does_not_depend_on_what_was_computed_before():
+    """The same friction, bit for bit, from a material seen before (tables reused) and from a fresh object."""
+    surface = surfaces.SelfAffine(hurst=0.8, q0=2e3, q1=1e6, hrms=1e-4)
+    m = materials.example_tread()
+    grid = persson.GridSettings(q_per_decade=12, n_phi=16, omega_per_decade=20)
+    v = np.geomspace(1e-4, 1.0, 7)
+    for effects in ([], [persson.effects.StrainSoftening(storage_factor=0.6, loss_factor=0.9)]):
+        persson.Model(surface, m, effects=effects, grid=grid).friction(v[::-1], temperature=30.0)
+        again = persson.Model(surface, m, effects=effects, grid=grid).friction(v, temperature=30.0)
+        fresh = persson.Model(surface, SameModulus(m), effects=effects, grid=grid).friction(v, temperature=30.0)
+        np.testing.assert_array_equal(again.mu, fresh.mu)
+        np.testing.assert_array_equal(again.contact_area, fresh.contact_area)
+
+
+@pytest.mark.parametrize("edge", [False, True])
+def test_the_abel_sums_of_the_march_integrate_linear_shear_exactly(edge):
+    r"""Product integration with linear shear between points is exact for tau = a + b y:
+    :math:`\int_0^Y (a + b y)/\sqrt{Y - y}\,dy = 2a\sqrt Y + \tfrac43 b Y^{3/2}`; with the stick edge between nodes
+    (a shorter first segment) as without."""
+    N, h = 161, 1.0 / 160
+    abel = _unit_weights(N)
+    weights = hk._combined_abel_weights(abel)
+    y = h * np.arange(N + 1)
+    if edge:
+        y = np.concatenate([[0.3 * h], y[1:]])       # point 0 at the stick edge, 0.7 h before node 1
+    a, b = 0.8, -0.35
+    shear = a + b * (y - y[0])
+    for k in range(1, N):
+        known, own = hk._abel_known_part(k, y, shear, abel, weights, math.sqrt(h), edge, y[1] - y[0])
+        Y = y[k] - y[0]
+        exact = 2 * a * math.sqrt(Y) + 4.0 / 3.0 * b * Y ** 1.5
+        assert known + own * shear[k] == pytest.approx(exact, rel=1e-12, abs=1e-14)
