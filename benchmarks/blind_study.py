@@ -22,7 +22,8 @@ Each case is drawn at random and made by a path independent of the diagnosis:
   estimate;
 * **distinguishable ratio**: what is left of the hidden effect after a refit of every other free parameter (the
   case's fitted ones, those of the other hidden effect of a pair) to the noise-free truth, over the noise: the part
-  a diagnosis can see at all (a strain softening under a fitted adhesion is largely absorbed by it).
+  a diagnosis can see at all (a strain softening under a fitted adhesion is largely absorbed by it); for physics
+  outside the candidates, what the best single candidate fitted with the baseline leaves of it.
 
 The diagnosis sees the case as a user would (:func:`validation.improve` with the default candidates) and the
 outcome is compared with the truth. Printed: the confusion matrix (hidden physics against the set of effects
@@ -161,17 +162,28 @@ def draw(index: int, seed: int) -> BlindCase:
         effect_rms = min(float(np.sqrt(np.mean((mu_true - validation.predict(w, skeleton, contact_truth).mu) ** 2)))
                          for w in withouts)
         unabsorbed = math.nan
+        truth_rows = validation.Measurements.from_arrays(slip=slip, speed=V, temperature=T, pressure=p, mu=mu_true,
+                                                         wet=wet.astype(bool), contact=contact_case)
         if kind in ("single", "pair"):
-            truth_rows = validation.Measurements.from_arrays(slip=slip, speed=V, temperature=T, pressure=p, mu=mu_true,
-                                                             wet=wet.astype(bool), contact=contact_case)
             unabsorbed = min(_unabsorbed_rms(w, truth_rows, contact_case, names) for w, names in zip(withouts, free))
+        elif kind == "outside":
+            # what the best single candidate, fitted with the baseline, leaves of the outside physics
+            rest = []
+            for n in SINGLES:
+                if (n == "patch_heating" and contact_case is None) or n in withouts[0].effect_names:
+                    continue
+                e = fx.get(n)
+                model = withouts[0].with_effect(e)
+                rest.append(_unabsorbed_rms(model, truth_rows, contact_case, tuple(fit) + tuple(
+                    f"{n}.{q.name}" for q in e.parameters if q.fittable)))
+            unabsorbed = min(rest)
     if kind in ("null", "wet"):
         ratio, sigma = math.nan, 10 ** rng.uniform(math.log10(0.004), math.log10(0.02))
     else:
         ratio = 10 ** rng.uniform(math.log10(0.5), math.log10(20.0))
         sigma = float(np.clip(effect_rms / ratio, 0.002, 0.05))
         ratio = effect_rms / sigma
-    distinguishable = unabsorbed / sigma if kind in ("single", "pair") else math.nan
+    distinguishable = unabsorbed / sigma if kind in ("single", "pair", "outside") else math.nan
     mu = np.clip(mu_true + rng.normal(0.0, sigma, mu_true.size), 0.0, None)
     meas = validation.Measurements.from_arrays(slip=slip, speed=V, temperature=T, pressure=p, mu=np.round(mu, 6),
                                                mu_std=np.full(mu.size, sigma) if use_std else None,
@@ -344,6 +356,13 @@ def summarize(results: list) -> str:
     out = [r for r in results if r["kind"] == "outside"]
     lines.append(f"Physics outside the candidates called explained: {sum(r['verdict'] == 'explained' for r in out)} "
                  f"of {len(out)} (verdicts: {', '.join(r['verdict'] for r in out) or '-'})")
+    far = [r for r in out if r.get("distinguishable", math.nan) >= 2]
+    if far:
+        lines.append(f"  of those that no single candidate absorbs (distinguishable ratio >= 2, what the best candidate "
+                     f"fitted to the noise-free truth leaves, over the noise): "
+                     f"{sum(r['verdict'] == 'explained' for r in far)} of {len(far)}; the others: " + ", ".join(
+                         f"case {r['index']} {r['distinguishable']:.2f} {r['verdict']}"
+                         for r in out if r not in far))
     for key, title in (("ratio", "the effect-to-noise ratio (the truth's change of mu without the effect)"),
                        ("distinguishable", "the distinguishable ratio (what a refit of the other parameters leaves "
                                            "of that change)")):
