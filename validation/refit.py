@@ -28,7 +28,7 @@ r"""Global, joint refits from several starts, and the uncertainty and plausibili
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -97,6 +97,8 @@ class Estimate:
         Why the value is not credible (on a search bound, outside the plausible range), else ``""``.
     search : (float, float)
         The bounds searched.
+    log_scale : bool
+        Whether the parameter was searched on a log scale (its interval is then judged in decades).
     """
 
     key: str
@@ -109,6 +111,7 @@ class Estimate:
     plausible: tuple = (-math.inf, math.inf)
     issue: str = ""
     search: tuple = (-math.inf, math.inf)
+    log_scale: bool = False
 
     @property
     def name(self) -> str:
@@ -124,6 +127,10 @@ class Estimate:
         slo, shi = self.search
         if not (math.isfinite(slo) and math.isfinite(shi)) or any(math.isnan(x) for x in (lo, hi)):
             return True
+        if self.log_scale and slo > 0:
+            # in decades: on a range of 1e-12 to 1e6 m/s an interval from 0.4 m/s up does not span the range
+            tol = 1e-6 * math.log(shi / slo)
+            return not ((lo <= 0 or math.log(lo / slo) <= tol) and hi > 0 and math.log(shi / hi) <= tol)
         tol = 1e-6 * max(abs(slo), abs(shi), 1e-300)
         return not (lo <= slo + tol and hi >= shi - tol)
 
@@ -430,7 +437,8 @@ def _estimates(fitter, u, chi2, J, s2, good, ranges, profile) -> tuple:
         if norms[j] <= 1e-10 * max(float(norms.max()), 1e-300):
             # the parameter changes no prediction here: neither determined nor judged
             out.append(Estimate(key=p.key, value=float(x), std=math.inf, interval=(p.lo, p.hi),
-                                method="no effect on these rows", unit=p.unit, search=(float(p.lo), float(p.hi))))
+                                method="no effect on these rows", unit=p.unit, search=(float(p.lo), float(p.hi)),
+                                log_scale=bool(getattr(p, "log", False))))
             continue
         sd_u = math.sqrt(cov[j, j]) if math.isfinite(cov[j, j]) and cov[j, j] >= 0 else math.inf
         on_bound = u[j] < BOUND_TOL or u[j] > 1 - BOUND_TOL
@@ -459,21 +467,29 @@ def _bare_estimates(fitter, u, ranges) -> tuple:
 
 
 def _estimate(p, x, std, interval, method, uj, ranges) -> Estimate:
+    """The estimate of parameter ``p`` at ``x``, judged: on a search bound the data push it out of the range
+    searched, unless its 68 % interval spans that whole range -- then the data do not determine it at all (the
+    likelihood is flat within one unit of chi2), the value on the bound is as good as any plausible one, and the
+    parameter is reported as not identified rather than the fit as not credible."""
     bound = ""
     issue = ""
+    plo, phi = p.plausible_range(ranges)
+    est = Estimate(key=p.key, value=float(x), std=float(std), interval=tuple(float(v) for v in interval),
+                   method=method, unit=p.unit, plausible=(plo, phi), search=(float(p.lo), float(p.hi)),
+                   log_scale=bool(getattr(p, "log", False)))
+    flat = not est.identified and not method.startswith("none")
     if uj < BOUND_TOL or uj > 1 - BOUND_TOL:
         b = p.lo if uj < 0.5 else p.hi
         if p.is_physical_limit(b):
             bound = "physical limit"
         else:
             bound = "search bound"
-            issue = f"on the {'lower' if uj < 0.5 else 'upper'} search bound {b:g}: the data push it out of the range searched"
-    plo, phi = p.plausible_range(ranges)
-    if not issue and not (plo * (1 - 1e-9) - 1e-300 <= x <= phi * (1 + 1e-9) + 1e-300):
+            if not flat:
+                issue = (f"on the {'lower' if uj < 0.5 else 'upper'} search bound {b:g}: the data push it out of "
+                         "the range searched")
+    if not issue and not flat and not (plo * (1 - 1e-9) - 1e-300 <= x <= phi * (1 + 1e-9) + 1e-300):
         issue = f"outside the plausible range {plo:.3g} - {phi:.3g}"
-    return Estimate(key=p.key, value=float(x), std=float(std), interval=tuple(float(v) for v in interval),
-                    method=method, unit=p.unit, bound=bound, plausible=(plo, phi), issue=issue,
-                    search=(float(p.lo), float(p.hi)))
+    return replace(est, bound=bound, issue=issue)
 
 
 def _covariance(H: np.ndarray) -> np.ndarray:

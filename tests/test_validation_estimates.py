@@ -1,0 +1,57 @@
+"""How a fitted parameter is judged: identified or not (its 68 % interval against the range searched, in decades for
+a parameter searched on a log scale), and when a value on a search bound makes a fit not credible (the data push it
+out of the range) and when it does not (the data do not determine it at all)."""
+
+import math
+
+import pytest
+
+from validation.fitting import FreeParameter
+from validation.refit import Estimate, _estimate
+
+V_REF = FreeParameter(effect="adhesion", name="v_ref", lo=1e-12, hi=1e6, log=True, unit="m/s",
+                      plausible=(1e-6, 1e3))
+C = FreeParameter(effect="adhesion", name="c", lo=0.0, hi=2.0, log=False, unit="1/decade^2", plausible=(0.0, 0.5))
+
+
+def test_an_interval_on_a_log_scale_is_judged_in_decades():
+    est = Estimate(key="adhesion.v_ref", value=1e6, std=math.inf, interval=(0.4, 1e6), method="profile",
+                   search=(1e-12, 1e6), log_scale=True)
+    assert est.identified                     # 0.4 m/s up: 6.4 of the 18 decades searched
+    whole = Estimate(key="adhesion.v_ref", value=1e6, std=math.inf, interval=(1e-12, 1e6), method="profile",
+                     search=(1e-12, 1e6), log_scale=True)
+    assert not whole.identified
+    # on a linear reading 0.4 would be "within 1e-6 of the range" of 1e6 and count as reaching its lower end
+    linear = Estimate(key="x", value=1e6, std=math.inf, interval=(0.4, 1e6), method="profile", search=(1e-12, 1e6))
+    assert not linear.identified
+
+
+def test_a_value_on_a_search_bound_is_pushed_out_when_the_interval_is_bounded():
+    e = _estimate(V_REF, 1e6, math.inf, (3e5, 1e6), "profile", 1.0, None)
+    assert e.bound == "search bound" and e.identified
+    assert e.issue == "on the upper search bound 1e+06: the data push it out of the range searched"
+
+
+def test_a_value_on_a_search_bound_is_not_identified_when_the_interval_spans_the_range():
+    """A flat likelihood over the whole range: the bound is as good as any plausible value, so the fit stays
+    credible and the parameter is reported as not identified (which keeps a verdict from ``explained``)."""
+    e = _estimate(C, 2.0, math.inf, (0.0, 2.0), "profile", 1.0, None)
+    assert e.bound == "search bound" and not e.identified and e.issue == ""
+    assert "[not identified: the interval spans the range searched]" in e.describe()
+    e = _estimate(V_REF, 1e6, math.inf, (1e-12, 1e6), "profile", 1.0, None)
+    assert e.issue == "" and not e.identified
+
+
+def test_a_value_outside_its_plausible_range_is_not_credible_unless_the_data_leave_it_open():
+    e = _estimate(C, 0.9, 0.05, (0.85, 0.95), "quadratic", 0.45, None)
+    assert e.bound == "" and e.issue == "outside the plausible range 0 - 0.5"
+    e = _estimate(C, 0.9, math.inf, (0.0, 2.0), "profile", 0.45, None)
+    assert e.issue == "" and not e.identified
+
+
+@pytest.mark.parametrize("u", [0.0, 1.0])
+def test_a_physical_limit_is_no_issue(u):
+    tau = FreeParameter(effect="adhesion", name="tau_f0", lo=0.0, hi=50e6, log=False, unit="Pa",
+                        physical_limits=(0.0,), plausible=(0.0, 10e6))
+    e = _estimate(tau, 0.0, 1e5, (0.0, 1e5), "quadratic", 0.0, None)
+    assert e.bound == "physical limit" and e.issue == ""
