@@ -32,6 +32,17 @@ def test_a_value_on_a_search_bound_is_pushed_out_when_the_interval_is_bounded():
     assert e.issue == "on the upper search bound 1e+06: the data push it out of the range searched"
 
 
+def test_a_value_on_a_search_bound_is_bounded_on_one_side_when_the_interval_reaches_plausible_values():
+    """An adhesive peak somewhere above the measured speeds: the fit runs v_ref to the end of the range, but every
+    value from 0.4 m/s up, the plausible ones to 1e3 m/s included, fits within one unit of chi2."""
+    e = _estimate(V_REF, 1e6, math.inf, (0.4, 1e6), "profile", 1.0, None)
+    assert e.bound == "search bound" and e.issue == "" and e.one_sided == "above 0.4" and not e.identified
+    assert "bounded on one side only, the data allow any value above 0.4" in e.describe()
+    e = _estimate(V_REF, 1e-12, math.inf, (1e-12, 3e-5), "profile", 0.0, None)
+    assert e.one_sided == "below 3e-05" and e.issue == "" and not e.identified
+    assert e.as_dict()["one_sided"] == "below 3e-05" and e.as_dict()["identified"] is False
+
+
 def test_a_value_on_a_search_bound_is_not_identified_when_the_interval_spans_the_range():
     """A flat likelihood over the whole range: the bound is as good as any plausible value, so the fit stays
     credible and the parameter is reported as not identified (which keeps a verdict from ``explained``)."""
@@ -55,3 +66,12 @@ def test_a_physical_limit_is_no_issue(u):
                         physical_limits=(0.0,), plausible=(0.0, 10e6))
     e = _estimate(tau, 0.0, 1e5, (0.0, 1e5), "quadratic", 0.0, None)
     assert e.bound == "physical limit" and e.issue == ""
+
+
+def test_a_bound_that_is_itself_plausible_is_pushed_against_whatever_the_interval():
+    """Without a narrower plausible range the bound is a plausible value: reaching it, the fit wants more."""
+    plain = FreeParameter(effect="test", name="k", lo=0.0, hi=2.0, log=False, unit="1")
+    e = _estimate(plain, 2.0, math.inf, (1.0, 2.0), "profile", 1.0, None)
+    assert e.issue.startswith("on the upper search bound 2") and e.one_sided == "" and e.identified
+    e = _estimate(C, 2.0, math.inf, (0.3, 2.0), "profile", 1.0, None)      # plausible only up to 0.5
+    assert e.issue == "" and e.one_sided == "above 0.3"

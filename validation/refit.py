@@ -99,6 +99,9 @@ class Estimate:
         The bounds searched.
     log_scale : bool
         Whether the parameter was searched on a log scale (its interval is then judged in decades).
+    one_sided : str
+        ``""``, or where the data leave the parameter open when it ends on a search bound with its 68 % interval
+        reaching back into the plausible range (``"above 0.4"``): bounded on one side only, so not identified.
     """
 
     key: str
@@ -112,6 +115,7 @@ class Estimate:
     issue: str = ""
     search: tuple = (-math.inf, math.inf)
     log_scale: bool = False
+    one_sided: str = ""
 
     @property
     def name(self) -> str:
@@ -119,9 +123,9 @@ class Estimate:
 
     @property
     def identified(self) -> bool:
-        """Whether the data limit the parameter: False when its 68 % interval spans the whole range searched
-        (or it changes no prediction on these rows)."""
-        if self.method.startswith("no effect"):
+        """Whether the data limit the parameter: False when its 68 % interval spans the whole range searched, when
+        it is bounded on one side only (:attr:`one_sided`), or when it changes no prediction on these rows."""
+        if self.method.startswith("no effect") or self.one_sided:
             return False
         lo, hi = self.interval
         slo, shi = self.search
@@ -146,14 +150,17 @@ class Estimate:
             txt += " [at its physical limit]"
         if self.issue:
             txt += f" [{self.issue}]"
-        if not self.identified:
+        if self.one_sided:
+            txt += (f" [not identified: bounded on one side only, the data allow any value {self.one_sided} (plausible "
+                    "ones included)]")
+        elif not self.identified:
             txt += " [not identified: the interval spans the range searched]"
         return txt
 
     def as_dict(self) -> dict:
         return {"value": self.value, "std": self.std, "interval": list(self.interval), "method": self.method,
                 "unit": self.unit, "bound": self.bound, "plausible": list(self.plausible), "issue": self.issue,
-                "search": list(self.search), "identified": self.identified}
+                "search": list(self.search), "identified": self.identified, "one_sided": self.one_sided}
 
 
 @dataclass(frozen=True, eq=False)
@@ -467,10 +474,12 @@ def _bare_estimates(fitter, u, ranges) -> tuple:
 
 
 def _estimate(p, x, std, interval, method, uj, ranges) -> Estimate:
-    """The estimate of parameter ``p`` at ``x``, judged: on a search bound the data push it out of the range
-    searched, unless its 68 % interval spans that whole range -- then the data do not determine it at all (the
-    likelihood is flat within one unit of chi2), the value on the bound is as good as any plausible one, and the
-    parameter is reported as not identified rather than the fit as not credible."""
+    """The estimate of parameter ``p`` at ``x``, judged. On a search bound the data push it out of the range
+    searched (the fit is not credible), except when its 68 % interval spans that whole range (the data do not
+    determine it at all) or when the bound lies beyond the plausible range and the interval reaches back into it
+    (the data bound it on one side only: an adhesive peak somewhere above the measured speeds). In both the
+    likelihood at plausible values is within one unit of chi^2 of the bound's, and the parameter is reported as not
+    identified rather than the fit as not credible."""
     bound = ""
     issue = ""
     plo, phi = p.plausible_range(ranges)
@@ -478,18 +487,27 @@ def _estimate(p, x, std, interval, method, uj, ranges) -> Estimate:
                    method=method, unit=p.unit, plausible=(plo, phi), search=(float(p.lo), float(p.hi)),
                    log_scale=bool(getattr(p, "log", False)))
     flat = not est.identified and not method.startswith("none")
+    one_sided = ""
     if uj < BOUND_TOL or uj > 1 - BOUND_TOL:
         b = p.lo if uj < 0.5 else p.hi
         if p.is_physical_limit(b):
             bound = "physical limit"
         else:
             bound = "search bound"
-            if not flat:
+            lo, hi = est.interval
+            # a bound beyond the plausible range, with plausible values inside the interval: the bound is not
+            # demanded (a bound that is itself plausible, reached with a narrow interval, is pushed against)
+            implausible_bound = b > phi * (1 + 1e-9) + 1e-300 if uj > 0.5 else b < plo * (1 - 1e-9) - 1e-300
+            reaches = (math.isfinite(lo) and math.isfinite(hi) and lo <= phi * (1 + 1e-9) + 1e-300
+                       and hi >= plo * (1 - 1e-9) - 1e-300)
+            if not flat and implausible_bound and reaches and method != "none":
+                one_sided = f"below {hi:.3g}" if uj < 0.5 else f"above {lo:.3g}"
+            elif not flat:
                 issue = (f"on the {'lower' if uj < 0.5 else 'upper'} search bound {b:g}: the data push it out of "
                          "the range searched")
-    if not issue and not flat and not (plo * (1 - 1e-9) - 1e-300 <= x <= phi * (1 + 1e-9) + 1e-300):
+    if not issue and not flat and not one_sided and not (plo * (1 - 1e-9) - 1e-300 <= x <= phi * (1 + 1e-9) + 1e-300):
         issue = f"outside the plausible range {plo:.3g} - {phi:.3g}"
-    return replace(est, bound=bound, issue=issue)
+    return replace(est, bound=bound, issue=issue, one_sided=one_sided)
 
 
 def _covariance(H: np.ndarray) -> np.ndarray:

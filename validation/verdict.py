@@ -192,7 +192,7 @@ def judge(name, effects, lack, pattern, not_identified, share, delta_bic, noise_
     if fits:
         reason = (f"With {words} the residual is at the noise level ({lack.describe()}; {noise_txt}), but the "
                   f"data do not identify {', '.join(not_identified)} (the 68 % interval spans the whole range "
-                  f"searched): {words} is indicated, not established; measure where "
+                  f"searched, or is open on one side): {words} is indicated, not established; measure where "
                   f"{'it acts' if len(not_identified) == 1 else 'they act'} to pin "
                   f"{'it' if len(not_identified) == 1 else 'them'} down.")
         return Verdict("partly_explained", name, lack.p_value, pattern.describe(), reason, close, alts,
@@ -227,8 +227,8 @@ def _undetermined(baseline, credible, implausible, noise, close) -> Verdict:
         reason += (f" {best.effect} is indicated (delta BIC {best.delta_bic:+.1f}, p = {best.p_value:.2g}): "
                    + (f"the data identify {'; '.join(ident)}" if ident else "the data identify none of its "
                       "parameters")
-                   + (f", but not {', '.join(not_identified)} (the 68 % interval spans the range searched)"
-                      if not_identified and ident else "") + ".")
+                   + (f", but not {', '.join(not_identified)} (the 68 % interval spans the range searched, or is "
+                      "open on one side)" if not_identified and ident else "") + ".")
         if len(indicated) > 1:
             reason += f" Also indicated: {', '.join(indicated[1:])}."
     elif implausible:
