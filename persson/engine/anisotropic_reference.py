@@ -33,7 +33,7 @@ from scipy import integrate, interpolate, special
 
 from frictioncite import doi
 
-from .reference import ReferenceResult, flash_fixed_point, heat_matrix
+from .reference import ReferenceResult, flash_fixed_point, flash_nodes, heat_matrix
 
 __all__ = ["reference_directional_friction", "reference_directional_flash_friction"]
 
@@ -144,8 +144,8 @@ def reference_directional_flash_friction(surface, material, speed, direction_deg
     :math:`\log_{10}(q v) + \log_{10} a_T(T_q) - \log_{10} a_T(T_0)` (the material's own shift law): valid for an
     angular shape independent of q (a stretched power law), which is checked. G, P and mu come from an adaptive ODE
     solve with the current T_q; the heat integral is the trapezoid rule on ``nodes_per_decade`` log-spaced nodes plus
-    nodes graded geometrically towards q0. The heat kernel g is the closed form
-    :func:`persson.engine.kernels.heat_kernel` (checked against quadrature in ``tests/test_effects.py``).
+    nodes graded geometrically towards q0 (:func:`persson.engine.reference.flash_nodes`). The heat kernel g is the
+    closed form :func:`persson.engine.kernels.heat_kernel` (checked against quadrature in ``tests/test_effects.py``).
     Seconds per speed: for verification only.
 
     Returns
@@ -174,8 +174,7 @@ def reference_directional_flash_friction(surface, material, speed, direction_deg
     D, rc = th.diffusivity, th.heat_capacity
     q_m = macro_scale_ratio * q0
     d = contact_diameter if contact_diameter > 0 else math.pi / q_m
-    n = int(math.ceil(nodes_per_decade * math.log10(q1 / q0))) + 1
-    q = np.unique(np.concatenate([np.geomspace(q0, q1, n), q0 * (1.0 + np.geomspace(1e-12, 1e-2, 60))]))
+    q = flash_nodes(q0, q1, nodes_per_decade)
     x = np.log(q)
     fq = np.array([float(surface.C2d(qi * math.cos(phi_k), qi * math.sin(phi_k))) for qi in q]) / c0
     s = 1.0 / ((1.0 - nu * nu) * pressure)
