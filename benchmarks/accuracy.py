@@ -8,7 +8,8 @@ and 160 modulus nodes per decade, the temperature-shift table every 0.01 K inste
 * the worst relative error of the defaults, per compound and surface, and overall;
 * how the built-in ``error_estimate`` compares with the true error (ratio estimate / true where the true error
   exceeds 1e-6);
-* the converged setting against the independent adaptive quadrature of :mod:`persson.engine.reference` at the corners;
+* the converged setting against the independent adaptive quadrature of :mod:`persson.engine.reference` at the corners,
+  and, with the flash temperature, against its independent fixed-point iteration (the glassy corner and a tread);
 * the table of the stiff-regime accuracy report (the glassy compound on a road).
 
 Options: ``--quick`` (fewer conditions), ``--no-flash``, ``--no-reference``.
@@ -111,6 +112,8 @@ def run(quick: bool, flash: bool, reference: bool) -> int:
     stiff_table()
     if reference:
         reference_check(comps, surfs)
+        if flash:
+            flash_reference_check(comps, surfs)
     return 0
 
 
@@ -157,6 +160,33 @@ def reference_check(comps, surfs) -> None:
         print(f"{c:7s} {s:15s} v={v:g} T={T:g} p={p / 1e6:g} MPa: mu ref {mu_ref[0]:.6g}, converged "
               f"{r.mu_hysteresis / mu_ref[0] - 1:+.1e}, default {d.mu_hysteresis / mu_ref[0] - 1:+.1e}; "
               f"A/A0 ref {area_ref[0]:.4g}, default {d.contact_area / area_ref[0] - 1:+.1e} ({time.time() - t:.0f} s)")
+
+
+def flash_reference_check(comps, surfs) -> None:
+    """The engine with the flash temperature (default and converged settings) against the independent fixed-point
+    iteration (persson.engine.reference.reference_flash_friction) at 160 and 320 nodes per decade, extrapolated
+    with the observed order of the last three densities (80, 160, 320)."""
+    from persson.engine.reference import reference_flash_friction
+
+    print("\nflash temperature vs the independent fixed-point iteration (persson.engine.reference)")
+    corners = [("glassy", "rough road", 3.0, -20.0, 0.02e6), ("tread", "rough road", 1.0, 20.0, 0.3e6)]
+    for c, s, v, T, p in corners:
+        t = time.time()
+        mus = [reference_flash_friction(surfs[s], comps[c], v, T, p, nodes_per_decade=n, tol=1e-6).mu[0]
+               for n in (80, 160, 320)]
+        ratio = (mus[1] - mus[0]) / (mus[2] - mus[1])
+        mu_ref = mus[2] + (mus[2] - mus[1]) / (ratio - 1.0) if ratio > 1.5 else math.nan
+        effects = [persson.effects.FlashTemperature(tol=1e-8)]
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            d = persson.Model(surfs[s], comps[c], effects=effects).friction(v, temperature=T, pressure=p)
+            r = persson.Model(surfs[s], comps[c], effects=effects, grid=CONVERGED).friction(v, temperature=T,
+                                                                                          pressure=p)
+        print(f"{c:7s} {s:15s} v={v:g} T={T:g} p={p / 1e6:g} MPa: reference {mus[0]:.6g} {mus[1]:.6g} {mus[2]:.6g} "
+              f"(80/160/320 per decade; order {math.log2(ratio):.2f}) -> {mu_ref:.6g}; converged "
+              f"{r.mu_hysteresis / mu_ref - 1:+.1e}, default {d.mu_hysteresis / mu_ref - 1:+.1e} "
+              f"(estimate {d.error_estimate:.1e}); flash rise {float(d.max_flash_temperature):.0f} K "
+              f"({time.time() - t:.0f} s)")
 
 
 def main(argv=None) -> int:
