@@ -134,6 +134,8 @@ MODULUS_RANGE_PA = (1.0e4, 1.0e12)
 #: textures): their rms roughness is 0.05-5 mm, never below a micrometre. A band of a road (a sweep's surface of its
 #: own) is not a road: its wavelengths do not span both.
 _ROAD_WAVELENGTHS_M = (0.01, 1.0e-3)
+#: Below this (and above 0) a friction coefficient on a road-scale surface is taken for a unit slip.
+_MIN_ROAD_MU = 1.0e-3
 _ROAD_MIN_HRMS_M = 1.0e-6
 
 
@@ -232,7 +234,7 @@ def unit_slip_notes(surface, mu, contact_area) -> list[str]:
                    "cent; check the units of the modulus (MPa typed as Pa?), the pressure and the profile heights")
     m = np.atleast_1d(np.asarray(mu, dtype=float))
     m = m[m > 0]  # exactly 0 is a lossless material, not a unit slip
-    if m.size and np.min(m) < 1.0e-3:
+    if m.size and np.min(m) < _MIN_ROAD_MU:
         out.append(f"friction coefficient {np.min(m):.3g} (< 1e-3) on {road}: rubber on a road gives 0.1-2; "
                    "check the units of the modulus, the pressure and the profile heights")
     return out

@@ -293,6 +293,82 @@ def test_one_table_per_call_and_reuse_while_only_the_contact_changes():
         assert np.allclose(mu, fresh, atol=1e-3)
 
 
+def test_one_table_serves_every_adhesive_shear_stress():
+    """The adhesive term tau_f0 exp(-c x^2) A/A0 / sigma0 is proportional to tau_f0 and nothing else in the engine
+    depends on it (the solver never sees adhesion): a table keeps it apart and serves a fit of tau_f0 without
+    engine calls, with the answers of a fresh table."""
+    from persson.effects import Adhesion, Wet
+
+    c = ps.Contact(L, W, K)
+    s, V = np.broadcast_arrays(np.geomspace(0.01, 1.0, 12)[:, None], np.array([0.3, 3.0])[None, :])
+    s, V = s.ravel(), V.ravel()
+    heat = PatchHeating()
+    road, tread = surfaces.example_road(), materials.example_tread()  # a table is kept for these very objects
+
+    def model_of(*effects):
+        return persson.Model(road, tread, effects=list(effects))
+
+    for extra in ((), (Wet(),)):  # on a wet road the adhesion is off: the split holds as well
+        cache = {}
+        model = model_of(heat, Adhesion(tau_f0=1.0e6), *extra)
+        first = patch_friction(model, heat, c, s, V, T0, SIGMA0, tables=cache)
+        tab = cache["value"]
+        for tau in (1.4e6, 0.2e6, 1.0e6):
+            other = model_of(heat, Adhesion(tau_f0=tau), *extra)
+            kept = patch_friction(other, heat, c, s, V, T0, SIGMA0, tables=cache)
+            fresh = patch_friction(other, heat, c, s, V, T0, SIGMA0, tables={})
+            assert cache["value"] is tab
+            # no engine call unless a hotter patch needs temperature nodes above the table's
+            assert kept.engine_calls == 0 or (tau > 1.0e6 and not extra)
+            np.testing.assert_allclose(kept.mu, fresh.mu, rtol=1e-9, atol=1e-12)
+            np.testing.assert_allclose(kept.mu_local, fresh.mu_local, rtol=1e-12, atol=1e-14)
+            assert kept.notes == fresh.notes
+            if extra:
+                np.testing.assert_allclose(kept.mu, first.mu, rtol=1e-12)
+        # the T0 slice is the engine's own friction at each tau_f0 (interpolated between the table's speed nodes)
+        direct = model_of(Adhesion(tau_f0=1.0e6), *extra).friction(s * V, temperature=T0, pressure=SIGMA0).mu
+        np.testing.assert_allclose(kept.mu_local, direct, rtol=3e-4)
+    # friction above 3 carries a note that depends on the level: such a table is not rescaled, and the notes are
+    # those of the model asked for
+    cache = {}
+    patch_friction(model_of(heat, Adhesion(tau_f0=1.0e6, c=0.0)), heat, c, s, V, T0, SIGMA0, tables=cache)
+    tab = cache["value"]
+    huge = model_of(heat, Adhesion(tau_f0=4.0e7, c=0.0))
+    loud = patch_friction(huge, heat, c, s, V, T0, SIGMA0, tables=cache)
+    assert cache["value"] is not tab and loud.engine_calls > 0
+    assert any("> 3" in n for n in loud.notes)
+    back = patch_friction(model_of(heat, Adhesion(tau_f0=1.0e6, c=0.0)), heat, c, s, V, T0, SIGMA0, tables=cache)
+    assert back.engine_calls > 0 and not any("> 3" in n for n in back.notes)
+
+
+def test_the_speed_contracted_table_interpolates_as_the_full_lattice():
+    """The march sums a row's table over its speed stencil once and interpolates in (p, T) alone where the
+    temperature stencil is the same on every speed node: the value of the tensor-product interpolation to rounding,
+    and the full interpolation near the top of the shortest table."""
+    from persson.slip import heating_kernels as hk
+    from persson.slip.heating_arrays import FrictionLattice
+
+    rng = np.random.default_rng(3)
+    n_u = np.array([5, 9, 6, 12, 4], dtype=np.int64)
+    ng = 3
+    sizes = ng * n_u
+    offset = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
+    lattice = FrictionLattice(log_speed=np.log(np.geomspace(0.01, 1.0, n_u.size)),
+                              v_offset=np.array([0, n_u.size], dtype=np.int64), g_nodes=np.linspace(0.2, 1.5, ng),
+                              values=rng.uniform(0.2, 1.0, int(offset[-1])), value_offset=offset, n_temperature=n_u)
+    wv, wg, wu = np.empty(4), np.empty(4), np.empty(4)
+    for iv, log_v in ((0, math.log(0.05)), (1, math.log(0.2))):
+        wv[:] = [0.1, 0.5, 0.3, 0.1]
+        contracted, n_min = hk._speed_contracted(lattice, iv, wv, 4)
+        assert n_min == n_u[iv:iv + 4].min()
+        for g in (0.2, 0.7, 1.5):
+            ig = hk._lagrange(lattice.g_nodes, 0, ng, g, wg)
+            for x in np.linspace(-0.5, 13.0, 271):
+                full = hk._mu_at(iv, wv, 4, ig, wg, 3, x, lattice.values, offset, n_u, wu)
+                row = hk._mu_row(iv, wv, 4, ig, wg, 3, x, lattice.values, offset, n_u, wu, contracted, n_min)
+                assert row == pytest.approx(full, rel=1e-13, abs=1e-15)
+
+
 @dataclass
 class _Named:
     """A ClosedForm carrying a PatchHeating effect, as a persson.Model does."""

@@ -15,6 +15,11 @@ redundant by the heat, is removed by the backward elimination (dropping it costs
 
 Two near-parallel candidates (``test_line`` = k x, the truth, and ``test_bend`` = k (x + 0.15 x^2)) are equally
 supported: both are named, each with parameters and intervals, with the measurement that separates them.
+
+A look-alike ``test_mimic`` = b + k x fits the texture + heat data better than the texture alone and takes the
+texture's place on the stepwise path; with it in, the texture adds nothing (its constant is the mimic's) and the heat
+stays invisible (no texture), so the path ends short of the noise. The pairs it did not reach are then explored:
+texture + heat is found, fits at the noise, and replaces the mimic.
 """
 
 from dataclasses import dataclass
@@ -105,7 +110,20 @@ def effects():
             x = _x(state)
             return self.k * (x + 0.15 * x * x)
 
-    yield {"texture": Texture, "heat": Heat, "slope": Slope, "line": Line, "bend": Bend}
+    @dataclass(frozen=True)
+    class Mimic(Effect):
+        """b + k x: takes the texture's constant and part of the heat's rise, but no curvature."""
+
+        name = "test_mimic"
+        parameters = (Parameter("b", 0.02, (0.0, 0.3), "1", "constant", physical_limits=(0.0,)),
+                      Parameter("k", 0.05, (-1.0, 1.0), "1", "slope over the speeds"))
+        b: float = 0.02
+        k: float = 0.05
+
+        def friction_term(self, state):
+            return self.b + self.k * _x(state)
+
+    yield {"texture": Texture, "heat": Heat, "slope": Slope, "line": Line, "bend": Bend, "mimic": Mimic}
     base._REGISTRY = saved
 
 
@@ -164,6 +182,45 @@ def test_an_effect_made_redundant_by_a_later_one_is_removed(hidden_pair):
     assert data["best_set"]["effects"] and set(data["best_set"]["effects"]) == {"test_texture", "test_heat"}
     actions = [s["action"] for s in data["steps"]]
     assert actions[0] == "baseline" and "removed" in actions
+
+
+@pytest.fixture(scope="module")
+def passed_over(effects):
+    """Data with texture + heat; the loop over the mimic, the texture and the heat."""
+    base = persson.Model(SURFACE, TREAD)
+    truth = base.with_effect(effects["texture"](a=0.05)).with_effect(effects["heat"](h=0.15))
+    m = _data(truth, 3)
+    return validation.improve(base, m, candidates=[effects["mimic"](), effects["texture"](), effects["heat"]()])
+
+
+def test_a_pair_the_stepwise_path_passed_over_is_found_by_exploring_pairs(passed_over):
+    imp = passed_over
+    dx0 = imp.steps[0].diagnosis
+    assert dx0.candidate("test_heat").status == "no signature"
+    assert dx0.verdict.effect == "test_mimic", dx0.text()
+    # the stepwise path: the mimic, then nothing credible helps (texture redundant, heat still invisible) ...
+    assert imp.steps[1].action == "added" and imp.steps[1].added == "test_mimic", imp.table_text()
+    # ... so the pairs it did not reach are fitted, and texture + heat replaces the mimic
+    explored = [s for s in imp.steps if s.action == "explored"]
+    assert len(explored) == 1 and set(explored[0].effects) == {"test_texture", "test_heat"}, imp.table_text()
+    assert explored[0].removed == "test_mimic" and explored[0].delta_bic < -10.0
+    assert set(imp.added) == {"test_texture", "test_heat"} and imp.verdict == "explained", imp.table_text()
+    sel = imp.selection
+    assert set(sel.best.effects) == {"test_texture", "test_heat"} and sel.explored
+    assert all(cost > validation.select.STAY for cost in sel.drop_costs.values())
+    est = {e.key: e for e in sel.best.estimates}
+    assert abs(est["test_heat.h"].value - 0.15) <= 3 * est["test_heat.h"].std
+    data = imp.as_dict()
+    assert data["explored"] and "explored" in [st["action"] for st in data["steps"]]
+    assert "exploring pairs" in sel.text()
+    from validation.report import _selection_html
+
+    assert "exploring pairs" in _selection_html(sel)
+
+
+def test_no_pairs_are_explored_when_the_path_ends_at_the_noise(hidden_pair, parallel):
+    for imp in (hidden_pair, parallel):
+        assert imp.selection.explored == () and "explored" not in [s.action for s in imp.steps]
 
 
 def best_prediction(imp):

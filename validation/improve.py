@@ -67,7 +67,9 @@ class Step:
     lack_of_fit_p : float
         Lack-of-fit p-value of this step's model against the noise.
     action : str
-        ``"baseline"``, ``"added"``, ``"removed"`` (backward elimination) or ``"swapped"``.
+        ``"baseline"``, ``"added"``, ``"removed"`` (backward elimination), ``"swapped"``, or ``"explored"`` (a
+        pair the stepwise path did not reach, fitted when that path ended short of the noise, that fits better:
+        ``added`` and ``removed`` then name the effects it brings in and takes out, joined by " + ").
     removed : str or None
         The effect removed (or swapped out) at this step.
     alternatives : tuple of str
@@ -105,6 +107,8 @@ class Step:
             return f"- {self.removed}"
         if self.action == "swapped":
             return f"{self.removed} -> {self.added}"
+        if self.action == "explored":
+            return f"{self.removed} -> {self.added} (explored)" if self.removed else f"+ {self.added} (explored)"
         return f"+ {self.added}"
 
     def as_dict(self) -> dict:
@@ -359,11 +363,43 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
     tried = {frozenset()}
     n_added = 0
     stopped = ""
+    explored = False
     while True:
         v = dx.verdict
         if progress is not None:
             progress(f"step {len(steps) - 1}: RMSE {dx.baseline.rmse:.4g}; verdict {v.verdict}"
                      + (f" ({v.effect})" if v.effect else ""))
+        if v.verdict == "unexplained" and not explored:
+            # the stepwise path ended short of the noise: pairs it did not reach may fit (an effect invisible until
+            # another one is in, whose partner the path passed over for a look-alike); the best credible set found
+            # continues the search
+            explored = True
+            # at most as many model evaluations as the path itself took
+            better = search.explore(current, steps[0].diagnosis, budget=n_evals + search.n_evals,
+                                    progress=_sub(progress, "exploring pairs"))
+            if better is not None:
+                previous, current = current, better
+                s = search.get(current)
+                steps.append(_step(len(steps), "explored", " + ".join(e for e in current if e not in previous),
+                                   " + ".join(e for e in previous if e not in current) or None, s, steps[-1],
+                                   base_fit, search))
+                n_added = len(current)
+                for ch in search.prune(current, progress=_sub(progress, "checking the effects of the pair")):
+                    current = ch[-1]
+                    steps.append(_step(len(steps), ch[0], None if ch[0] == "removed" else ch[2], ch[1],
+                                       search.get(current), steps[-1], base_fit, search))
+                tried.add(frozenset(current))
+                s = search.get(current)
+                if s.lack is not None and s.lack.consistent and not (s.pattern is not None and s.pattern.found):
+                    stopped = (f"explained: with {s.label} (found by exploring pairs) the residual is at the noise "
+                               "level, without pattern")
+                    break
+                dx = _diagnose_set(search, current, measurements, cands, contact, base_fit, name, noise, predictor,
+                                   progress, len(steps), diagnose_options)
+                n_evals += dx.n_evaluations
+                search.record(dx, current, len(steps) - 1)
+                steps[-1] = replace(steps[-1], diagnosis=dx)
+                continue
         if v.verdict in ("nothing_missing", "unexplained", "undetermined"):
             stopped = {"nothing_missing": "the model is consistent with the noise and no candidate is credible",
                        "unexplained": "no credible candidate is left, but the model still misses the data",
@@ -396,12 +432,8 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
             stopped = f"the set {' + '.join(current) or '(baseline)'} was reached before: the search went round"
             break
         tried.add(frozenset(current))
-        remaining = None if cands is None else [c for c in cands if (c if isinstance(c, str) else c.name)
-                                                not in current]
-        s = search.get(current)
-        dx = diagnose_single(s.model, measurements, remaining, s.contact or contact, fit=_fit_names(base_fit, current, search),
-                      name=name, refit_baseline=False, noise=noise, predictor=predictor,
-                      progress=_sub(progress, f"step {len(steps)}"), **diagnose_options)
+        dx = _diagnose_set(search, current, measurements, cands, contact, base_fit, name, noise, predictor, progress,
+                           len(steps), diagnose_options)
         n_evals += dx.n_evaluations
         search.record(dx, current, len(steps) - 1)
         steps[-1] = replace(steps[-1], diagnosis=dx)
@@ -424,6 +456,17 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
 
 
 # ==========================================================================================================
+def _diagnose_set(search, current, measurements, cands, contact, base_fit, name, noise, predictor, progress, step,
+                  options) -> Diagnosis:
+    """The diagnosis of the set ``current``: the remaining candidates fitted on top of its joint refit."""
+    remaining = None if cands is None else [c for c in cands if (c if isinstance(c, str) else c.name)
+                                            not in current]
+    s = search.get(current)
+    return diagnose_single(s.model, measurements, remaining, s.contact or contact,
+                           fit=_fit_names(base_fit, current, search), name=name, refit_baseline=False, noise=noise,
+                           predictor=predictor, progress=_sub(progress, f"step {step}"), **options)
+
+
 def _step(index, action, added, removed, s, previous, base_fit, search, alternatives=(), estimates=None) -> Step:
     return Step(index=index, added=added, effects=tuple(s.model.effect_names), parameters=_params(s.model),
                 fitted=tuple(_fit_names(base_fit, s.effects, search)), rmse=s.rmse, bic=s.bic,

@@ -13,6 +13,16 @@ the free parameters of every effect in :math:`S` -- are refitted jointly from gl
 3. **swaps**: every effect added earlier is replaced in turn by each of the alternatives its own step named
    (plausible candidates within 10 BIC units of it when it was chosen); a swap that lowers the BIC is made.
 
+4. **exploring pairs**: when the path ends short of the noise (no credible candidate helps, yet the model misses
+   the data), the pairs it could not reach are fitted jointly: each of the (at most three best) credible
+   significant candidates of the baseline's diagnosis with every candidate that showed nothing alone (an effect
+   invisible until its partner is in, while a look-alike of the partner took the path) -- where the two single
+   fits together gain at least half of what the path gained (BIC) over the baseline --, the pairs of the better
+   single fits first, within as many model evaluations as the path took. The best credible pair continues the
+   search when it fits better than the path's set by more than :data:`STAY` BIC units (a step ``"explored"``),
+   at most once. A path that ends at the noise is not explored: its alternatives are the equally supported sets
+   below.
+
 The search stops when the verdict on the current set says stop, and a final pass applies the rule to every effect:
 **an effect stays only if dropping it from the final joint model costs more than** :data:`STAY` **BIC units**
 ("very strong" evidence, Kass & Raftery, J. Am. Stat. Assoc. 90, 773 (1995)). The result names the best set and
@@ -23,6 +33,7 @@ intervals, and the measurement that would separate each from the best (:mod:`val
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -145,6 +156,9 @@ class Selection:
         Every set fitted, lowest BIC first.
     removed : tuple of str
         Effects added on the way and removed by the backward elimination, swaps or the final rule (in words).
+    explored : tuple of str
+        Sets found by the exploration of pairs (:meth:`SetSearch.explore`) that fit better than the stepwise
+        path's, in words (empty when the path ended at the noise or nothing better was found).
     """
 
     best: EffectSet
@@ -154,6 +168,7 @@ class Selection:
     separations_in_range: tuple = ()
     visited: tuple = ()
     removed: tuple = ()
+    explored: tuple = ()
 
     @property
     def equally_supported(self) -> bool:
@@ -176,7 +191,7 @@ class Selection:
                           "plausible": s.plausible, "source": s.source} for s in self.visited],
                 "set_aside": [{"effects": list(s.effects), "delta_bic": s.bic - b, "issues": list(s.issues)}
                               for s in self.set_aside],
-                "removed": list(self.removed)}
+                "removed": list(self.removed), "explored": list(self.explored)}
 
     def text(self) -> str:
         if self.drop_costs:
@@ -194,6 +209,8 @@ class Selection:
                 lines.append(f"  to tell them apart, measure at {sep.describe()}")
             for sep in self.separations_in_range:
                 lines.append(f"  inside the measured conditions the largest difference is at {sep.describe()}")
+        if self.explored:
+            lines.append("Found by exploring pairs beyond the stepwise path: " + "; ".join(self.explored) + ".")
         if self.removed:
             lines.append("Removed on the way: " + "; ".join(self.removed) + ".")
         aside = self.set_aside
@@ -230,6 +247,7 @@ class SetSearch:
         self.alternatives: dict[str, tuple] = {}  # effect -> alternatives named when it was added
         self.n_evals = 0
         self.removed: list[str] = []
+        self.explored: list[str] = []
 
     # ---- recording fits made by diagnoses --------------------------------------------------------------
     def record(self, dx, effects: tuple, step: int) -> None:
@@ -345,6 +363,61 @@ class SetSearch:
             seen.add(frozenset(current))
         return changes
 
+    def explore(self, current: tuple, first, budget: int | None = None, progress=None, top: int = 3) -> tuple | None:
+        """Pairs the stepwise path did not reach (module docstring, item 4), for a path that ended short of the
+        noise.
+
+        ``first`` is the diagnosis of the baseline: each of its credible significant candidates (the ``top`` best
+        by BIC) is paired with every candidate that fitted but showed nothing alone, or had no signature at all (an
+        effect invisible until another is in: the pairs a stepwise path cannot reach once a look-alike of the
+        partner is in), where the two single fits together gain at least half of what the path gained over the
+        baseline. Each pair not fitted yet is refitted jointly, from the values of its single fits, the pairs of the
+        better single fits first, until ``budget`` model evaluations are spent. Returns the effects of the best
+        credible pair fitted here when it fits better than ``current`` by more than :data:`STAY` BIC units (the
+        evidence an effect needs to stay), else None.
+        """
+        ok = [c for c in first.candidates if c.status == "ok" and frozenset({c.effect}) in self.sets]
+        significant = sorted((c for c in ok if c.significant and self.sets[frozenset({c.effect})].plausible),
+                             key=lambda c: c.bic)[:top]
+        quiet = [c for c in ok if not c.significant]
+        for c in first.candidates:
+            if c.status == "no signature" and c.instance is not None:
+                self.instances.setdefault(c.effect, c.instance)
+                self.free.setdefault(c.effect, tuple(c.free))
+                quiet.append(c)
+        # a pair far behind the path would need its partner to do most of the work: only pairs whose members'
+        # single fits together gain at least half of what the path gained over the baseline
+        base_bic = first.baseline.bic
+        need = 0.5 * (base_bic - self.get(current).bic)
+
+        def gain(c):
+            return max(base_bic - c.bic, 0.0) if c.status == "ok" and math.isfinite(c.bic) else 0.0
+
+        pairs = {}
+        for a in significant:
+            for b in quiet:
+                key = frozenset({a.effect, b.effect})
+                if key not in self.sets and key not in pairs and gain(a) + gain(b) >= need:
+                    pairs[key] = ((a.effect, b.effect), min(a.bic, b.bic if b.status == "ok" else math.inf))
+        start = self.n_evals
+        fitted = []
+        for (a, b), _ in sorted(pairs.values(), key=lambda t: t[1]):
+            if budget is not None and self.n_evals - start >= budget:
+                self.explored.append(f"the exploration stopped at its budget of {budget} model evaluations "
+                                     f"({len(fitted)} of {len(pairs)} pairs fitted)")
+                break
+            if progress is not None:
+                progress(f"exploring: {a} with {b}")
+            warm = tuple(self.sets[k] for k in (frozenset({a}), frozenset({b})) if k in self.sets)
+            fitted.append(self.get((a, b), warm=warm))
+        now = self.get(current)
+        best = min((t for t in fitted if t.plausible), key=lambda t: t.bic, default=None)
+        if best is None or not best.bic < now.bic - STAY:
+            return None
+        self.explored.append(f"{best.label} ({now.bic - best.bic:.1f} BIC units better than {now.label}, which the "
+                             "stepwise path reached)")
+        return tuple(best.effects)
+
     def finish(self, current: tuple, probe=None) -> Selection:
         """The final rule (every effect of the best set earns more than :data:`STAY` BIC units), the equally
         supported sets and the measurements that separate them (module docstring)."""
@@ -372,7 +445,8 @@ class SetSearch:
                     if pair[1] is not None:
                         seps_in.append(pair[1])
         return Selection(best=best, supported=tuple(supported), drop_costs=costs, separations=tuple(seps),
-                         separations_in_range=tuple(seps_in), visited=tuple(visited), removed=tuple(self.removed))
+                         separations_in_range=tuple(seps_in), visited=tuple(visited), removed=tuple(self.removed),
+                         explored=tuple(self.explored))
 
 
 def _covariance_of(baseline):

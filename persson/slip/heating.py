@@ -266,8 +266,13 @@ def patch_friction(model, heating: PatchHeating, contact, slip, speed, temperatu
         A cache (a dict the caller keeps) of friction tables: reused when the engine (:func:`engine_key`), the
         table settings (``max_rise``, ``n_pressure``, ``temperature_points_per_decade``), the contact's pressure
         shape and the rows' (T0, sigma0, v_s) are the same, whatever the heating strength, contact length or
-        stiffness (e.g. in a fit of the counter-surface effusivity or the stiffness). It holds references to the
-        model it was built with, so identities stay valid while it lives.
+        stiffness (e.g. in a fit of the counter-surface effusivity or the stiffness), and whatever the peak shear
+        stress ``tau_f0`` of the model's :class:`persson.effects.Adhesion`: the adhesive term
+        :math:`\tau_{f0} e^{-c x^2} A/A_0 / \sigma_0` is proportional to it and nothing else in the engine depends
+        on it, so the table keeps that term apart (a fit of the baseline's adhesion with patch heating builds one
+        table; a new one only when the friction at either value would pass 3 or fall below 1e-3, where the
+        engine's notes depend on its level). It holds references to the model it was built with, so identities
+        stay valid while it lives.
 
     Returns
     -------
@@ -340,14 +345,18 @@ def patch_friction(model, heating: PatchHeating, contact, slip, speed, temperatu
     # the nodes a hotter patch needs.
     cache_key = (heating.max_rise, n_g, heating.temperature_points_per_decade,
                  contact._g.tobytes(), keys.tobytes(), vnodes.tobytes(), voff.tobytes(), V_lo.tobytes())
-    ekey = engine_key(model)
-    if tables is not None and tables.get("engine") == ekey and tables.get("key") == cache_key:
+    # a model whose adhesion is the built-in one keys its table without tau_f0: the table keeps the adhesive term
+    # apart and serves any tau_f0 (a fit of the baseline's adhesion with patch heating, one table)
+    scale = _adhesion_scale(model)
+    ekey = engine_key(model) if scale is None else ("adhesion scaled", engine_key(_with_tau_f0(model, 1.0)))
+    engine = model.without("patch_heating") if "patch_heating" in getattr(model, "effect_names", ()) else model
+    kept = tables is not None and tables.get("engine") == ekey and tables.get("key") == cache_key
+    if kept and (scale is None or tables["value"].rescale(scale, engine)):
         tab = tables["value"]
         calls0, points0 = tab.calls, tab.points
     else:
         calls0, points0 = 0, 0
-        engine = model.without("patch_heating") if "patch_heating" in getattr(model, "effect_names", ()) else model
-        tab = _Tables(engine, keys, vnodes, voff, gnodes, V_lo, heating)
+        tab = _Tables(engine, keys, vnodes, voff, gnodes, V_lo, heating, adhesion_scale=scale)
         if tables is not None:
             if heated and tables.get("key") == cache_key and tables["value"].has_heated():
                 # the same rows with another engine (e.g. a fitted adhesion): the temperature range the previous
@@ -395,6 +404,29 @@ def patch_friction(model, heating: PatchHeating, contact, slip, speed, temperatu
                          mu_profile=muprof if profiles else None, table_points=tab.points - points0,
                          engine_calls=tab.calls - calls0,
                          converged=converged, notes=tuple(dict.fromkeys(notes)))
+
+
+def _adhesion_scale(model) -> float | None:
+    """tau_f0 of the model's adhesion when its table may keep the adhesive term apart (the built-in
+    :class:`persson.effects.Adhesion`, the only such effect, tau_f0 > 0, on a :class:`persson.Model`), else None."""
+    from ..effects.builtin import Adhesion
+
+    effects = getattr(model, "effects", None)
+    if effects is None or not hasattr(model, "replace"):
+        return None
+    found = [e for e in effects if getattr(e, "name", "") == "adhesion"]
+    if len(found) != 1 or type(found[0]) is not Adhesion:
+        return None
+    tau = float(found[0].tau_f0)
+    return tau if math.isfinite(tau) and tau > 0 else None
+
+
+def _with_tau_f0(model, tau: float):
+    """``model`` with its adhesion's tau_f0 replaced (see :func:`_adhesion_scale`)."""
+    import dataclasses
+
+    return model.replace(effects=tuple(dataclasses.replace(e, tau_f0=tau) if getattr(e, "name", "") == "adhesion"
+                                       else e for e in model.effects))
 
 
 def engine_key(model):

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -30,10 +31,16 @@ class _Tables:
     block of shape (n_g, nu[i]) at ``vtoff[i]`` in ``values``, holding the nodes k = 0 .. nu[i] - 1.
     """
 
-    def __init__(self, model, keys, vnodes, voff, gnodes, V_lo, heating):
+    def __init__(self, model, keys, vnodes, voff, gnodes, V_lo, heating, adhesion_scale=None):
         import warnings
 
         self.model = model
+        # With ``adhesion_scale`` (the model's adhesion tau_f0, > 0) every value is kept as rest + tau_f0 * unit as
+        # well (the adhesive term is proportional to tau_f0 and nothing else in the engine depends on it): the
+        # table then serves another tau_f0 (:meth:`rescale`) without engine calls. ``rest``/``unit`` blocks
+        # parallel ``blocks``; None when the model is not split so.
+        self.scale = adhesion_scale
+        self.rescalable = adhesion_scale is not None
         self.T0 = np.ascontiguousarray(keys[:, 0])
         self.sig0 = np.ascontiguousarray(keys[:, 1])
         self.vnodes = vnodes
@@ -69,9 +76,12 @@ class _Tables:
             V_.append(a.ravel())
             G_.append(b.ravel() * self.sig0[c])
         T_ = [np.full(int(voff[c + 1] - voff[c]) * ng, self.T0[c]) for c in range(nc)]
-        mu = self._call(np.concatenate(V_), np.concatenate(T_), np.concatenate(G_))
+        mu, parts = self._call(np.concatenate(V_), np.concatenate(T_), np.concatenate(G_))
         # blocks[c]: (n_v of sweep c, n_g, capacity) friction values; nus[c]: nodes filled at each speed node
         self.blocks = [mu.reshape(-1, ng)[voff[c]:voff[c + 1], :, None].copy() for c in range(nc)]
+        self.parts = None
+        if parts is not None:
+            self.parts = [[a.reshape(-1, ng)[voff[c]:voff[c + 1], :, None].copy() for c in range(nc)] for a in parts]
         self.nus = [np.ones(voff[c + 1] - voff[c], dtype=np.int64) for c in range(nc)]
         self.mu_max = np.array([float(np.max(b)) for b in self.blocks])
         self._layout()
@@ -131,9 +141,9 @@ class _Tables:
                 continue
             blk = self.blocks[c]
             if int(n_new.max()) > blk.shape[2]:
-                bigger = np.zeros((blk.shape[0], ng, max(int(n_new.max()), 2 * blk.shape[2])))
-                bigger[:, :, :blk.shape[2]] = blk
-                self.blocks[c] = bigger
+                self.blocks[c] = _widened(blk, max(int(n_new.max()), 2 * blk.shape[2]))
+                for part in self.parts or ():
+                    part[c] = _widened(part[c], self.blocks[c].shape[2])
             for i in grow:
                 k = np.arange(self.nus[c][i], n_new[i])
                 T = self.T_of(c, k * self.hy)
@@ -145,11 +155,13 @@ class _Tables:
             self.nus[c] = n_new
         if not where:
             return
-        mu = self._call(np.concatenate(V_), np.concatenate(T_), np.concatenate(P_))
+        mu, parts = self._call(np.concatenate(V_), np.concatenate(T_), np.concatenate(P_))
         k = 0
         for c, i, n0, n1 in where:
             m = ng * (n1 - n0)
             self.blocks[c][i, :, n0:n1] = mu[k:k + m].reshape(ng, n1 - n0)
+            for part, values in zip(self.parts or (), parts or ()):
+                part[c][i, :, n0:n1] = values[k:k + m].reshape(ng, n1 - n0)
             k += m
         for c in np.flatnonzero(which):
             self.mu_max[c] = max(self.mu_max[c], float(np.max(self.blocks[c])))
@@ -173,7 +185,32 @@ class _Tables:
             self.B[c] *= 1.25 * float(umax[c])
         self._grow(over)
 
+    def rescale(self, adhesion_scale: float, model) -> bool:
+        """Serve ``model``, the table's model with the adhesion's tau_f0 = ``adhesion_scale`` instead: the values
+        become rest + tau_f0 * unit, no engine call (the nodes a hotter patch needs later come from ``model``).
+        Refused (False; the caller builds a new table) when the table is not split, or when the values at either
+        tau_f0 would carry notes that depend on the friction's level (friction above 3, below 1e-3: the notes the
+        engine recorded would then not be those of the new values)."""
+        if not self.rescalable:
+            return False
+        if adhesion_scale == self.scale:
+            self.model = model
+            return True
+        blocks = [rest + adhesion_scale * unit for rest, unit in zip(*self.parts)]
+        for c, blk in enumerate(blocks):
+            filled = np.arange(blk.shape[2])[None, :] < self.nus[c][:, None]
+            if not _level_note_free(blk.transpose(0, 2, 1)[filled]):
+                return False
+        self.blocks = blocks
+        self.scale = float(adhesion_scale)
+        self.model = model
+        self.mu_max = np.array([float(np.max(b)) for b in self.blocks])
+        self._layout()
+        return True
+
     def _call(self, v, T, p):
+        """The engine's friction at the points (v, T, p), and with an adhesion scale its (rest, unit) parts
+        (None otherwise)."""
         from .._checks import UnitWarning
 
         with self._warnings.catch_warnings(record=True) as caught:
@@ -201,7 +238,18 @@ class _Tables:
             j = int(np.argmax(bad))
             raise InputError(f"model: local sliding friction {mu[j]!r} at v_s = {v[j]:g} m/s, T = {T[j]:g} C, "
                              f"p = {p[j]:g} Pa; expected a finite value >= 0")
-        return mu
+        if not self.rescalable:
+            return mu, None
+        terms = getattr(r, "mu_terms", None) or {}
+        adh = np.atleast_1d(np.asarray(terms.get("adhesion", np.zeros_like(mu)), dtype=float))
+        rest, unit = mu - adh, adh / self.scale
+        # the split must give the engine's values back (to rounding), and no note may depend on the level
+        if (adh.shape != mu.shape or not np.all(np.abs(rest + self.scale * unit - mu) <= 1e-12 * (1.0 + mu))
+                or not _level_note_free(mu)):
+            self.rescalable = False
+            self.parts = None
+            return mu, None
+        return mu, (rest, unit)
 
     def args(self) -> FrictionLattice:
         """The friction lattice, as the kernels take it."""
@@ -211,6 +259,23 @@ class _Tables:
     def mu_at_sigma0(self, vs, sweep):
         """mu(v_s, sigma0, T0) of every row, interpolated in the T0 slice of the table."""
         return _interp_rows(sweep=sweep.astype(np.int64), log_speed=np.log(vs), lattice=self.args())
+
+
+def _widened(block: np.ndarray, capacity: int) -> np.ndarray:
+    """``block`` (n_v, n_g, k) with its last axis widened to ``capacity`` (zeros after the old entries)."""
+    out = np.zeros(block.shape[:2] + (capacity,))
+    out[:, :, :block.shape[2]] = block
+    return out
+
+
+def _level_note_free(mu: np.ndarray) -> bool:
+    """Whether no note of the engine depends on the level of these friction values: none above 3 (the
+    implausible-friction note), none in (0, 1e-3) (the unit-slip note on a road-scale surface)."""
+    from .._checks import _MIN_ROAD_MU
+    from ..engine.model import _MAX_MU
+
+    mu = np.asarray(mu, dtype=float)
+    return bool(np.all(mu <= _MAX_MU) and not np.any((mu > 0) & (mu < _MIN_ROAD_MU)))
 
 
 def _shift_coordinate(log10_aT, T0: float, T: np.ndarray) -> np.ndarray:
@@ -242,12 +307,14 @@ def _shift_coordinate(log10_aT, T0: float, T: np.ndarray) -> np.ndarray:
 # =========================================================================================================
 # Numba kernels
 # =========================================================================================================
+@functools.lru_cache(maxsize=8)
 def _unit_weights(N: int) -> np.ndarray:
     r"""Product-integration weights of the Abel kernel on a uniform grid of unit spacing.
 
     For a segment from node j to node j+1 evaluated at node k = j + d (d >= 1), with f linear on the segment,
     :math:`\int f/\sqrt{x_k - x'}\,dx' = h^{1/2}(w_l[d] f_j + w_r[d] f_{j+1})`; see :func:`_segment_weights`.
-    Returns shape (2, N) (column 0 unused).
+    Returns shape (2, N) (column 0 unused); a pure function of N, cached: callers must not modify it (it stays
+    writeable because numba compiles separate kernels for read-only arrays).
     """
     W = np.zeros((2, N))
     for dd in range(1, N):
