@@ -306,7 +306,6 @@ def patch_friction(model, heating: PatchHeating, contact, slip, speed, temperatu
                          f"pressure=)), got {model!r}")
     s, V, T0, p0 = (np.atleast_1d(np.asarray(a, dtype=float)).ravel() for a in
                     np.broadcast_arrays(slip, speed, temperature, pressure))
-    n = s.size
     if np.any(~np.isfinite(s) | (s <= 0) | (s > 1)):
         raise InputError("slip: expected braking slip ratios in (0, 1]")
     if np.any(~np.isfinite(V) | (V <= 0)):

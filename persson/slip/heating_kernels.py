@@ -160,7 +160,10 @@ def _march_row(r, rows, patch, lattice, axis, profiles, g_first, g_weights, abel
         j = k + first_node - (1 if edge_point else 0)  # the patch node of point k
         base = T0 + lam * known
         coef = lam * own_weight * g_slide[k]
-        T, mu = _node_temperature(base, coef, T_slide[k - 1], T0, mu_max, c, iv, w_speed, mv, g_first[j],
+        # first guess: the temperature extrapolated linearly from the two points before (it rises smoothly along the
+        # patch), which saves the root search about one friction evaluation per point
+        guess = 2.0 * T_slide[k - 1] - T_slide[k - 2] if k >= 2 else T_slide[k - 1]
+        T, mu = _node_temperature(base, coef, guess, T0, mu_max, c, iv, w_speed, mv, g_first[j],
                                   g_weights[j], mg, values, value_offset, n_temperature, y_fine, cap, dT_fine, h_y,
                                   w_temperature, contracted, n_min)
         x = _x_at(y_fine, c, T - T0, cap, dT_fine, h_y)
@@ -502,7 +505,7 @@ def _node_temperature(base, coef, T_prev, T0, mu_max, c, iv, w_speed, mv, ig, w_
     coef : float
         Lambda times the weight of the point's own shear times p / sigma0 there, K.
     T_prev : float
-        The temperature of the previous point, deg C (the first guess).
+        The first guess, deg C (extrapolated from the points before).
     T0 : float
         Background temperature of the sweep, deg C.
     mu_max : float
