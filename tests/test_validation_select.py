@@ -289,3 +289,33 @@ def test_a_set_that_fits_better_but_is_not_credible_is_reported_as_set_aside():
     assert d == [{"effects": ["flash", "adhesion"], "delta_bic": pytest.approx(-6.7), "issues":
                   ["adhesion.p = 1: on the upper search bound 1e+06"]}]
     assert Selection(best=best, visited=(best, worse_odd)).set_aside == ()
+
+
+def test_a_candidate_not_credible_alone_is_tried_as_a_swap_once_a_partner_is_in():
+    """Strain softening fitted better than microtexture at the first step, but its factors left their plausible
+    range (the adhesion's part was missing): the path took microtexture, then adhesion. The swap microtexture ->
+    strain softening is tried as well as the named alternatives, and made when the set is credible and better."""
+    from validation.refit import Estimate
+    from validation.select import EffectSet, SetSearch
+
+    def effect_set(effects, bic, issue=""):
+        est = tuple(Estimate(key=f"{e}.p", value=1.0, std=0.1, interval=(0.9, 1.1), method="quadratic",
+                             issue=issue if e == "strain" else "") for e in effects)
+        return EffectSet(effects=effects, model=None, contact=None, predicted=np.zeros(3), rss=1.0, bic=bic,
+                         rmse=0.1, n_params=len(effects), estimates=est, lack=None, pattern=None)
+
+    def search_with(pair_issue):
+        search = SetSearch(None, (), None)
+        for s in (effect_set(("micro",), -90.0), effect_set(("strain",), -95.0, "outside the plausible range"),
+                  effect_set(("adhesion",), -60.0), effect_set(("micro", "adhesion"), -120.0),
+                  effect_set(("strain", "adhesion"), -131.0, pair_issue)):
+            search.sets[s.key] = s
+        search.instances.update(micro=object(), strain=object(), adhesion=object())
+        search.alternatives["micro"] = ()
+        search.set_aside["micro"] = ("strain",)
+        return search
+
+    changes = search_with("").prune(("micro", "adhesion"))
+    assert changes == [("swapped", "micro", "strain", pytest.approx(11.0), ("strain", "adhesion"))]
+    # a swap to a set that is still not credible is not made
+    assert search_with("outside the plausible range").prune(("micro", "adhesion")) == []

@@ -412,6 +412,9 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
         current = current + (best.effect,)
         n_added += 1
         search.alternatives[best.effect] = tuple(v.alternatives)
+        search.set_aside[best.effect] = tuple(c.effect for c in dx.candidates
+                                              if c.status == "ok" and c.significant and not c.plausible
+                                              and c.bic < best.bic and c.effect not in v.alternatives)
         s = search.get(current)
         steps.append(_step(len(steps), "added", best.effect, None, s, steps[-1], base_fit, search,
                            alternatives=v.alternatives, estimates=best.baseline_estimates + best.estimates))

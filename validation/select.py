@@ -11,7 +11,9 @@ the free parameters of every effect in :math:`S` -- are refitted jointly from gl
    the others); an effect whose removal costs less than :data:`STAY` BIC units is removed (the cheapest first,
    then again) -- it no longer earns its parameters once a later effect is in;
 3. **swaps**: every effect added earlier is replaced in turn by each of the alternatives its own step named
-   (plausible candidates within 10 BIC units of it when it was chosen); a swap that lowers the BIC is made.
+   (plausible candidates within 10 BIC units of it when it was chosen) and by each candidate that fitted better at
+   that step but was not credible alone (a partner may make it credible: a strain softening whose factors leave
+   their plausible range unless the adhesion takes its part); a swap to a credible set that lowers the BIC is made.
 
 4. **exploring pairs**: when the path ends short of the noise (no credible candidate helps, yet the model misses
    the data), the pairs it could not reach are fitted jointly: each of the (at most three best) credible
@@ -245,6 +247,9 @@ class SetSearch:
         self.free: dict[str, tuple] = {}          # effect -> its free parameters (as first fitted)
         self.instances: dict[str, object] = {}    # effect -> an instance (the values last fitted)
         self.alternatives: dict[str, tuple] = {}  # effect -> alternatives named when it was added
+        # effect -> candidates that fitted better when it was added but were not credible alone (a parameter out of
+        # its plausible range or on a bound): tried as swaps too, since a partner may make them credible
+        self.set_aside: dict[str, tuple] = {}
         self.n_evals = 0
         self.removed: list[str] = []
         self.explored: list[str] = []
@@ -342,7 +347,7 @@ class SetSearch:
                 continue
             best = None
             for f in current[:-1]:
-                for g in self.alternatives.get(f, ()):
+                for g in self.alternatives.get(f, ()) + self.set_aside.get(f, ()):
                     if g in current or g not in self.instances:
                         continue
                     trial = tuple(g if e == f else e for e in current)
