@@ -339,6 +339,33 @@ def test_one_table_serves_every_adhesive_shear_stress():
     assert any("> 3" in n for n in loud.notes)
     back = patch_friction(model_of(heat, Adhesion(tau_f0=1.0e6, c=0.0)), heat, c, s, V, T0, SIGMA0, tables=cache)
     assert back.engine_calls > 0 and not any("> 3" in n for n in back.notes)
+    # a model whose results do not carry the adhesive term apart is never split: each tau_f0 fills its own table
+    from types import SimpleNamespace
+
+    class Plain:
+        def __init__(self, m):
+            self.m = m
+
+        def __getattr__(self, name):
+            return getattr(self.m, name)
+
+        def replace(self, **kw):
+            return Plain(self.m.replace(**kw))
+
+        def without(self, name):
+            return Plain(self.m.without(name))
+
+        def friction(self, *a, **k):
+            r = self.m.friction(*a, **k)
+            return SimpleNamespace(mu=r.mu, notes=r.notes, converged=r.converged)
+
+    cache = {}
+    patch_friction(Plain(model_of(heat, Adhesion(tau_f0=1.0e6))), heat, c, s, V, T0, SIGMA0, tables=cache)
+    assert not cache["value"].rescalable
+    other = Plain(model_of(heat, Adhesion(tau_f0=1.4e6)))
+    again = patch_friction(other, heat, c, s, V, T0, SIGMA0, tables=cache)
+    assert again.engine_calls > 0
+    np.testing.assert_allclose(again.mu, patch_friction(other, heat, c, s, V, T0, SIGMA0).mu, rtol=1e-9)
 
 
 def test_the_speed_contracted_table_interpolates_as_the_full_lattice():

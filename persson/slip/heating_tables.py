@@ -241,9 +241,10 @@ class _Tables:
         if not self.rescalable:
             return mu, None
         terms = getattr(r, "mu_terms", None) or {}
-        adh = np.atleast_1d(np.asarray(terms.get("adhesion", np.zeros_like(mu)), dtype=float))
+        adh = np.atleast_1d(np.asarray(terms.get("adhesion", np.full_like(mu, np.nan)), dtype=float))
         rest, unit = mu - adh, adh / self.scale
-        # the split must give the engine's values back (to rounding), and no note may depend on the level
+        # the split must give the engine's values back (to rounding), and no note may depend on the level; a
+        # result without its adhesive term (not a persson.Model's) is not split
         if (adh.shape != mu.shape or not np.all(np.abs(rest + self.scale * unit - mu) <= 1e-12 * (1.0 + mu))
                 or not _level_note_free(mu)):
             self.rescalable = False
