@@ -312,9 +312,13 @@ def run(case: BlindCase) -> dict:
                     continue
                 lo, hi = e.interval
                 in68 = lo <= true <= hi
-                in95 = e.value - 1.96 * (e.value - lo) <= true <= e.value + 1.96 * (hi - e.value)
+                lo95, hi95 = e.interval95
+                in95 = lo95 <= true <= hi95
+                # as the study counted before intervals had a 95 % end of their own: 1.96 times the 68 % sides
+                in95_gauss = e.value - 1.96 * (e.value - lo) <= true <= e.value + 1.96 * (hi - e.value)
                 out["coverage"].append({"parameter": f"{eff}.{p}", "true": true, "value": e.value,
-                                        "interval": [lo, hi], "in68": bool(in68), "in95": bool(in95)})
+                                        "interval": [lo, hi], "interval95": [lo95, hi95], "in68": bool(in68),
+                                        "in95": bool(in95), "in95_gauss": bool(in95_gauss)})
     return out
 
 
@@ -382,7 +386,8 @@ def summarize(results: list) -> str:
     if cov:
         lines.append(f"Coverage of the reported intervals (parameters of hidden effects found exactly, {len(cov)} "
                      f"parameters): 68 %: {100 * np.mean([c['in68'] for c in cov]):.0f} %, 95 %: "
-                     f"{100 * np.mean([c['in95'] for c in cov]):.0f} %")
+                     f"{100 * np.mean([c['in95'] for c in cov]):.0f} % (1.96 times the 68 % sides: "
+                     f"{100 * np.mean([c.get('in95_gauss', c['in95']) for c in cov]):.0f} %)")
     secs = [r["seconds"] for r in results]
     lines.append(f"Time per case: median {np.median(secs):.0f} s, max {max(secs):.0f} s ({len(results)} cases)")
     return "\n".join(lines)

@@ -102,6 +102,10 @@ class Estimate:
     one_sided : str
         ``""``, or where the data leave the parameter open when it ends on a search bound with its 68 % interval
         reaching back into the plausible range (``"above 0.4"``): bounded on one side only, so not identified.
+    interval95 : (float, float)
+        95 % interval: 1.96 standard errors where the chi^2 that far out is still quadratic, else the profile
+        likelihood at delta chi^2 = 3.84 (computed where the 68 % interval may be profiled; elsewhere the
+        quadratic one); never narrower than the 68 % interval. NaN when no uncertainty was computed.
     """
 
     key: str
@@ -116,6 +120,7 @@ class Estimate:
     search: tuple = (-math.inf, math.inf)
     log_scale: bool = False
     one_sided: str = ""
+    interval95: tuple = (math.nan, math.nan)
 
     @property
     def name(self) -> str:
@@ -160,7 +165,8 @@ class Estimate:
     def as_dict(self) -> dict:
         return {"value": self.value, "std": self.std, "interval": list(self.interval), "method": self.method,
                 "unit": self.unit, "bound": self.bound, "plausible": list(self.plausible), "issue": self.issue,
-                "search": list(self.search), "identified": self.identified, "one_sided": self.one_sided}
+                "search": list(self.search), "identified": self.identified, "one_sided": self.one_sided,
+                "interval95": list(self.interval95)}
 
 
 @dataclass(frozen=True, eq=False)
@@ -438,6 +444,7 @@ def _estimates(fitter, u, chi2, J, s2, good, ranges, profile) -> tuple:
     k = u.size
     cov = _covariance(H)
     out = []
+    pending = []
     norms = np.linalg.norm(Jw, axis=0)
     for j, p in enumerate(fitter.space.params):
         x = p.from_u(u[j])
@@ -445,7 +452,7 @@ def _estimates(fitter, u, chi2, J, s2, good, ranges, profile) -> tuple:
             # the parameter changes no prediction here: neither determined nor judged
             out.append(Estimate(key=p.key, value=float(x), std=math.inf, interval=(p.lo, p.hi),
                                 method="no effect on these rows", unit=p.unit, search=(float(p.lo), float(p.hi)),
-                                log_scale=bool(getattr(p, "log", False))))
+                                log_scale=bool(getattr(p, "log", False)), interval95=(p.lo, p.hi)))
             continue
         sd_u = math.sqrt(cov[j, j]) if math.isfinite(cov[j, j]) and cov[j, j] >= 0 else math.inf
         on_bound = u[j] < BOUND_TOL or u[j] > 1 - BOUND_TOL
@@ -465,7 +472,35 @@ def _estimates(fitter, u, chi2, J, s2, good, ranges, profile) -> tuple:
                 method += " + starts"
         std = abs(p.dx_du(x)) * sd_u if math.isfinite(sd_u) else math.inf
         out.append(_estimate(p, x, std, (p.from_u(lo_u), p.from_u(hi_u)), method, u[j], ranges))
+        pending.append((j, p, sd_u, method, lo_u, hi_u, len(out) - 1))
+    # the 95 % intervals after every 68 % one, so that their profiles never take the evaluations a 68 % profile
+    # (and with it the judgement identified / not identified) needs
+    for j, p, sd_u, method, lo_u, hi_u, i in pending:
+        lo95_u, hi95_u = _interval95(fitter, u, j, chi2, s2, sd_u, k, H, profile, method)
+        lo95_u, hi95_u = min(lo95_u, lo_u), max(hi95_u, hi_u)  # never narrower than the 68 % interval
+        out[i] = replace(out[i], interval95=(p.from_u(lo95_u), p.from_u(hi95_u)))
     return tuple(out)
+
+
+#: Standard errors of a two-sided 95 % interval of a normal variable.
+Z95 = 1.959963984540054
+
+
+def _interval95(fitter, u, j, chi2, s2, sd_u, k, H, profile, method) -> tuple[float, float]:
+    """The 95 % interval of parameter j in u: +- 1.96 standard errors where the chi^2 that far out (others fixed)
+    is within a factor 2 of the quadratic one (:func:`_quadratic_ok`), else, where profiles are allowed, the
+    profile likelihood at delta chi^2 = 1.96^2 (a likelihood flatter or steeper than quadratic beyond one standard
+    error, which the 68 % interval's check does not see); clipped to the range searched."""
+    if not math.isfinite(sd_u):
+        return 0.0, 1.0
+    lo, hi = u[j] - Z95 * sd_u, u[j] + Z95 * sd_u
+    if profile:
+        try:
+            if method.startswith("profile") or not _quadratic_ok(fitter, u, j, Z95 * sd_u, H, chi2, s2):
+                lo, hi = _profile(fitter, u, j, chi2, s2, sd_u, k, H=H, level=Z95 * Z95)
+        except BudgetExhausted:
+            pass
+    return max(lo, 0.0), min(hi, 1.0)
 
 
 def _bare_estimates(fitter, u, ranges) -> tuple:
@@ -542,11 +577,13 @@ def _quadratic_ok(fitter, u, j, sd_u, H, chi2, s2) -> bool:
     return True
 
 
-def _profile(fitter, u, j, chi2, s2, sd_u, k, max_steps: int = 4, refine: int = 5, H=None) -> tuple[float, float]:
-    r"""Ends of the profile-likelihood interval of parameter j in u (a bound when the profile stays below 1).
+def _profile(fitter, u, j, chi2, s2, sd_u, k, max_steps: int = 4, refine: int = 5, H=None,
+             level: float = 1.0) -> tuple[float, float]:
+    r"""Ends of the profile-likelihood interval of parameter j in u at delta chi2 = ``level`` (1: 68 %; 3.84: 95 %;
+    a bound when the profile stays below it).
 
-    Steps out from the optimum (the others refitted at each step) until the profile exceeds 1, then refines the
-    crossing by regula falsi in sqrt(delta chi2) (exact for a parabola, and converging for the linear rise of a
+    Steps out from the optimum (the others refitted at each step) until the profile exceeds ``level``, then refines
+    the crossing by regula falsi in sqrt(delta chi2) (exact for a parabola, and converging for the linear rise of a
     profile at a bound). Each refit starts where the Gauss-Newton Hessian ``H`` at the optimum puts the other
     parameters for the new value of parameter j (:math:`\delta u_o = -H_{oo}^{-1} H_{oj}\,\delta u_j`), so that
     correlated parameters need few iterations.
@@ -576,34 +613,35 @@ def _profile(fitter, u, j, chi2, s2, sd_u, k, max_steps: int = 4, refine: int = 
                 c = fitter.chi2(v)
             return (c - chi2) / s2, v
 
-        t = min(sd_u if math.isfinite(sd_u) and sd_u > 1e-4 else 0.05, room)
+        root = math.sqrt(level)
+        t = min(root * sd_u if math.isfinite(sd_u) and sd_u > 1e-4 else 0.05 * root, room)
         lo, hi = (0.0, 0.0), None
         start = u.copy()
         for _ in range(max_steps):
             d, v = delta(t, start)
-            if d >= 1.0:
+            if d >= level:
                 hi = (t, d)
                 break
             lo, start = (t, d), v
             if t >= room - 1e-12:
                 break
-            t = min(t * min(max(math.sqrt(1.5 / max(d, 1e-3)), 1.5), 4.0), room)
+            t = min(t * min(max(math.sqrt(1.5 * level / max(d, 1e-3 * level)), 1.5), 4.0), room)
         if hi is None:
             ends.append(edge)
             continue
         for _ in range(refine):
             a, b = math.sqrt(max(lo[1], 0.0)), math.sqrt(hi[1])
-            t = lo[0] + (hi[0] - lo[0]) * (1.0 - a) / max(b - a, 1e-12)
+            t = lo[0] + (hi[0] - lo[0]) * (root - a) / max(b - a, 1e-12)
             if hi[0] - lo[0] < 1e-4:
                 break
             d, v = delta(t, start)
-            if d >= 1.0:
+            if d >= level:
                 hi = (t, d)
             else:
                 lo, start = (t, d), v
-            if abs(d - 1.0) < 0.02:
+            if abs(d - level) < 0.02 * level:
                 break
         a, b = math.sqrt(max(lo[1], 0.0)), math.sqrt(hi[1])
-        ends.append(u[j] + sign * (lo[0] + (hi[0] - lo[0]) * (1.0 - a) / max(b - a, 1e-12)))
+        ends.append(u[j] + sign * (lo[0] + (hi[0] - lo[0]) * (root - a) / max(b - a, 1e-12)))
     lo_u, hi_u = sorted(ends)
     return lo_u, hi_u
