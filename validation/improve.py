@@ -384,10 +384,8 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
                                    " + ".join(e for e in previous if e not in current) or None, s, steps[-1],
                                    base_fit, search))
                 n_added = len(current)
-                for ch in search.prune(current, progress=_sub(progress, "checking the effects of the pair")):
-                    current = ch[-1]
-                    steps.append(_step(len(steps), ch[0], None if ch[0] == "removed" else ch[2], ch[1],
-                                       search.get(current), steps[-1], base_fit, search))
+                changes = search.prune(current, progress=_sub(progress, "checking the effects of the pair"))
+                current = _record_changes(changes, current, steps, base_fit, search)
                 tried.add(frozenset(current))
                 s = search.get(current)
                 if s.lack is not None and s.lack.consistent and not (s.pattern is not None and s.pattern.found):
@@ -419,15 +417,7 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
         steps.append(_step(len(steps), "added", best.effect, None, s, steps[-1], base_fit, search,
                            alternatives=v.alternatives, estimates=best.baseline_estimates + best.estimates))
         changes = search.prune(current, progress=_sub(progress, "checking the effects added before"))
-        for ch in changes:
-            if ch[0] == "removed":
-                _, f, cost, current = ch
-                steps.append(_step(len(steps), "removed", None, f, search.get(current), steps[-1], base_fit,
-                                   search))
-            else:
-                _, f, g, gain, current = ch
-                steps.append(_step(len(steps), "swapped", g, f, search.get(current), steps[-1], base_fit, search,
-                                   alternatives=(f,)))
+        current = _record_changes(changes, current, steps, base_fit, search)
         if v.verdict == "explained" and not changes:
             stopped = f"explained: with {best.effect} the residual is at the noise level, without pattern"
             break
@@ -459,6 +449,20 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
 
 
 # ==========================================================================================================
+def _record_changes(changes, current, steps, base_fit, search) -> tuple:
+    """Append a step for each change of :meth:`SetSearch.prune` (a removal, or a swap that names the effect swapped
+    out as its alternative); returns the set after the last one (``current`` when there was none)."""
+    for ch in changes:
+        if ch[0] == "removed":
+            _, f, _cost, current = ch
+            steps.append(_step(len(steps), "removed", None, f, search.get(current), steps[-1], base_fit, search))
+        else:
+            _, f, g, _gain, current = ch
+            steps.append(_step(len(steps), "swapped", g, f, search.get(current), steps[-1], base_fit, search,
+                               alternatives=(f,)))
+    return current
+
+
 def _diagnose_set(search, current, measurements, cands, contact, base_fit, name, noise, predictor, progress, step,
                   options) -> Diagnosis:
     """The diagnosis of the set ``current``: the remaining candidates fitted on top of its joint refit."""

@@ -19,7 +19,10 @@ r"""Global, joint refits from several starts, and the uncertainty and plausibili
    than a factor 2, the 68 % interval is the profile-likelihood one,
    :math:`\{x : \min_{\text{others}} \chi^2(x) - \chi^2_{min} \le s^2\}` (Venzon & Moolgavkar, Appl. Stat. 37,
    87 (1988); Raue et al., Bioinformatics 25, 1923 (2009)), found by stepping out from the optimum with the other
-   parameters refitted; an end that reaches a bound is reported open there.
+   parameters refitted; an end that reaches a bound is reported open there. The 95 % interval is
+   :math:`\pm 1.96` standard errors where the :math:`\chi^2` step that far out is within a factor 2 of the
+   quadratic one, else the profile at :math:`\Delta\chi^2 = 1.96^2 = 3.84`, the 95 % quantile of :math:`\chi^2`
+   with one degree of freedom (S. S. Wilks, Ann. Math. Stat. 9, 60 (1938); Venzon & Moolgavkar, above).
 4. **Plausibility.** A parameter that ends on a search bound (a bound that is not one of its declared
    ``physical_limits``) or outside its declared plausible range makes the fit implausible; a physical limit
    (q_m = q0, a factor of 1, zero) is a legitimate optimum and says so.
