@@ -348,8 +348,8 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
         raise InputError("diagnosis: it was made for other measurements than the ones given")
     predictor = Predictor(measurements, contact)
     if dx is None:
-        dx = diagnose_single(model, measurements, cands, contact, fit=base_fit, name=name, progress=_sub(progress, "step 0"),
-                      predictor=predictor, **diagnose_options)
+        dx = diagnose_single(model, measurements, cands, contact, fit=base_fit, name=name,
+                             progress=_sub(progress, "step 0"), predictor=predictor, **diagnose_options)
     noise = diagnose_options.pop("noise", None) or dx.noise_estimate
     n_evals = dx.n_evaluations
     search = SetSearch(model, base_fit, dx.context)
@@ -430,6 +430,19 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
         n_evals += dx.n_evaluations
         search.record(dx, current, len(steps) - 1)
         steps[-1] = replace(steps[-1], diagnosis=dx)
+    if stopped.startswith("explained") and not explored:
+        # the path ended at the noise: a pair it never fitted may fit as well (its look-alike took the path) or
+        # better; the screened pairs that may are fitted, and named among the equally supported sets
+        better = search.explore(current, steps[0].diagnosis, budget=n_evals + search.n_evals,
+                                progress=_sub(progress, "screening pairs"), at_noise=True)
+        if better is not None:
+            previous, current = current, better
+            steps.append(_step(len(steps), "explored", " + ".join(e for e in current if e not in previous),
+                               " + ".join(e for e in previous if e not in current) or None, search.get(current),
+                               steps[-1], base_fit, search))
+            changes = search.prune(current, progress=_sub(progress, "checking the effects of the pair"))
+            current = _record_changes(changes, current, steps, base_fit, search)
+            stopped = f"explained: {search.get(current).label}, found by exploring pairs, fits better still"
     probe = None
     if diagnose_options.get("probe", True):
         from .ambiguity import Probe

@@ -317,7 +317,7 @@ def _selection_html(sel) -> str:
             f"{s.label} ({s.bic - sel.best.bic:+.1f} BIC units: {'; '.join(s.issues)})" for s in sel.set_aside))
             + ".</p>")
     if sel.explored:
-        out.append("<p class='note'>Found by exploring pairs beyond the stepwise path: " + _e("; ".join(sel.explored))
+        out.append("<p class='note'>Exploring pairs beyond the stepwise path: " + _e("; ".join(sel.explored))
                    + ".</p>")
     if sel.removed:
         out.append("<p class='note'>Removed on the way: " + _e("; ".join(sel.removed)) + ".</p>")

@@ -22,15 +22,26 @@ the free parameters of every effect in :math:`S` -- are refitted jointly from gl
    fits together gain at least half of what the path gained (BIC) over the baseline --, the pairs of the better
    single fits first, within as many model evaluations as the path took. The best credible pair continues the
    search when it fits better than the path's set by more than :data:`STAY` BIC units (a step ``"explored"``),
-   at most once. A path that ends at the noise is not explored: its alternatives are the equally supported sets
-   below.
+   at most once.
+5. **pairs that tie**: a path that ends at the noise may have taken a look-alike of a pair whose second member
+   showed nothing alone (a flash temperature invisible until the microtexture is in, while an adhesion fits the
+   same rows): the pair fits as well, and the data cannot tell them apart, but no step ever fitted it. Each pair
+   of a credible significant candidate (the three best) with a candidate that showed nothing alone (no
+   signature, or parameters the data do not identify; one that acted alone only where its own gain could make the
+   pair tie) is screened by a linearized joint fit from the significant one's fit (its Jacobian, and the change
+   the quiet one makes at a few points of its range: one Gauss-Newton step, the quiet one's amplitude kept
+   positive), about ten model evaluations; the pairs whose screened BIC comes within :data:`EQUAL` of the path's
+   set are refitted jointly, the most promising first, within as many model evaluations as the path took. A pair
+   that ties is named among the equally supported sets; one better by more than :data:`STAY` replaces the path's
+   set (as in step 4). The screen serves step 4 too, for the pairs the gain rule leaves out.
 
 The search stops when the verdict on the current set says stop, and a final pass applies the rule to every effect:
 **an effect stays only if dropping it from the final joint model costs more than** :data:`STAY` **BIC units**
 ("very strong" evidence, Kass & Raftery, J. Am. Stat. Assoc. 90, 773 (1995)). The result names the best set and
 every set within :data:`EQUAL` BIC units of it among the sets fitted on the way (equally supported models;
-supersets of another listed set, whose extra effects are not needed, are left out), each with its parameters and
-intervals, and the measurement that would separate each from the best (:mod:`validation.probe`).
+supersets of another listed set are left out unless their extra effects earn more than :data:`STAY` BIC units),
+each with its parameters and intervals, and the measurement that would separate each from the best
+(:mod:`validation.probe`).
 """
 
 from __future__ import annotations
@@ -42,8 +53,8 @@ import numpy as np
 
 from frictioncite import doi
 
-from .candidates import KASS_RAFTERY_1995, SCHWARZ_1978, fit_baseline
-from .fitting import ParameterSpace
+from .candidates import KASS_RAFTERY_1995, SCHWARZ_1978, bic, fit_baseline
+from .fitting import Fitter, ParameterSpace, halton
 
 __all__ = ["EffectSet", "Selection", "SetSearch", "STAY", "EQUAL"]
 
@@ -159,8 +170,9 @@ class Selection:
     removed : tuple of str
         Effects added on the way and removed by the backward elimination, swaps or the final rule (in words).
     explored : tuple of str
-        Sets found by the exploration of pairs (:meth:`SetSearch.explore`) that fit better than the stepwise
-        path's, in words (empty when the path ended at the noise or nothing better was found).
+        What the exploration of pairs (:meth:`SetSearch.explore`) found beyond the stepwise path, in words: a set
+        that fits better than the path's, or that it stopped at its budget (empty when neither; pairs that tie
+        with the best are among :attr:`supported`).
     """
 
     best: EffectSet
@@ -212,7 +224,7 @@ class Selection:
             for sep in self.separations_in_range:
                 lines.append(f"  inside the measured conditions the largest difference is at {sep.describe()}")
         if self.explored:
-            lines.append("Found by exploring pairs beyond the stepwise path: " + "; ".join(self.explored) + ".")
+            lines.append("Exploring pairs beyond the stepwise path: " + "; ".join(self.explored) + ".")
         if self.removed:
             lines.append("Removed on the way: " + "; ".join(self.removed) + ".")
         aside = self.set_aside
@@ -253,6 +265,7 @@ class SetSearch:
         self.n_evals = 0
         self.removed: list[str] = []
         self.explored: list[str] = []
+        self._jacobians: dict[str, np.ndarray] = {}   # effect -> weighted Jacobian of its single fit
 
     # ---- recording fits made by diagnoses --------------------------------------------------------------
     def record(self, dx, effects: tuple, step: int) -> None:
@@ -368,9 +381,11 @@ class SetSearch:
             seen.add(frozenset(current))
         return changes
 
-    def explore(self, current: tuple, first, budget: int | None = None, progress=None, top: int = 3) -> tuple | None:
-        """Pairs the stepwise path did not reach (module docstring, item 4), for a path that ended short of the
-        noise.
+    def explore(self, current: tuple, first, budget: int | None = None, progress=None, top: int = 3,
+                at_noise: bool = False) -> tuple | None:
+        """Pairs the stepwise path did not reach (module docstring, items 4 and 5): for a path that ended short of
+        the noise, or (``at_noise``) for one that ended at it, where only the pairs the screen finds within
+        :data:`EQUAL` BIC units of ``current`` are fitted.
 
         ``first`` is the diagnosis of the baseline: each of its credible significant candidates (the ``top`` best
         by BIC) is paired with every candidate that fitted but showed nothing alone, or had no signature at all (an
@@ -399,16 +414,41 @@ class SetSearch:
             return max(base_bic - c.bic, 0.0) if c.status == "ok" and math.isfinite(c.bic) else 0.0
 
         pairs = {}
+        if not at_noise:
+            for a in significant:
+                for b in quiet:
+                    key = frozenset({a.effect, b.effect})
+                    if key not in self.sets and key not in pairs and gain(a) + gain(b) >= need:
+                        pairs[key] = ((a.effect, b.effect), min(a.bic, b.bic if b.status == "ok" else math.inf))
+        start = self.n_evals
+        order = sorted(pairs.values(), key=lambda t: t[1])
+        # superadditive pairs the gain rule cannot see: screened by a linearized joint fit
+        now_bic = self.get(current).bic
+        screened = []
         for a in significant:
             for b in quiet:
                 key = frozenset({a.effect, b.effect})
-                if key not in self.sets and key not in pairs and gain(a) + gain(b) >= need:
-                    pairs[key] = ((a.effect, b.effect), min(a.bic, b.bic if b.status == "ok" else math.inf))
-        start = self.n_evals
+                if key in self.sets or key in pairs or a.effect == b.effect:
+                    continue
+                # a candidate that acted alone adds about its own gain: the pair can tie only when that is enough;
+                # one that showed nothing (no signature, or parameters the data do not identify) may be invisible
+                # until its partner is in, whatever the partner's own fit
+                if b.status == "ok" and b.identified and a.bic - gain(b) >= now_bic + EQUAL:
+                    continue
+                if budget is not None and self.n_evals - start >= budget:
+                    break
+                if progress is not None:
+                    progress(f"screening: {a.effect} with {b.effect}")
+                predicted = self.screen_pair(a.effect, b.effect)
+                if predicted < now_bic + EQUAL:
+                    pairs[key] = ((a.effect, b.effect), predicted)
+                    screened.append(((a.effect, b.effect), predicted))
+        order += sorted(screened, key=lambda t: t[1])
         fitted = []
-        for (a, b), _ in sorted(pairs.values(), key=lambda t: t[1]):
+        for (a, b), _ in order:
             if budget is not None and self.n_evals - start >= budget:
-                self.explored.append(f"the exploration stopped at its budget of {budget} model evaluations "
+                what = "the pairs that may tie" if at_noise else "the exploration"
+                self.explored.append(f"{what} stopped at its budget of {budget} model evaluations "
                                      f"({len(fitted)} of {len(pairs)} pairs fitted)")
                 break
             if progress is not None:
@@ -422,6 +462,54 @@ class SetSearch:
         self.explored.append(f"{best.label} ({now.bic - best.bic:.1f} BIC units better than {now.label}, which the "
                              "stepwise path reached)")
         return tuple(best.effects)
+
+    def screen_pair(self, a: str, b: str) -> float:
+        r"""The BIC the pair {a, b} is predicted to reach (module docstring, item 5): from the single fit of ``a``
+        (weighted residual :math:`r`, Jacobian :math:`J_a` of its parameters), with ``b`` switched on at its fitted
+        values and at :math:`2 + 2k_b` Halton points of its box (the change :math:`g` it makes), the least-squares
+        :math:`\min_{\delta, t \ge 0} |r - J_a \delta - t g|^2` (one Gauss-Newton step of the joint fit; a
+        negative amplitude, which would turn the effect round, counts as none); the best over the points.
+        About :math:`2k_a + 2k_b + 3` model evaluations (the Jacobian once per ``a``).
+        """
+        ctx, st = self.ctx, self.ctx.settings
+        sa = self.sets[frozenset({a})]
+        contact = sa.contact or st.contact
+        names_a = list(self.base_fit) + [f"{a}.{p}" for p in self.free.get(a, ())]
+        if a not in self._jacobians:
+            space_a = ParameterSpace(ctx.parameters(sa.model, names_a))
+            fa = Fitter(st.predictor, st.y, st.w, sa.model, space_a, max_evals=4 * len(space_a) + 4, contact=contact)
+            self._jacobians[a] = fa.jacobian(fa.space.u_of(sa.model, contact)) * st.w[:, None]
+            self.n_evals += fa.n_evals
+        Ja = self._jacobians[a]
+        model = sa.model.with_effect(self.instances[b])
+        space = ParameterSpace(ctx.parameters(model, names_a + [f"{b}.{p}" for p in self.free.get(b, ())]))
+        dims = np.array([j for j, p in enumerate(space.params) if p.key.partition(".")[0] == b], dtype=int)
+        fitter = Fitter(st.predictor, st.y, st.w, model, space, max_evals=3 + 2 * max(dims.size, 1) + 1,
+                        contact=contact)
+        u0 = space.u_of(model, contact)
+        r = (st.y - sa.predicted) * st.w
+        points = [u0]
+        for p in halton(dims.size, 2 + 2 * dims.size, seed=0) if dims.size else ():
+            q = u0.copy()
+            q[dims] = p
+            points.append(q)
+        best = math.inf
+        for q in points:
+            mu = fitter.mu(q)
+            if mu is None:
+                continue
+            g = (mu - sa.predicted) * st.w
+            A = np.column_stack([Ja, g])
+            coef = np.linalg.lstsq(A, r, rcond=None)[0]
+            if not coef[-1] > 0.0:
+                A = Ja
+                coef = np.linalg.lstsq(A, r, rcond=None)[0] if A.shape[1] else np.zeros(0)
+            res = r - A @ coef
+            best = min(best, float(res @ res))
+        self.n_evals += fitter.n_evals
+        if not math.isfinite(best):
+            return math.inf
+        return bic(best, st.n, sa.n_params + dims.size, st.sigma_known)
 
     def finish(self, current: tuple, probe=None) -> Selection:
         """The final rule (every effect of the best set earns more than :data:`STAY` BIC units), the equally
@@ -440,7 +528,8 @@ class SetSearch:
         visited = sorted(self.sets.values(), key=lambda s: s.bic)
         close = [s for s in visited if s is not best and s.bic - best.bic < EQUAL and s.plausible
                  and not (best.key < s.key)]
-        supported = [s for s in close if not any(o.key < s.key for o in close + [best])]
+        # a superset of a listed set is left out when its extra effects do not earn their place (STAY)
+        supported = [s for s in close if not any(o.key < s.key and s.bic > o.bic - STAY for o in close + [best])]
         seps, seps_in = [], []
         if probe is not None:
             for s in supported:
