@@ -121,6 +121,25 @@ def test_measured_points_carry_error_bars_exactly_when_mu_std_is_given(adhesion_
     plt.close("all")
 
 
+def test_log_axes_are_labelled_with_powers_of_ten_in_plain_text(adhesion_fit):
+    """Decades read 10 to a superscript power (no mathtext to typeset), other ticks their value."""
+    sup = dict(zip("-0123456789", "\u207b\u2070\u00b9\u00b2\u00b3\u2074\u2075\u2076\u2077\u2078\u2079"))
+    for e in range(-12, 13):
+        assert plots._log_label(10.0**e) == "10" + "".join(sup[c] for c in str(e))
+    assert plots._log_label(2e-3) == "0.002" and plots._log_label(0.0) == "" and plots._log_label(np.nan) == ""
+    data, fit = adhesion_fit
+    fig = validation.compare(fit.model, data).figures()["mu_speed"]
+    fig.canvas.draw()
+    ax = fig.axes[0]
+    labels = {t.get_text() for t in ax.get_xticklabels() if t.get_visible() and t.get_text()}
+    lo, hi = ax.get_xlim()
+    expected = {plots._log_label(10.0**e) for e in range(int(np.ceil(np.log10(lo))), int(np.floor(np.log10(hi))) + 1)}
+    assert expected and expected <= labels and not any("$" in t for t in labels)
+    import matplotlib.pyplot as plt
+
+    plt.close("all")
+
+
 # ---- uncertainty bands ------------------------------------------------------------------------------------------
 def test_band_of_a_linear_parameter_matches_weighted_least_squares(adhesion_fit):
     data, fit = adhesion_fit
