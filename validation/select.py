@@ -31,7 +31,8 @@ the free parameters of every effect in :math:`S` -- are refitted jointly from gl
    pair tie) is screened by a linearized joint fit from the significant one's fit (its Jacobian, and the change
    the quiet one makes at a few points of its range: one Gauss-Newton step, the quiet one's amplitude kept
    positive), about ten model evaluations; the pairs whose screened BIC comes within :data:`EQUAL` of the path's
-   set are refitted jointly, the most promising first, within as many model evaluations as the path took. A pair
+   set (a pair that contains the path's set: better by more than :data:`STAY`) are refitted jointly, the most
+   promising first, within as many model evaluations as the path took. A pair
    that ties is named among the equally supported sets; one better by more than :data:`STAY` replaces the path's
    set (as in step 4). The screen serves step 4 too, for the pairs the gain rule leaves out.
 
@@ -440,7 +441,9 @@ class SetSearch:
                 if progress is not None:
                     progress(f"screening: {a.effect} with {b.effect}")
                 predicted = self.screen_pair(a.effect, b.effect)
-                if predicted < now_bic + EQUAL:
+                # a superset of the current set is never listed beside it: it counts only if it could replace it
+                limit = now_bic - STAY if a.effect in current else now_bic + EQUAL
+                if predicted < limit:
                     pairs[key] = ((a.effect, b.effect), predicted)
                     screened.append(((a.effect, b.effect), predicted))
         order += sorted(screened, key=lambda t: t[1])
