@@ -54,6 +54,7 @@ import numpy as np
 
 from frictioncite import doi
 
+from .band import SEBER_WILD_1989
 from .candidates import KASS_RAFTERY_1995, SCHWARZ_1978, bic, fit_baseline
 from .fitting import Fitter, ParameterSpace, halton
 
@@ -466,12 +467,15 @@ class SetSearch:
                              "stepwise path reached)")
         return tuple(best.effects)
 
+    @doi(SEBER_WILD_1989, SCHWARZ_1978)
     def screen_pair(self, a: str, b: str) -> float:
         r"""The BIC the pair {a, b} is predicted to reach (module docstring, item 5): from the single fit of ``a``
         (weighted residual :math:`r`, Jacobian :math:`J_a` of its parameters), with ``b`` switched on at its fitted
         values and at :math:`2 + 2k_b` Halton points of its box (the change :math:`g` it makes), the least-squares
-        :math:`\min_{\delta, t \ge 0} |r - J_a \delta - t g|^2` (one Gauss-Newton step of the joint fit; a
-        negative amplitude, which would turn the effect round, counts as none); the best over the points.
+        :math:`\min_{\delta, t \ge 0} |r - J_a \delta - t g|^2` (one Gauss-Newton step of the joint fit, Seber &
+        Wild, Nonlinear Regression, Wiley 1989, Sec. 14.1; a negative amplitude, which would turn the effect round,
+        counts as none); the best over the points. Exact when both effects are linear in their parameters; else
+        it errs, as a rule, to the optimistic side (a scaled change need not be one the effect can make).
         About :math:`2k_a + 2k_b + 3` model evaluations (the Jacobian once per ``a``).
         """
         ctx, st = self.ctx, self.ctx.settings
