@@ -381,7 +381,7 @@ def test_a_pair_that_ties_with_a_path_ending_at_the_noise_is_named_as_equally_su
 
 def test_the_screen_of_a_pair_is_its_joint_least_squares_fit_when_the_model_is_linear(tie_at_noise):
     """One Gauss-Newton step from the texture's fit, with the heat's change at a few points of its range: exact for
-    effects linear in their parameters."""
+    effects linear in their parameters, and so is the short fit that follows it below a limit."""
     from validation.diagnose import diagnose_single
     from validation.select import SetSearch
 
@@ -395,16 +395,18 @@ def test_the_screen_of_a_pair_is_its_joint_least_squares_fit_when_the_model_is_l
     x = np.log10(m.sliding_speed / 1e-3) / 3.0
     chi2_pair, _ = _linear_chi2(m, base, [np.ones(m.n), x * x])
     n_before = search.n_evals
-    predicted = search.screen_pair("test_texture", "test_heat")
-    assert predicted == pytest.approx(chi2_pair + 2 * np.log(m.n), abs=1e-3)
+    bound, reached = search.screen_pair("test_texture", "test_heat")
+    assert bound == pytest.approx(chi2_pair + 2 * np.log(m.n), abs=1e-3) and reached == np.inf   # no limit: no fit
     assert search.n_evals - n_before <= 2 * 1 + 2 * 1 + 3          # 2 k_a + 2 k_b + 3 model evaluations
-    assert search.screen_pair("test_texture", "test_heat") == predicted      # the Jacobian is kept
-    # the heat does nothing on top of the mimic (no texture): the screen gives the mimic's own chi2, with the heat's
+    # below a limit, a short fit from the best point reaches the optimum (linear: one Gauss-Newton step)
+    bound2, reached = search.screen_pair("test_texture", "test_heat", limit=bound + 1.0)
+    assert bound2 == bound and reached == pytest.approx(bound, abs=1e-2)
+    # the heat does nothing on top of the mimic (no texture): the bound is the mimic's own chi2, with the heat's
     # parameter counted
     mimic = search.sets[frozenset({"test_mimic"})]
     chi2_mimic, _ = _linear_chi2(m, base, [np.ones(m.n), x])
     assert mimic.rss == pytest.approx(chi2_mimic, rel=1e-4)
-    assert search.screen_pair("test_mimic", "test_heat") == pytest.approx(mimic.rss + 3 * np.log(m.n), rel=1e-9)
+    assert search.screen_pair("test_mimic", "test_heat")[0] == pytest.approx(mimic.rss + 3 * np.log(m.n), rel=1e-9)
 
 
 def test_a_pair_better_than_a_path_ending_at_the_noise_replaces_it(better_at_noise):

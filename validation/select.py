@@ -28,11 +28,12 @@ the free parameters of every effect in :math:`S` -- are refitted jointly from gl
    same rows): the pair fits as well, and the data cannot tell them apart, but no step ever fitted it. Each pair
    of a credible significant candidate (the three best) with a candidate that showed nothing alone (no
    signature, or parameters the data do not identify; one that acted alone only where its own gain could make the
-   pair tie) is screened by a linearized joint fit from the significant one's fit (its Jacobian, and the change
-   the quiet one makes at a few points of its range: one Gauss-Newton step, the quiet one's amplitude kept
-   positive), about ten model evaluations; the pairs whose screened BIC comes within :data:`EQUAL` of the path's
-   set (a pair that contains the path's set: better by more than :data:`STAY`) are refitted jointly, the most
-   promising first, within as many model evaluations as the path took. A pair
+   pair tie) is screened: a bound from a linearized joint fit from the significant one's fit (its Jacobian, and
+   the change the quiet one makes at a few points of its range: one Gauss-Newton step, the quiet one's amplitude
+   kept positive), about ten model evaluations; where the bound comes within :data:`EQUAL` of the path's set (a
+   pair that contains the path's set: better by more than :data:`STAY`), two bounded Gauss-Newton steps of the
+   pair itself give a value it reaches, and the pairs that reach within :data:`EQUAL` of that limit are refitted
+   jointly, the most promising first, within as many model evaluations as the path took. A pair
    that ties is named among the equally supported sets; one better by more than :data:`STAY` replaces the path's
    set (as in step 4). The screen serves step 4 too, for the pairs the gain rule leaves out.
 
@@ -56,7 +57,7 @@ from frictioncite import doi
 
 from .band import SEBER_WILD_1989
 from .candidates import KASS_RAFTERY_1995, SCHWARZ_1978, bic, fit_baseline
-from .fitting import Fitter, ParameterSpace, halton
+from .fitting import BudgetExhausted, Fitter, ParameterSpace, halton
 
 __all__ = ["EffectSet", "Selection", "SetSearch", "STAY", "EQUAL"]
 
@@ -441,12 +442,13 @@ class SetSearch:
                     break
                 if progress is not None:
                     progress(f"screening: {a.effect} with {b.effect}")
-                predicted = self.screen_pair(a.effect, b.effect)
                 # a superset of the current set is never listed beside it: it counts only if it could replace it
                 limit = now_bic - STAY if a.effect in current else now_bic + EQUAL
-                if predicted < limit:
-                    pairs[key] = ((a.effect, b.effect), predicted)
-                    screened.append(((a.effect, b.effect), predicted))
+                bound, reached = self.screen_pair(a.effect, b.effect, limit=limit)
+                # the short fit reaches within EQUAL of the limit: the joint fit, which can only do better, may tie
+                if bound < limit and reached < limit + EQUAL:
+                    pairs[key] = ((a.effect, b.effect), reached)
+                    screened.append(((a.effect, b.effect), reached))
         order += sorted(screened, key=lambda t: t[1])
         fitted = []
         for (a, b), _ in order:
@@ -468,15 +470,26 @@ class SetSearch:
         return tuple(best.effects)
 
     @doi(SEBER_WILD_1989, SCHWARZ_1978)
-    def screen_pair(self, a: str, b: str) -> float:
-        r"""The BIC the pair {a, b} is predicted to reach (module docstring, item 5): from the single fit of ``a``
-        (weighted residual :math:`r`, Jacobian :math:`J_a` of its parameters), with ``b`` switched on at its fitted
-        values and at :math:`2 + 2k_b` Halton points of its box (the change :math:`g` it makes), the least-squares
-        :math:`\min_{\delta, t \ge 0} |r - J_a \delta - t g|^2` (one Gauss-Newton step of the joint fit, Seber &
-        Wild, Nonlinear Regression, Wiley 1989, Sec. 14.1; a negative amplitude, which would turn the effect round,
-        counts as none); the best over the points. Exact when both effects are linear in their parameters; else
-        it errs, as a rule, to the optimistic side (a scaled change need not be one the effect can make).
-        About :math:`2k_a + 2k_b + 3` model evaluations (the Jacobian once per ``a``).
+    def screen_pair(self, a: str, b: str, limit: float | None = None) -> tuple[float, float]:
+        r"""The BIC the pair {a, b} may reach (module docstring, item 5): a bound, and, when the bound is below
+        ``limit``, a value the pair does reach.
+
+        The bound: from the single fit of ``a`` (weighted residual :math:`r`, Jacobian :math:`J_a` of its
+        parameters), with ``b`` switched on at its fitted values and at :math:`2 + 2k_b` Halton points of its box
+        (the change :math:`g` it makes), the least squares :math:`\min_{\delta, t \ge 0} |r - J_a \delta - t g|^2`
+        (one Gauss-Newton step of the joint fit, Seber & Wild, Nonlinear Regression, Wiley 1989, Sec. 14.1; a
+        negative amplitude, which would turn the effect round, counts as none), the best over the points. Exact
+        when both effects are linear in their parameters; otherwise optimistic as a rule, and far so where no
+        parameter value of ``b`` makes a change as small as the scaled one (a flash temperature whose every
+        setting moves the friction a lot): hence the second value, the best of two bounded Gauss-Newton steps of the
+        pair's joint fit (its Jacobian by central differences, the step by bounded linear least squares,
+        :func:`scipy.optimize.lsq_linear`) from the point whose bound was best: a value the pair reaches, which the
+        joint fit can only improve on.
+
+        Returns
+        -------
+        (bound, reached) : tuple of float
+            BIC units; ``reached`` is inf when the bound is not below ``limit`` (no fit made) or ``limit`` is None.
         """
         ctx, st = self.ctx, self.ctx.settings
         sa = self.sets[frozenset({a})]
@@ -491,8 +504,9 @@ class SetSearch:
         model = sa.model.with_effect(self.instances[b])
         space = ParameterSpace(ctx.parameters(model, names_a + [f"{b}.{p}" for p in self.free.get(b, ())]))
         dims = np.array([j for j, p in enumerate(space.params) if p.key.partition(".")[0] == b], dtype=int)
-        fitter = Fitter(st.predictor, st.y, st.w, model, space, max_evals=3 + 2 * max(dims.size, 1) + 1,
-                        contact=contact)
+        k = sa.n_params + dims.size
+        fitter = Fitter(st.predictor, st.y, st.w, model, space,
+                        max_evals=3 + 2 * max(dims.size, 1) + 1 + _GN_STEPS * (2 * len(space) + 1), contact=contact)
         u0 = space.u_of(model, contact)
         r = (st.y - sa.predicted) * st.w
         points = [u0]
@@ -500,7 +514,7 @@ class SetSearch:
             q = u0.copy()
             q[dims] = p
             points.append(q)
-        best = math.inf
+        best, start = math.inf, None
         for q in points:
             mu = fitter.mu(q)
             if mu is None:
@@ -512,11 +526,21 @@ class SetSearch:
                 A = Ja
                 coef = np.linalg.lstsq(A, r, rcond=None)[0] if A.shape[1] else np.zeros(0)
             res = r - A @ coef
-            best = min(best, float(res @ res))
+            if float(res @ res) < best:
+                best, start = float(res @ res), q
+        bound = bic(best, st.n, k, st.sigma_known) if math.isfinite(best) else math.inf
+        reached = math.inf
+        if limit is not None and bound < limit and start is not None:
+            u = start
+            try:
+                for _ in range(_GN_STEPS):
+                    u = _gauss_newton_step(fitter, u)
+            except BudgetExhausted:
+                pass
+            c = fitter.best[0]
+            reached = bic(c, st.n, k, st.sigma_known) if math.isfinite(c) else math.inf
         self.n_evals += fitter.n_evals
-        if not math.isfinite(best):
-            return math.inf
-        return bic(best, st.n, sa.n_params + dims.size, st.sigma_known)
+        return bound, reached
 
     def finish(self, current: tuple, probe=None) -> Selection:
         """The final rule (every effect of the best set earns more than :data:`STAY` BIC units), the equally
@@ -554,3 +578,22 @@ def _covariance_of(baseline):
     """The covariance of a refitted baseline's parameters (None when it has none)."""
     fit = getattr(baseline, "fit", None)
     return None if fit is None else fit.covariance
+
+
+#: Gauss-Newton steps of the pair screen's second value (:meth:`SetSearch.screen_pair`).
+_GN_STEPS = 2
+
+
+def _gauss_newton_step(fitter, u):
+    """One bounded Gauss-Newton step of ``fitter``'s weighted least squares from ``u`` (in the unit box): the
+    Jacobian by central differences, the step from :func:`scipy.optimize.lsq_linear` within the box; returns the new
+    point (evaluated, so that ``fitter.best`` holds the best point seen)."""
+    from scipy.optimize import lsq_linear
+
+    u = np.asarray(u, dtype=float)
+    r = fitter.resid(u)
+    J = fitter.jacobian(u) * fitter.w[:, None]
+    step = lsq_linear(J, r, bounds=(-u, 1.0 - u)).x
+    new = np.clip(u + step, 0.0, 1.0)
+    fitter.chi2(new)
+    return new
