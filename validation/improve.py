@@ -8,7 +8,9 @@ removed, and one that an alternative of its own step replaces with a lower BIC i
 the remaining candidates, with the noise estimate of the first, so that every model is judged against the same
 noise) starts from the current set's values. The loop stops when the verdict is ``explained`` and nothing changed
 (nothing more is called for), ``nothing_missing``, ``unexplained`` or ``undetermined`` (nothing credible to add, or
-no noise to judge against), when a set comes back that was tried before, or after ``max_steps`` additions. A final
+no noise to judge against), when a set comes back that was tried before, or after ``max_steps`` additions. A path
+that ends short of the noise explores the pairs it could not reach; one that ends at the noise screens the pairs
+it never fitted and fits those that may tie with it (:mod:`validation.select`, items 4 and 5). A final
 pass keeps an effect only if dropping it from the final joint model costs more than 10 BIC units, and names every
 other set within 10 BIC units (equally supported) with the measurement that would separate it. Every step keeps
 the alternatives its diagnosis named ("or as well by").
