@@ -444,7 +444,8 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
                                steps[-1], base_fit, search))
             changes = search.prune(current, progress=_sub(progress, "checking the effects of the pair"))
             current = _record_changes(changes, current, steps, base_fit, search)
-            stopped = f"explained: {search.get(current).label}, found by exploring pairs, fits better still"
+            stopped = (f"{' + '.join(previous)} reached the noise level; {search.get(current).label}, found by "
+                       "exploring pairs, fits better by more than 10 BIC units")
     probe = None
     if diagnose_options.get("probe", True):
         from .ambiguity import Probe
