@@ -52,6 +52,7 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
+from scipy.optimize import lsq_linear
 
 from frictioncite import doi
 
@@ -588,8 +589,6 @@ def _gauss_newton_step(fitter, u):
     """One bounded Gauss-Newton step of ``fitter``'s weighted least squares from ``u`` (in the unit box): the
     Jacobian by central differences, the step from :func:`scipy.optimize.lsq_linear` within the box; returns the new
     point (evaluated, so that ``fitter.best`` holds the best point seen)."""
-    from scipy.optimize import lsq_linear
-
     u = np.asarray(u, dtype=float)
     r = fitter.resid(u)
     J = fitter.jacobian(u) * fitter.w[:, None]
