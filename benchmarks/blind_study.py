@@ -302,6 +302,7 @@ def run(case: BlindCase) -> dict:
            "noise": case.noise_kind, "rows": case.measurements.n,
            "noise_estimate": imp.noise, "seconds": time.perf_counter() - t0,
            "supported": [list(s.effects) for s in imp.selection.supported] if imp.selection else [],
+           "resumed": list(imp.selection.resumed) if imp.selection else [],
            "coverage": []}
     if case.kind in ("single", "pair") and set(found) == set(truth):
         est = {e.key: e for e in imp.selection.best.estimates}

@@ -422,3 +422,94 @@ def test_a_pair_better_than_a_path_ending_at_the_noise_replaces_it(better_at_noi
     assert explored[0].delta_bic == pytest.approx(-gain, abs=0.05)
     assert set(imp.selection.best.effects) == {"test_texture", "test_heat"} and imp.verdict == "explained"
     assert imp.selection.explored and "found by exploring pairs" in imp.stopped
+
+
+# ---------------------------------------------------------------------------------------------- fits stopped early
+def test_a_fit_stopped_at_its_budget_within_reach_is_continued_and_can_change_the_answer(effects):
+    """A fit that runs out of model evaluations reports the best point it reached: an upper bound on its BIC. Such a
+    set within 10 BIC units of the answer is fitted again from that point with a budget of its own, and replaces
+    the answer when it then fits better by more than 10 BIC units; one further away is left alone. Texture + heat,
+    recorded as stopped at its starting values 5 BIC units behind the texture alone, is continued to its
+    least-squares optimum (both effects are linear); the mimic, recorded as stopped 15 units behind, is not."""
+    from dataclasses import replace
+
+    from validation.diagnose import diagnose_single
+    from validation.refit import BUDGET_NOTE
+    from validation.report import _selection_html
+    from validation.select import SetSearch
+
+    base = persson.Model(SURFACE, TREAD)
+    texture, heat, mimic = effects["texture"](), effects["heat"](), effects["mimic"]()
+    m = _data(base.with_effect(effects["texture"](a=0.05)).with_effect(effects["heat"](h=0.15)), 1)
+    dx = diagnose_single(base, m, [texture, heat, mimic])
+    search = SetSearch(base, (), dx.context)
+    search.record(dx, (), 0)
+    for c in dx.candidates:
+        search.instances.setdefault(c.effect, c.instance)
+        search.free.setdefault(c.effect, tuple(c.free))
+    alone = search.sets[frozenset({"test_texture"})]
+    assert not alone.budget_stopped
+
+    def stopped(effects_, model, delta):
+        fit = replace(alone, effects=effects_, model=model, bic=alone.bic + delta, notes=(BUDGET_NOTE,),
+                      source="a fit stopped at its budget")
+        search.sets[fit.key] = fit
+        return fit
+
+    pair = stopped(("test_texture", "test_heat"), base.with_effect(texture).with_effect(heat), 5.0)
+    far = stopped(("test_mimic",), base.with_effect(mimic), 15.0)
+    assert pair.budget_stopped and far.budget_stopped
+    n0 = search.n_evals
+    better = search.resume(("test_texture",))
+    assert search.n_evals > n0
+    x = np.log10(m.sliding_speed / 1e-3) / 3.0
+    chi2_pair, (a, h) = _linear_chi2(m, base, [np.ones(m.n), x * x])
+    continued = search.sets[frozenset({"test_texture", "test_heat"})]
+    assert continued.rss == pytest.approx(chi2_pair, rel=1e-4) and not continued.budget_stopped
+    assert continued.bic == pytest.approx(chi2_pair + 2 * np.log(m.n), rel=1e-6)
+    est = {e.key: e.value for e in continued.estimates}
+    assert est["test_texture.a"] == pytest.approx(a, rel=1e-3) and est["test_heat.h"] == pytest.approx(h, rel=1e-3)
+    assert better == ("test_texture", "test_heat") and continued.bic < alone.bic - validation.select.STAY
+    assert search.sets[frozenset({"test_mimic"})] is far                   # 15 units behind: out of reach
+    assert len(search.resumed) == 1 and search.resumed[0].startswith("test_texture + test_heat (BIC")
+    sel = search.finish(better)
+    assert sel.best is continued and sel.resumed == tuple(search.resumed)
+    assert "continued past their budget" in sel.text() and "continued past their budget" in _selection_html(sel)
+    assert sel.as_dict()["resumed"] == list(search.resumed)
+    # nothing is continued twice beyond its rounds, and a search without stopped fits in reach does nothing
+    assert search.resume(better) is None and len(search.resumed) == 1
+
+
+def test_a_step_that_continues_a_stopped_fit_says_so():
+    from validation.improve import Step
+
+    common = dict(index=3, effects=("a", "b"), parameters={}, fitted=(), rmse=0.1, bic=1.0, delta_bic=-20.0,
+                  model=None, diagnosis=None)
+    assert Step(added="b", removed="c", action="resumed", **common).describe() == "c -> b (resumed)"
+    assert Step(added="b", removed=None, action="resumed", **common).describe() == "+ b (resumed)"
+    assert Step(added=None, removed="c", action="resumed", **common).describe() == "- c (resumed)"
+
+
+def test_a_credible_fit_is_not_traded_for_a_continuation_outside_the_plausible_ranges(monkeypatch):
+    """A set named at credible values stays named: when its continued fit is better but leaves a plausible range,
+    the credible fit is kept; a credible continuation that fits better by more than 10 BIC units wins."""
+    from validation.refit import BUDGET_NOTE, Estimate
+    from validation.select import EffectSet, SetSearch
+
+    def effect_set(effects, bic, issue="", notes=()):
+        est = tuple(Estimate(key=f"{e}.p", value=1.0, std=0.1, interval=(0.9, 1.1), method="quadratic", issue=issue)
+                    for e in effects)
+        return EffectSet(effects=effects, model=None, contact=None, predicted=np.zeros(3), rss=1.0, bic=bic,
+                         rmse=0.1, n_params=len(effects), estimates=est, lack=None, pattern=None, notes=notes)
+
+    search = SetSearch(None, (), None)
+    answer, stopped = effect_set(("a",), -100.0), effect_set(("b",), -95.0, notes=(BUDGET_NOTE,))
+    for s in (answer, stopped):
+        search.sets[s.key] = s
+    monkeypatch.setattr(search, "_continue", lambda s: effect_set(("b",), -120.0, "outside the plausible range"))
+    assert search.resume(("a",)) is None
+    assert search.sets[frozenset({"b"})] is stopped and search.resumed == []
+    search._continued.clear()
+    monkeypatch.setattr(search, "_continue", lambda s: effect_set(("b",), -120.0))
+    assert search.resume(("a",)) == ("b",) and search.sets[frozenset({"b"})].bic == -120.0
+    assert search.resumed == ["b (BIC -95.0 where its fit stopped, -120.0 continued)"]

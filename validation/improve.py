@@ -10,7 +10,10 @@ noise) starts from the current set's values. The loop stops when the verdict is 
 (nothing more is called for), ``nothing_missing``, ``unexplained`` or ``undetermined`` (nothing credible to add, or
 no noise to judge against), when a set comes back that was tried before, or after ``max_steps`` additions. A path
 that ends short of the noise explores the pairs it could not reach; one that ends at the noise screens the pairs
-it never fitted and fits those that may tie with it (:mod:`validation.select`, items 4 and 5). A final
+it never fitted and fits those that may tie with it (:mod:`validation.select`, items 4 and 5). Fits that stopped
+at their budget of model evaluations within 10 BIC units of an answer that misses the noise are then continued,
+and one that fits better by more than 10 units replaces it (item 6; only when effects were added and the noise is
+known). A final
 pass keeps an effect only if dropping it from the final joint model costs more than 10 BIC units, and names every
 other set within 10 BIC units (equally supported) with the measurement that would separate it. Every step keeps
 the alternatives its diagnosis named ("or as well by").
@@ -69,9 +72,11 @@ class Step:
     lack_of_fit_p : float
         Lack-of-fit p-value of this step's model against the noise.
     action : str
-        ``"baseline"``, ``"added"``, ``"removed"`` (backward elimination), ``"swapped"``, or ``"explored"`` (a
+        ``"baseline"``, ``"added"``, ``"removed"`` (backward elimination), ``"swapped"``, ``"explored"`` (a
         pair the stepwise path did not reach, fitted when that path ended short of the noise, that fits better:
-        ``added`` and ``removed`` then name the effects it brings in and takes out, joined by " + ").
+        ``added`` and ``removed`` then name the effects it brings in and takes out, joined by " + "), or
+        ``"resumed"`` (a set whose fit had stopped at its budget of model evaluations and, continued, fits better
+        than the path's by more than 10 BIC units; ``added`` and ``removed`` as for ``"explored"``).
     removed : str or None
         The effect removed (or swapped out) at this step.
     alternatives : tuple of str
@@ -109,8 +114,10 @@ class Step:
             return f"- {self.removed}"
         if self.action == "swapped":
             return f"{self.removed} -> {self.added}"
-        if self.action == "explored":
-            return f"{self.removed} -> {self.added} (explored)" if self.removed else f"+ {self.added} (explored)"
+        if self.action in ("explored", "resumed"):
+            if self.removed and self.added:
+                return f"{self.removed} -> {self.added} ({self.action})"
+            return f"+ {self.added} ({self.action})" if self.added else f"- {self.removed} ({self.action})"
         return f"+ {self.added}"
 
     def as_dict(self) -> dict:
@@ -380,14 +387,9 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
             better = search.explore(current, steps[0].diagnosis, budget=n_evals + search.n_evals,
                                     progress=_sub(progress, "exploring pairs"))
             if better is not None:
-                previous, current = current, better
-                s = search.get(current)
-                steps.append(_step(len(steps), "explored", " + ".join(e for e in current if e not in previous),
-                                   " + ".join(e for e in previous if e not in current) or None, s, steps[-1],
-                                   base_fit, search))
-                n_added = len(current)
-                changes = search.prune(current, progress=_sub(progress, "checking the effects of the pair"))
-                current = _record_changes(changes, current, steps, base_fit, search)
+                n_added = len(better)
+                current = _take("explored", current, better, steps, base_fit, search,
+                                _sub(progress, "checking the effects of the pair"))
                 tried.add(frozenset(current))
                 s = search.get(current)
                 if s.lack is not None and s.lack.consistent and not (s.pattern is not None and s.pattern.found):
@@ -438,14 +440,24 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
         better = search.explore(current, steps[0].diagnosis, budget=n_evals + search.n_evals,
                                 progress=_sub(progress, "screening pairs"), at_noise=True)
         if better is not None:
-            previous, current = current, better
-            steps.append(_step(len(steps), "explored", " + ".join(e for e in current if e not in previous),
-                               " + ".join(e for e in previous if e not in current) or None, search.get(current),
-                               steps[-1], base_fit, search))
-            changes = search.prune(current, progress=_sub(progress, "checking the effects of the pair"))
-            current = _record_changes(changes, current, steps, base_fit, search)
+            previous = current
+            current = _take("explored", current, better, steps, base_fit, search,
+                            _sub(progress, "checking the effects of the pair"))
             stopped = (f"{' + '.join(previous)} reached the noise level; {search.get(current).label}, found by "
                        "exploring pairs, fits better by more than 10 BIC units")
+    # fits that stopped at their budget of model evaluations give upper bounds on their BIC: those within reach of
+    # the answer are continued, and a set that then fits better by more than STAY takes the place of the path's
+    # (when the path added effects: a baseline left alone is the first diagnosis' judgement, with its tests)
+    better = None
+    if current and noise.known:
+        # at most half the model evaluations the search took
+        better = search.resume(current, budget=(n_evals + search.n_evals) // 2,
+                               progress=_sub(progress, "continuing fits stopped at their budget"))
+    if better is not None:
+        current = _take("resumed", current, better, steps, base_fit, search,
+                        _sub(progress, "checking the effects of the continued set"))
+        stopped = (f"{stopped}; then {search.get(current).label}, whose fit had stopped at its budget of model "
+                   "evaluations, fits better by more than 10 BIC units once continued")
     probe = None
     if diagnose_options.get("probe", True):
         from .ambiguity import Probe
@@ -477,6 +489,16 @@ def _record_changes(changes, current, steps, base_fit, search) -> tuple:
             steps.append(_step(len(steps), "swapped", g, f, search.get(current), steps[-1], base_fit, search,
                                alternatives=(f,)))
     return current
+
+
+def _take(action, current, better, steps, base_fit, search, progress) -> tuple:
+    """``better`` in place of the set ``current``: a step ``action`` naming the effects it brings in and takes out
+    (joined by " + "), then the backward elimination and swaps from it; returns the set they leave."""
+    steps.append(_step(len(steps), action, " + ".join(e for e in better if e not in current) or None,
+                       " + ".join(e for e in current if e not in better) or None, search.get(better), steps[-1],
+                       base_fit, search))
+    changes = search.prune(better, progress=progress)
+    return _record_changes(changes, better, steps, base_fit, search)
 
 
 def _diagnose_set(search, current, measurements, cands, contact, base_fit, name, noise, predictor, progress, step,

@@ -37,8 +37,12 @@ import numpy as np
 
 from .fitting import BudgetExhausted, Fitter, halton
 
-__all__ = ["Estimate", "GlobalFit", "ParameterCovariance", "global_fit", "with_uncertainty", "issues_at", "DataRange",
-           "data_range"]
+__all__ = ["BUDGET_NOTE", "Estimate", "GlobalFit", "ParameterCovariance", "global_fit", "with_uncertainty",
+           "issues_at", "DataRange", "data_range"]
+
+#: The note of a fit that stopped at its budget of model evaluations: its optimum may lie further on (a set search
+#: continues such fits where they could change the answer, :meth:`validation.select.SetSearch.resume`).
+BUDGET_NOTE = "the fit stopped at its budget of model evaluations (the best point found is used)"
 
 #: Distance in u below which a fitted parameter is "on its bound".
 BOUND_TOL = 2e-3
@@ -345,7 +349,7 @@ def global_fit(fitter: Fitter, u_given, *, seed: int = 0, n_screen: int | None =
                 optima.append((c, u))
                 known.append((c, u, getattr(fitter, "last_hessian", None)))
     except BudgetExhausted:
-        notes["the fit stopped at its budget of model evaluations (the best point found is used)"] = None
+        notes[BUDGET_NOTE] = None
     c_best, u_best = fitter.best
     if u_best is None:
         from .errors import InputError

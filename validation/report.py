@@ -319,6 +319,9 @@ def _selection_html(sel) -> str:
     if sel.explored:
         out.append("<p class='note'>Exploring pairs beyond the stepwise path: " + _e("; ".join(sel.explored))
                    + ".</p>")
+    if getattr(sel, "resumed", ()):
+        out.append("<p class='note'>Fits continued past their budget of model evaluations: "
+                   + _e("; ".join(sel.resumed)) + ".</p>")
     if sel.removed:
         out.append("<p class='note'>Removed on the way: " + _e("; ".join(sel.removed)) + ".</p>")
     return "\n".join(out)

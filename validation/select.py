@@ -36,6 +36,17 @@ the free parameters of every effect in :math:`S` -- are refitted jointly from gl
    jointly, the most promising first, within as many model evaluations as the path took. A pair
    that ties is named among the equally supported sets; one better by more than :data:`STAY` replaces the path's
    set (as in step 4). The screen serves step 4 too, for the pairs the gain rule leaves out.
+6. **fits stopped at their budget**: a fit that runs out of model evaluations (40 + 25 k for k parameters) reports
+   the best point it reached, so its BIC is only an upper bound. A candidate fitted on top of a set varies its own
+   parameters in its design, and the local fits that start there can run out before they leave the set's values
+   (a flash temperature held at its bound by the look-alike it replaced). When the search ends with an answer that
+   misses the noise, every such set within :data:`EQUAL` BIC units of it (itself included) is fitted again by a
+   global search of all its parameters from the point it reached, with a budget of its own, the best first, within
+   half the model evaluations the search took (a second time if the first took it further and it stopped again; a
+   credible fit is kept when its continuation is not); a credible set that then fits better than the answer by
+   more than :data:`STAY` replaces it (a step ``"resumed"``). This is done when the path added effects and the
+   noise is known (a baseline left alone is the first diagnosis' judgement, made with its significance tests); an
+   answer at the noise is left to the pair screen (item 5).
 
 The search stops when the verdict on the current set says stop, and a final pass applies the rule to every effect:
 **an effect stays only if dropping it from the final joint model costs more than** :data:`STAY` **BIC units**
@@ -49,7 +60,7 @@ each with its parameters and intervals, and the measurement that would separate 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from scipy.optimize import lsq_linear
@@ -59,6 +70,7 @@ from frictioncite import doi
 from .band import SEBER_WILD_1989
 from .candidates import KASS_RAFTERY_1995, SCHWARZ_1978, bic, fit_baseline
 from .fitting import BudgetExhausted, Fitter, ParameterSpace, halton
+from .refit import BUDGET_NOTE
 
 __all__ = ["EffectSet", "Selection", "SetSearch", "STAY", "EQUAL"]
 
@@ -129,6 +141,12 @@ class EffectSet:
         return not self.issues
 
     @property
+    def budget_stopped(self) -> bool:
+        """Whether its fit stopped at its budget of model evaluations (its BIC is then an upper bound: the optimum
+        may lie further on)."""
+        return BUDGET_NOTE in self.notes
+
+    @property
     def not_identified(self) -> tuple:
         """Parameters of the added effects whose 68 % interval spans the range searched."""
         return tuple(e.key for e in self.estimates if not e.identified and e.key.partition(".")[0] in self.effects)
@@ -177,6 +195,9 @@ class Selection:
         What the exploration of pairs (:meth:`SetSearch.explore`) found beyond the stepwise path, in words: a set
         that fits better than the path's, or that it stopped at its budget (empty when neither; pairs that tie
         with the best are among :attr:`supported`).
+    resumed : tuple of str
+        The fits that had stopped at their budget of model evaluations within reach of the best set and were
+        continued (:meth:`SetSearch.resume`), in words, with their BIC before and after.
     """
 
     best: EffectSet
@@ -187,6 +208,7 @@ class Selection:
     visited: tuple = ()
     removed: tuple = ()
     explored: tuple = ()
+    resumed: tuple = ()
 
     @property
     def equally_supported(self) -> bool:
@@ -209,7 +231,7 @@ class Selection:
                           "plausible": s.plausible, "source": s.source} for s in self.visited],
                 "set_aside": [{"effects": list(s.effects), "delta_bic": s.bic - b, "issues": list(s.issues)}
                               for s in self.set_aside],
-                "removed": list(self.removed), "explored": list(self.explored)}
+                "removed": list(self.removed), "explored": list(self.explored), "resumed": list(self.resumed)}
 
     def text(self) -> str:
         if self.drop_costs:
@@ -229,6 +251,8 @@ class Selection:
                 lines.append(f"  inside the measured conditions the largest difference is at {sep.describe()}")
         if self.explored:
             lines.append("Exploring pairs beyond the stepwise path: " + "; ".join(self.explored) + ".")
+        if self.resumed:
+            lines.append("Fits continued past their budget of model evaluations: " + "; ".join(self.resumed) + ".")
         if self.removed:
             lines.append("Removed on the way: " + "; ".join(self.removed) + ".")
         aside = self.set_aside
@@ -269,6 +293,8 @@ class SetSearch:
         self.n_evals = 0
         self.removed: list[str] = []
         self.explored: list[str] = []
+        self.resumed: list[str] = []
+        self._continued: dict[frozenset, int] = {}    # set -> times its fit was continued
         self._jacobians: dict[str, np.ndarray] = {}   # effect -> weighted Jacobian of its single fit
 
     # ---- recording fits made by diagnoses --------------------------------------------------------------
@@ -543,6 +569,65 @@ class SetSearch:
         self.n_evals += fitter.n_evals
         return bound, reached
 
+    def resume(self, current: tuple, budget: int | None = None, progress=None, rounds: int = 2) -> tuple | None:
+        """Continue the fits that stopped at their budget of model evaluations where they could change the answer
+        (module docstring, item 6).
+
+        A fit that stopped at its budget reports the best point it reached: its BIC is an upper bound, and the set
+        may fit better. When ``current`` misses the noise (lack of fit, or a pattern left; at the noise, the sets
+        that might replace it are those the pair screen fits, :meth:`explore`), every such set within
+        :data:`EQUAL` BIC units of it, itself included, is fitted again from that point with a budget of its own
+        (:meth:`_continue`), the best first, at most ``rounds`` times (once when a continuation gains nothing),
+        until none is left within reach or ``budget`` model evaluations are spent. A credible fit is kept when its
+        continuation leaves the plausible ranges. Returns the effects of the best credible set that then fits
+        better than ``current`` by more than :data:`STAY` BIC units, else None.
+        """
+        current = tuple(current)
+        if _at_noise(self.get(current)):
+            return None
+        start = self.n_evals
+        for _ in range(rounds):
+            now = self.get(current)
+            todo = sorted((s for s in self.sets.values() if s.budget_stopped and s.bic < now.bic + EQUAL
+                           and self._continued.get(s.key, 0) < rounds), key=lambda s: s.bic)
+            if not todo:
+                break
+            for s in todo:
+                if budget is not None and self.n_evals - start >= budget:
+                    break
+                if progress is not None:
+                    progress(f"continuing the fit of {s.label}, stopped at its budget of model evaluations")
+                self._continued[s.key] = self._continued.get(s.key, 0) + 1
+                cont = self._continue(s)
+                # a credible fit is not traded for one that leaves the plausible ranges (a set listed as equally
+                # supported at credible values stays listed)
+                new = self._keep(cont) if cont.plausible or not s.plausible else s
+                if new.bic < s.bic - 0.05:
+                    self.resumed.append(f"{s.label} (BIC {s.bic:.1f} where its fit stopped, {new.bic:.1f} continued)")
+                else:
+                    self._continued[s.key] = rounds       # it went no further: once is enough
+        now = self.get(current)
+        better = [s for s in self.sets.values() if s.plausible and s.bic < now.bic - STAY]
+        return min(better, key=lambda s: s.bic).effects if better else None
+
+    def _continue(self, s: EffectSet) -> EffectSet:
+        """The refit of ``s`` from its fitted values with a budget of model evaluations of its own: a global search
+        over all its parameters (Halton design and local fits, :func:`validation.refit.global_fit`)."""
+        ctx = self.ctx
+        names = list(self.base_fit) + [f"{e}.{p}" for e in s.effects for p in self.free.get(e, ())]
+        space = ParameterSpace(ctx.parameters(s.model, names))
+        settings = ctx.settings if s.contact is None else replace(ctx.settings, contact=s.contact)
+        # a global search of every parameter from that point: a fit that ran out of evaluations may have left
+        # the basin of the optimum unvisited (a candidate fitted on top of a set varies its own parameters only)
+        base = fit_baseline(s.model, space, settings, global_search=True)
+        self.n_evals += base.n_evals
+        b = ctx.finish(base)
+        self.n_evals += (b.fit.n_evals - base.fit.n_evals) if b.fit is not None and base.fit is not None else 0
+        return EffectSet(effects=s.effects, model=b.model, contact=b.contact, predicted=b.predicted, rss=b.rss,
+                         bic=b.bic, rmse=b.rmse, n_params=b.n_params, estimates=b.estimates, lack=b.lack,
+                         pattern=b.pattern, source=f"{s.source}, continued", notes=tuple(b.notes),
+                         covariance=_covariance_of(b))
+
     def finish(self, current: tuple, probe=None) -> Selection:
         """The final rule (every effect of the best set earns more than :data:`STAY` BIC units), the equally
         supported sets and the measurements that separate them (module docstring)."""
@@ -572,7 +657,12 @@ class SetSearch:
                         seps_in.append(pair[1])
         return Selection(best=best, supported=tuple(supported), drop_costs=costs, separations=tuple(seps),
                          separations_in_range=tuple(seps_in), visited=tuple(visited), removed=tuple(self.removed),
-                         explored=tuple(self.explored))
+                         explored=tuple(self.explored), resumed=tuple(self.resumed))
+
+
+def _at_noise(s: EffectSet) -> bool:
+    """Whether the set fits at the noise level: lack of fit consistent with the noise, no pattern left."""
+    return bool(s.lack is not None and s.lack.consistent and not (s.pattern is not None and s.pattern.found))
 
 
 def _covariance_of(baseline):
