@@ -586,6 +586,7 @@ class SetSearch:
         if _at_noise(self.get(current)):
             return None
         start = self.n_evals
+        continued = set()
         for _ in range(rounds):
             now = self.get(current)
             todo = sorted((s for s in self.sets.values() if s.budget_stopped and s.bic < now.bic + EQUAL
@@ -602,12 +603,14 @@ class SetSearch:
                 # a credible fit is not traded for one that leaves the plausible ranges (a set listed as equally
                 # supported at credible values stays listed)
                 new = self._keep(cont) if cont.plausible or not s.plausible else s
+                continued.add(s.key)
                 if new.bic < s.bic - 0.05:
                     self.resumed.append(f"{s.label} (BIC {s.bic:.1f} where its fit stopped, {new.bic:.1f} continued)")
                 else:
                     self._continued[s.key] = rounds       # it went no further: once is enough
         now = self.get(current)
-        better = [s for s in self.sets.values() if s.plausible and s.bic < now.bic - STAY]
+        # only a set this continuation moved: the others were judged by the path already
+        better = [self.sets[k] for k in continued if self.sets[k].plausible and self.sets[k].bic < now.bic - STAY]
         return min(better, key=lambda s: s.bic).effects if better else None
 
     def _continue(self, s: EffectSet) -> EffectSet:
