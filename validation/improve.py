@@ -32,7 +32,7 @@ from .compare import Comparison, comparison_from, json_text
 from .diagnose import Diagnosis, _unpack, diagnose_single
 from .errors import InputError
 from .predict import Prediction, Predictor
-from .select import Selection, SetSearch
+from .select import Selection, SetSearch, fits_at_noise
 from .verdict import Verdict, judge, misfit_share
 
 __all__ = ["Improvement", "Step", "improve", "diagnose"]
@@ -392,7 +392,7 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
                                 _sub(progress, "checking the effects of the pair"))
                 tried.add(frozenset(current))
                 s = search.get(current)
-                if s.lack is not None and s.lack.consistent and not (s.pattern is not None and s.pattern.found):
+                if fits_at_noise(s):
                     stopped = (f"explained: with {s.label} (found by exploring pairs) the residual is at the noise "
                                "level, without pattern")
                     break

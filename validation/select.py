@@ -352,14 +352,18 @@ class SetSearch:
                 if p.key in vals:
                     u[j] = p.to_u(vals[p.key])
             starts.append(u)
-        base = fit_baseline(model, space, ctx.settings, global_search=True, extra_starts=starts)
+        return self._global_refit(effects, model, space, ctx.settings, starts, "joint refit")
+
+    def _global_refit(self, effects: tuple, model, space, settings, starts, source: str) -> EffectSet:
+        """The global fit of ``space`` on ``model`` (and the ``starts`` in u), finished with uncertainties, lack of
+        fit and pattern, as the set ``effects``; its model evaluations are counted."""
+        base = fit_baseline(model, space, settings, global_search=True, extra_starts=starts)
         self.n_evals += base.n_evals
-        b = ctx.finish(base)
+        b = self.ctx.finish(base)
         self.n_evals += (b.fit.n_evals - base.fit.n_evals) if b.fit is not None and base.fit is not None else 0
         return EffectSet(effects=effects, model=b.model, contact=b.contact, predicted=b.predicted, rss=b.rss,
                          bic=b.bic, rmse=b.rmse, n_params=b.n_params, estimates=b.estimates, lack=b.lack,
-                         pattern=b.pattern, source="joint refit", notes=tuple(b.notes),
-                         covariance=_covariance_of(b))
+                         pattern=b.pattern, source=source, notes=tuple(b.notes), covariance=_covariance_of(b))
 
     # ---- the search steps ------------------------------------------------------------------------------
     def prune(self, current: tuple, progress=None) -> list[tuple]:
@@ -583,7 +587,7 @@ class SetSearch:
         better than ``current`` by more than :data:`STAY` BIC units, else None.
         """
         current = tuple(current)
-        if _at_noise(self.get(current)):
+        if fits_at_noise(self.get(current)):
             return None
         start = self.n_evals
         continued = set()
@@ -622,14 +626,7 @@ class SetSearch:
         settings = ctx.settings if s.contact is None else replace(ctx.settings, contact=s.contact)
         # a global search of every parameter from that point: a fit that ran out of evaluations may have left
         # the basin of the optimum unvisited (a candidate fitted on top of a set varies its own parameters only)
-        base = fit_baseline(s.model, space, settings, global_search=True)
-        self.n_evals += base.n_evals
-        b = ctx.finish(base)
-        self.n_evals += (b.fit.n_evals - base.fit.n_evals) if b.fit is not None and base.fit is not None else 0
-        return EffectSet(effects=s.effects, model=b.model, contact=b.contact, predicted=b.predicted, rss=b.rss,
-                         bic=b.bic, rmse=b.rmse, n_params=b.n_params, estimates=b.estimates, lack=b.lack,
-                         pattern=b.pattern, source=f"{s.source}, continued", notes=tuple(b.notes),
-                         covariance=_covariance_of(b))
+        return self._global_refit(s.effects, s.model, space, settings, (), f"{s.source}, continued")
 
     def finish(self, current: tuple, probe=None) -> Selection:
         """The final rule (every effect of the best set earns more than :data:`STAY` BIC units), the equally
@@ -663,7 +660,7 @@ class SetSearch:
                          explored=tuple(self.explored), resumed=tuple(self.resumed))
 
 
-def _at_noise(s: EffectSet) -> bool:
+def fits_at_noise(s: EffectSet) -> bool:
     """Whether the set fits at the noise level: lack of fit consistent with the noise, no pattern left."""
     return bool(s.lack is not None and s.lack.consistent and not (s.pattern is not None and s.pattern.found))
 
