@@ -52,7 +52,7 @@ from persson import effects as fx
 from persson.slip import Contact
 from validation.compare import json_text
 
-#: The truth's resolution: far finer than the diagnosis's defaults (24 q nodes and 40 modulus nodes per decade).
+#: The truth's resolution: far finer than the diagnosis's defaults (16 q nodes and 40 modulus nodes per decade).
 TRUTH_GRID = persson.GridSettings(q_per_decade=96, n_phi=64, omega_per_decade=120, temperature_step=0.1)
 SINGLES = ("adhesion", "flash_temperature", "microtexture", "strain_softening", "patch_heating")
 PAIRS = (("microtexture", "flash_temperature"), ("flash_temperature", "adhesion"), ("adhesion", "strain_softening"),

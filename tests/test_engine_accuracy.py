@@ -109,13 +109,15 @@ def narrow():
 def test_error_estimate_does_not_read_low_when_the_error_changes_sign_between_grids():
     """Before the grids reach their asymptotic range the error can pass through zero between the coarse grid and
     the fine one; the two results then agree by accident. On this case (the narrow compound at -20 C on the
-    example road) the fine-coarse difference alone gave 3e-7 against a true error of 1e-5: the estimate must also
-    look one level further up, and so stay within a factor 3 of the truth."""
+    example road, 24 nodes per decade) the fine-coarse difference alone gave 3e-7 against a true error of 1e-5: the
+    estimate must also look one level further up, and so stay within a factor 3 of the truth. (At the default 16 per
+    decade the same case does not pass through zero, and the estimate reads 8x high.)"""
     s = surfaces.example_road()
     ref = reference_friction(s, narrow(), 1.0, -20.0, 0.02e6).mu[0]
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", persson.PhysicsWarning)  # the example road's rms slope is flagged
-        r = persson.Model(s, narrow()).friction(1.0, temperature=-20.0, pressure=0.02e6)
+        r = persson.Model(s, narrow(), grid=persson.GridSettings(q_per_decade=24)).friction(
+            1.0, temperature=-20.0, pressure=0.02e6)
     true = abs(r.mu_hysteresis / ref - 1)
     assert true > 3e-6  # measurable, far above the reference's own error
     assert true / 3 <= r.error_estimate <= 3 * true, (true, r.error_estimate)
@@ -271,7 +273,7 @@ def test_a_steep_temperature_front_gets_nodes_in_reduced_frequency(monkeypatch):
     """A narrow loss peak at -20 C, 1 m/s: the contact heats by ~100 K within a decade of q, and the WLF shift
     (0.1-0.2 decade per K there) sweeps the reduced frequency q v a_T(T_q) across many decades per interval of
     the uniform grid. Nodes placed where the reduced frequency moves fast resolve it; a uniform grid of the same
-    density is 3x off, and the default agrees with a uniform grid 16x finer whose own convergence is checked."""
+    density is 3x off, and the default agrees with a uniform grid 24x finer whose own convergence is checked."""
     from persson.engine import solver
 
     s = surfaces.SelfAffine(hurst=0.8, q0=1e3, q1=1e5, hrms=1e-3)
@@ -337,19 +339,19 @@ def test_a_flash_temperature_beyond_the_shift_table_widens_the_table():
 
 
 def test_flash_error_estimate_does_not_read_low_when_one_coarse_grid_agrees_by_accident(monkeypatch):
-    """Glassy rubber on the example road at -20 C and 0.1 mm/s: on the even-numbered nodes the flash-temperature
-    friction happens to agree with the fine grid's to 1e-7, although the fine grid is 8e-6 off (the error changes
-    sign between the grids). The odd-numbered nodes do not agree by accident, and the estimate from both is within
-    a factor 3 of the true error, which grids 10x and 20x finer (agreeing to 1e-7) give."""
+    """Glassy rubber on the example road at -20 C and 0.1 mm/s, 24 nodes per decade: on the even-numbered nodes the
+    flash-temperature friction happens to agree with the fine grid's to 1e-7, although the fine grid is 8e-6 off
+    (the error changes sign between the grids). The odd-numbered nodes do not agree by accident, and the estimate
+    from both is within a factor 3 of the true error, which grids 10x and 20x finer (agreeing to 1e-7) give."""
     from persson.engine import solver
 
-    def run(**grid):
+    def run(q_per_decade=24, **grid):
         fx = persson.effects.FlashTemperature(tol=1e-8)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", persson.PhysicsWarning)  # the example road's rms slope 3.9
             return persson.Model(surfaces.example_road(), glassy(), effects=[fx],
-                                 grid=persson.GridSettings(max_refinement=0, **grid)).friction(
-                1e-4, temperature=-20.0, pressure=0.3e6)
+                                 grid=persson.GridSettings(max_refinement=0, q_per_decade=q_per_decade,
+                                                           **grid)).friction(1e-4, temperature=-20.0, pressure=0.3e6)
 
     # the quadrature's part of the estimate, against grids with the same temperature tables (the tables' part is
     # tested against a 0.01 K table below)
@@ -366,10 +368,10 @@ def test_flash_error_estimate_does_not_read_low_when_one_coarse_grid_agrees_by_a
     assert run().error_estimate < true / 30
 
 
-def _flash_table_runs(surface, material, speed, temperature):
-    """The default result, the same with the quadrature estimate alone (the temperature tables' term switched off),
-    and a reference on a 4x finer q grid with the temperature-shift table every 0.01 K instead of 0.25 K, plus the
-    same reference at 0.02 K (the table's own error falls as the step squared)."""
+def _flash_table_runs(surface, material, speed, temperature, **base):
+    """The default result (with the settings ``base``), the same with the quadrature estimate alone (the temperature
+    tables' term switched off), and a reference on a finer q grid with the temperature-shift table every 0.01 K
+    instead of 0.25 K, plus the same reference at 0.02 K (the table's own error falls as the step squared)."""
     from persson.engine import solver
 
     fx = persson.effects.FlashTemperature(tol=1e-8)
@@ -381,11 +383,11 @@ def _flash_table_runs(surface, material, speed, temperature):
             return persson.Model(surface, material, effects=[fx], grid=persson.GridSettings(**grid)).friction(
                 speed, temperature=temperature, pressure=0.3e6)
 
-    default = run()
+    default = run(**base)
     table_error = solver._table_error
     solver._table_error = lambda prep, mu, T_q, ok, mu_ref: np.zeros(T_q.shape[0])
     try:
-        quadrature_only = run()
+        quadrature_only = run(**base)
     finally:
         solver._table_error = table_error
     fine = dict(q_per_decade=96, omega_per_decade=160, max_refinement=0)
@@ -395,11 +397,12 @@ def _flash_table_runs(surface, material, speed, temperature):
 def test_flash_error_estimate_includes_the_temperature_table_where_it_dominates():
     """A narrow loss peak with steep WLF constants (C1 = 10.2, C2 = 86.4 K at 20 C) at -20 C, 1 cm/s on the example
     road: log10 a_T is convex, so the temperature table, linear between nodes 0.25 K apart, reads it high by up to
-    1.4e-4 decade, always to the same side. Against a fine grid with a 0.01 K table the default is 1e-4 off, almost
-    all from the table, which every grid of the quadrature estimate shares: that estimate alone reads more than
-    10x low; with the table's own term the estimate is within a factor 3."""
+    1.4e-4 decade, always to the same side. Against a fine grid with a 0.01 K table a grid of 24 nodes per decade is
+    1e-4 off, almost all from the table, which every grid of the quadrature estimate shares: that estimate alone
+    reads more than 10x low; with the table's own term the estimate is within a factor 3. (At the default 16 per
+    decade the quadrature's own error is a third of the table's, and the estimate is 1.6x high.)"""
     default, quadrature_only, ref, ref_coarser_table = _flash_table_runs(
-        surfaces.example_road(), narrow_steep(), 1e-2, -20.0)
+        surfaces.example_road(), narrow_steep(), 1e-2, -20.0, q_per_decade=24)
     assert default.converged and ref.converged and ref_coarser_table.converged
     true = abs(default.mu_hysteresis / ref.mu_hysteresis - 1)
     assert abs(ref_coarser_table.mu_hysteresis / ref.mu_hysteresis - 1) < true / 30  # the 0.01 K table: < true/90

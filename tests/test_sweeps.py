@@ -156,7 +156,7 @@ def test_dmu_dlogq_follows_the_large_G_scaling(H):
     q, d = t["q"], t["dmu_dlog10q"]
     assert np.all(np.diff(t["q"]) > 0) and len(q) == G.size
     big = (G > 100) & (q >= 1e6)
-    assert big.sum() > 50
+    assert big.sum() > 40                                # three decades of nodes
     slope = np.polyfit(np.log(q[big]), np.log(d[big]), 1)[0]
     assert slope == pytest.approx(1 - H, abs=0.01)
     a = 2 - 2 * H

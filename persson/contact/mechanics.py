@@ -301,6 +301,7 @@ def _elastic(surface, Es: float, p: np.ndarray, gamma: float, correction, gap, q
 
 def _viscoelastic(surface, material, p, v, T, nu, gamma, correction, gap, grid, direction_deg=None) -> dict:
     from ..engine.model import Model
+    from ..engine.quadrature import separation_moments
 
     kwargs = {} if grid is None else {"grid": grid}
     model = Model(surface, material, nu=nu, gamma=gamma, **kwargs)
@@ -311,11 +312,12 @@ def _viscoelastic(surface, material, p, v, T, nu, gamma, correction, gap, grid, 
     G = np.atleast_2d(r.G_q)
     C = _psd_on(surface, q)
     P = np.atleast_2d(r.area_q) if correction is None else corrections.corrected_area(G, correction, gamma)
+    s = separation_moments(surface, q)
     if correction is None and gap in ("area", "persson"):
         u_bar = np.atleast_1d(r.mean_separation)
     else:
-        u_bar = separation.mean_separation(q, C, G, gamma, correction=correction, gap_correction=gap)
-    U = p * separation.elastic_energy_per_load(q, C, G, gamma, correction=correction, gap_correction=gap)
+        u_bar = separation.mean_separation(q, C, G, gamma, correction=correction, gap_correction=gap, s=s)
+    U = p * separation.elastic_energy_per_load(q, C, G, gamma, correction=correction, gap_correction=gap, s=s)
     return dict(q=q, G=G, P=P, u_bar=u_bar, U=U, layer=np.atleast_1d(r.excited_layer_thickness),
                 layer_weight="dissipation", E_star=None, hrms=_hrms(surface, q, C), slope=_slope(surface, q, C),
                 notes=tuple(r.notes))

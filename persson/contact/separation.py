@@ -27,6 +27,8 @@ s and its inverse q(s) are exact for a PSD that is a power law between nodes, ln
 nodes (exact for an elastic solid), intervals are split until ln G changes by at most 0.5 across each, and each
 part is a 4-point Gauss-Legendre panel in ln s. Any grid, uniform or not, coarse or fine: for an elastic solid
 the result is accurate to about 1e-6 (the tabulated kernel) on any node set.
+When the nodes do not include the PSD's kinks (the engine's log-uniform grid and a roll-off between two nodes),
+the caller passes s from the PSD's exact moments (``s=``; :func:`persson.engine.quadrature.separation_moments`).
 For a viscoelastic solid sliding at speed v the engine's G(q, v) (with the modulus at the excitation
 frequencies) replaces the elastic G, which keeps P(q) = erf(1/(2 sqrt G)) and u_bar consistent.
 At small pressure only the gamma term diverges: sigma0 ~ exp(-u_bar / u0) with
@@ -58,7 +60,7 @@ PENETRATION_DEFINITIONS = ("persson", "load-weighted", "kluppel")
 
 @doi("10.1103/PhysRevLett.99.125502", "10.1088/0953-8984/20/21/215214")
 def mean_separation(q, C, G, gamma: float, *, correction: str | None = None,
-                    gap_correction: str = "area") -> np.ndarray:
+                    gap_correction: str = "area", s=None) -> np.ndarray:
     """Average interfacial separation u_bar, m, per row of ``G``.
 
     Parameters
@@ -75,24 +77,28 @@ def mean_separation(q, C, G, gamma: float, *, correction: str | None = None,
         Area correction (:mod:`persson.contact.corrections`); None is uncorrected Persson theory.
     gap_correction : {"area", "persson", "xu2024-hybrid", "gfmd-gap"} or None
         Energy law of the separation (:mod:`persson.contact.corrections`); "area" follows the area law.
+    s : ndarray (n_q,), optional
+        s_i = (int_{q0}^{q_i} q^3 C dq)^(1/2) at the nodes (dimensionless), when it is known more exactly
+        than from the nodes (a PSD with a kink between two nodes, such as a roll-off: the solver's moments
+        integrate between the PSD's breakpoints). Default: C taken as a power law between nodes.
 
     Returns
     -------
     ndarray (n_speed,)
         u_bar, m.
     """
-    return _separation_and_energy(q, C, G, gamma, correction, gap_correction, energy=False)[0]
+    return _separation_and_energy(q, C, G, gamma, correction, gap_correction, energy=False, s=s)[0]
 
 
 @doi("10.1103/PhysRevLett.99.125502", "10.1088/0953-8984/20/21/215214")
 def separation_and_energy(q, C, G, gamma: float, *, correction: str | None = None,
-                          gap_correction: str = "area") -> tuple[np.ndarray, np.ndarray]:
+                          gap_correction: str = "area", s=None) -> tuple[np.ndarray, np.ndarray]:
     """(:func:`mean_separation`, :func:`elastic_energy_per_load`) in one pass over the nodes (what a friction
     result reports: the separation and the load-weighted penetration depth). Same arguments."""
-    return _separation_and_energy(q, C, G, gamma, correction, gap_correction, energy=True)
+    return _separation_and_energy(q, C, G, gamma, correction, gap_correction, energy=True, s=s)
 
 
-def _separation_and_energy(q, C, G, gamma, correction, gap_correction, energy):
+def _separation_and_energy(q, C, G, gamma, correction, gap_correction, energy, s=None):
     correction, gamma = check_correction(correction, gamma)
     gap = check_gap_correction(gap_correction, correction, gamma)
     q = np.asarray(q, dtype=float)
@@ -102,7 +108,7 @@ def _separation_and_energy(q, C, G, gamma, correction, gap_correction, energy):
     def kernel(lng, s, q):
         return separation_kernel_ln(lng, correction, gamma, gap)
 
-    s = _s(q, C)
+    s = _s(q, C) if s is None else _checked_s(s, q)
     first = _first_interval(q, C, s, G, kernel, 0.0, True)
     U = _energy_first(q, C, s, G, correction, gamma, gap) if energy else None
     if q.size < 3:
@@ -268,7 +274,7 @@ def penetration_depth(u_bar, hrms: float, *, definition: str = "persson", n_sigm
 
 @doi("10.1088/0953-8984/20/21/215214")
 def elastic_energy_per_load(q, C, G, gamma: float, *, correction: str | None = None,
-                            gap_correction: str = "area") -> np.ndarray:
+                            gap_correction: str = "area", s=None) -> np.ndarray:
     r"""Elastic energy per unit nominal area and unit load, :math:`U_{el}/(A_0\sigma_0)`, m, per row of ``G``.
 
     Yang & Persson (2008): :math:`U_{el}/A_0 = \frac{\pi}{2}\int dq\, q^2 C\, E^*_q\, W(G(q))`, W the energy
@@ -284,7 +290,7 @@ def elastic_energy_per_load(q, C, G, gamma: float, *, correction: str | None = N
         Nodes (rad/m, increasing) and PSD (m^4, > 0; a power law between nodes).
     G : ndarray (n, n_q)
         Persson's G(q) (0 at q0, increasing).
-    gamma, correction, gap_correction
+    gamma, correction, gap_correction, s
         As in :func:`mean_separation`.
 
     Returns
@@ -292,7 +298,7 @@ def elastic_energy_per_load(q, C, G, gamma: float, *, correction: str | None = N
     ndarray (n,)
         :math:`U_{el}/(A_0\sigma_0)`, m.
     """
-    return _separation_and_energy(q, C, G, gamma, correction, gap_correction, energy=True)[1]
+    return _separation_and_energy(q, C, G, gamma, correction, gap_correction, energy=True, s=s)[1]
 
 
 @doi("10.1063/1.1388626")
@@ -645,6 +651,14 @@ def _s(q: np.ndarray, C: np.ndarray) -> np.ndarray:
     # Integration variable s = sqrt(int_{q0}^{q} q'^3 C dq'): sqrt(pi) q^2 C w(q) dq = 2 ds / q, which removes
     # the integrable 1/sqrt(q - q0) singularity of w at q0. Exact per interval for a log-log-linear C.
     return np.sqrt(np.concatenate([[0.0], np.cumsum(segment_moments(q, C, 3))]))
+
+
+def _checked_s(s, q) -> np.ndarray:
+    s = np.asarray(s, dtype=float)
+    if s.shape != q.shape or not np.all(np.isfinite(s)) or s[0] != 0.0 or np.any(np.diff(s) <= 0):
+        raise InputError(f"s: expected the root of the cumulative moment at the {q.size} nodes (0 at q0, "
+                         f"increasing), got shape {s.shape}")
+    return s
 
 
 def moment_from_start(q, C, q_end, n: int) -> np.ndarray:

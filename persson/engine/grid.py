@@ -26,7 +26,7 @@ class GridSettings:
     Parameters
     ----------
     q_per_decade : int
-        Wavevector nodes per decade of q (log-uniform; third-order rules in ln q). Default 24.
+        Wavevector nodes per decade of q (log-uniform; third-order rules in ln q). Default 16.
     n_phi : int
         Not used: the angular integrals are computed exactly for the tabulated modulus (a convolution in log
         frequency, see :func:`persson.engine.tabulate.angular_table`). Kept so that existing scripts keep working.
@@ -55,7 +55,7 @@ class GridSettings:
         intervals); nodes outside the surface's q range are ignored.
     """
 
-    q_per_decade: int = 24
+    q_per_decade: int = 16
     n_phi: int = 24
     omega_per_decade: int = 40
     temperature_step: float = 0.25

@@ -34,6 +34,7 @@ from .conditions import Conditions, SolverState
 from ..effects.base import Effect
 from ..errors import AccuracyWarning, ConvergenceWarning, InputError, PhysicsWarning
 from .grid import GridSettings
+from .quadrature import separation_moments as _separation_moments
 from ..notes import Note
 from .results import FrictionResult
 
@@ -251,7 +252,8 @@ class Model:
             u_bar, per_load = solver.derived(
                 solved, ("separation_and_energy", self.gamma, self.correction),
                 lambda: separation.separation_and_energy(solved.q, C_nodes, solved.G, self.gamma,
-                                                         correction=self.correction))
+                                                         correction=self.correction,
+                                                         s=_separation_moments(surface, solved.q)))
             # the depth of the highest asperities, never less than the load-weighted mean 2 U_el / sigma0
             depth = separation.penetration_depth(u_bar, hrms, energy_per_load=per_load)
         else:  # no roughness: the rubber touches the flat everywhere

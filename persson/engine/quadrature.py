@@ -89,6 +89,21 @@ def psd_moment(surface, q: np.ndarray, n: int) -> float:
                         lambda: float(cumulative_moment(surface, q, n)[-1]))
 
 
+def separation_moments(surface, q: np.ndarray) -> np.ndarray:
+    """(int_{q0}^{q_i} q^3 C dq)^(1/2) at every node, the integration variable of the mean separation
+    (:func:`persson.contact.separation.mean_separation`, its ``s``), exact across the PSD's breakpoints between
+    nodes; memoised like :func:`psd_moment`."""
+    q = np.asarray(q, dtype=float)
+
+    def compute():
+        s = np.sqrt(np.maximum(cumulative_moment(surface, q, 3) / (2.0 * math.pi), 0.0))
+        s[0] = 0.0
+        s.setflags(write=False)
+        return s
+
+    return per_object(surface, ("separation moments", q.tobytes()), compute)
+
+
 def cumulative_moment(surface, q: np.ndarray, n: int, n_gauss: int = 6) -> np.ndarray:
     """2 pi int_{q0}^{q_i} q^n C(q) dq at every node (the rms slope squared up to q_i for n = 3), by
     Gauss-Legendre between the nodes and the PSD's breakpoints (exact to rounding for power-law pieces)."""
