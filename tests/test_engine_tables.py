@@ -47,6 +47,23 @@ def test_a_reused_table_is_the_table_computed_afresh_and_only_exact_repeats_are_
         np.testing.assert_array_equal(getattr(first, name), getattr(fresh, name))
 
 
+def test_tops_in_the_same_half_decade_share_one_table_whose_values_do_not_depend_on_its_top():
+    """The calls of a fit reach top frequencies that move with its parameters: a table's top is rounded up to the
+    next half decade, so that 7.6 and 7.8 (log10 rad/s) share one table, which holds both ranges. The angular
+    integrals at a frequency see the modulus at that frequency and below it, so a table reaching three decades
+    higher has the same values at every node in the range asked for."""
+    m = materials.example_tread()
+    first = tabulate.angular_table(m, 20.0, 1.0, 7.8, 40)
+    assert tabulate.angular_table(m, 20.0, 1.0, 7.6, 40) is first
+    assert first.lw_valid[0] <= 1.0 and first.lw_valid[1] >= 7.8
+    assert tabulate.angular_table(m, 20.0, 1.0, 8.1, 40) is not first
+    wide = tabulate.angular_table(SameModulus(m), 20.0, 1.0, 10.7, 40)
+    assert wide.lw0 == first.lw0
+    n = int(round((7.8 - first.lw0) / first.dlw)) + 1                  # the nodes up to the top asked for
+    for name in FIELDS:
+        np.testing.assert_allclose(getattr(first, name)[:n], getattr(wide, name)[:n], rtol=1e-14, atol=0)
+
+
 def test_friction_does_not_depend_on_what_was_computed_before():
     """The same friction, bit for bit, from a material seen before (tables reused) and from a fresh object."""
     surface = surfaces.SelfAffine(hurst=0.8, q0=2e3, q1=1e6, hrms=1e-4)

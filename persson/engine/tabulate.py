@@ -81,7 +81,8 @@ def modulus_table(material, T0: float, log10_omega_min: float, log10_omega_max: 
         raise InputError(f"material: E(omega={10**lw[i]:.3g} rad/s, T={T0} C) is not finite")
     if np.any(E.real <= 0):
         i = int(np.argmax(E.real <= 0))
-        raise InputError(f"material: storage modulus must be > 0, got E'={E.real[i]:.3g} Pa at omega={10**lw[i]:.3g} rad/s")
+        raise InputError(f"material: storage modulus must be > 0, got E'={E.real[i]:.3g} Pa at "
+                         f"omega={10**lw[i]:.3g} rad/s")
     if np.any(E.imag < 0):
         i = int(np.argmax(E.imag < 0))
         raise InputError(f"material: loss modulus must be >= 0 for omega > 0, got E''={E.imag[i]:.3g} Pa "
@@ -131,6 +132,8 @@ def _relative(material, name: str, T: np.ndarray, T_table: float) -> np.ndarray:
 #: see E at omega cos(phi) < omega, with a weight that falls as 10^{-t} per decade t below (1e-5 at 5 decades,
 #: where the modulus is continued by its value at the table's end).
 ANGULAR_PAD_DECADES = 5.0
+#: The top of an angular table is rounded up to a multiple of 1/_TOP_STEPS decade (see :func:`angular_table`).
+_TOP_STEPS = 2
 
 
 @dataclass(frozen=True, eq=False)
@@ -188,11 +191,15 @@ def angular_table(material, T0: float, log10_omega_min: float, log10_omega_max: 
                             ln_aim=t.ln_aim + 2.0 * math.log(g), ln_l=t.ln_l + math.log(g), T0=t.T0,
                             lw_valid=t.lw_valid)
     lo = math.floor((log10_omega_min - ANGULAR_PAD_DECADES) * per_decade) / per_decade
-    hi = math.ceil(log10_omega_max * per_decade) / per_decade + 3.0 / per_decade
-    # a pure function of the material and these numbers: fits evaluate one material hundreds of times
-    key = ("angular", float(T0), lo, hi, int(per_decade), float(log10_omega_min), float(log10_omega_max))
+    # the top rounded up to a multiple of 1/_TOP_STEPS decade: a table reaches a little further than a call needs,
+    # so that the calls of a fit, whose top frequency moves with its parameters (a flash temperature, a
+    # microtexture's cut-off), share a few tables (values below the top do not depend on it: the angular integrals
+    # reach down in frequency only)
+    hi = math.ceil(log10_omega_max * _TOP_STEPS) / _TOP_STEPS + 3.0 / per_decade
+    # a pure function of the material and the table's ends (nodes): fits evaluate one material hundreds of times
+    key = ("angular", float(T0), lo, hi, int(per_decade))
     return per_object(material, key, lambda: _angular_table(material, float(T0), lo, hi, int(per_decade),
-                                                            (float(log10_omega_min), float(log10_omega_max))))
+                                                            (lo + ANGULAR_PAD_DECADES, hi - 3.0 / per_decade)))
 
 
 def _angular_table(material, T0: float, lo: float, hi: float, per_decade: int, valid: tuple) -> AngularTable:
