@@ -96,3 +96,17 @@ def test_the_abel_sums_of_the_march_integrate_linear_shear_exactly(edge):
         Y = y[k] - y[0]
         exact = 2 * a * math.sqrt(Y) + 4.0 / 3.0 * b * Y ** 1.5
         assert known + own * shear[k] == pytest.approx(exact, rel=1e-12, abs=1e-14)
+
+
+def test_a_temperature_table_halved_in_step_is_exact_for_a_quadratic():
+    """The tables' feedback term solves again with every temperature table at half its step; the new midpoints lie
+    on the quadratic through the neighbouring nodes, so a quadratic table (and a linear one) is halved exactly."""
+    from persson.engine.solver import _halved
+
+    T = np.linspace(-20.0, 60.0, 33)
+    Th = np.linspace(-20.0, 60.0, 65)
+    for f in (lambda x: 0.3 - 0.02 * x + 4e-4 * x**2, lambda x: 1.5 * x - 2.0):
+        np.testing.assert_allclose(_halved(f(T)), f(Th), rtol=0, atol=1e-12)
+    rows = np.vstack([T**2, -T])                                           # per-node rows: along the last axis
+    np.testing.assert_allclose(_halved(rows), np.vstack([Th**2, -Th]), rtol=0, atol=1e-10)
+    np.testing.assert_array_equal(_halved(np.array([1.0, 3.0])), [1.0, 2.0, 3.0])
