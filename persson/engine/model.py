@@ -281,7 +281,7 @@ class Model:
             scalar=scalar,
         )
         if modulus is not None and hasattr(modulus, "strain_report"):  # share of mu from unmeasured strains
-            result = modulus.strain_report(result, np.sqrt(solver.cumulative_moment(surface, solved.q, 3)))
+            result = modulus.strain_report(result, np.sqrt(solver.moments_at_nodes(surface, solved.q, 3)))
         for e in self.effects:
             result = e.transform_result(result)
         return result

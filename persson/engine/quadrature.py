@@ -13,7 +13,8 @@ import numpy as np
 from .kernel_arrays import QuadratureRule
 from .memo import per_object
 
-__all__ = ["quadrature_rule", "psd_moment", "cumulative_moment", "psd_breakpoints"]
+__all__ = ["quadrature_rule", "psd_moment", "cumulative_moment", "moments_at_nodes", "separation_moments",
+           "psd_breakpoints"]
 
 
 def quadrature_rule(surface, x: np.ndarray, n_gauss: int = 6) -> QuadratureRule:
@@ -82,26 +83,32 @@ def _quadrature_rule(surface, x: np.ndarray, n_gauss: int = 6) -> QuadratureRule
 
 
 def psd_moment(surface, q: np.ndarray, n: int) -> float:
-    """Spectral moment 2 pi int_{q0}^{q1} q^n C(q) dq over the nodes' range (see :func:`cumulative_moment`),
-    memoised per surface object and nodes like :func:`quadrature_rule`."""
+    """Spectral moment 2 pi int_{q0}^{q1} q^n C(q) dq over the nodes' range (the last of
+    :func:`moments_at_nodes`)."""
+    return float(moments_at_nodes(surface, q, n)[-1])
+
+
+def moments_at_nodes(surface, q: np.ndarray, n: int) -> np.ndarray:
+    """:func:`cumulative_moment` at the nodes ``q``, memoised per surface object and nodes like
+    :func:`quadrature_rule` (read-only: the rms slope, the mean separation's ``s`` and the total moments of one
+    solution all read it)."""
     q = np.asarray(q, dtype=float)
-    return per_object(surface, ("moment", q.tobytes(), int(n)),
-                        lambda: float(cumulative_moment(surface, q, n)[-1]))
+
+    def compute():
+        m = cumulative_moment(surface, q, n)
+        m.setflags(write=False)
+        return m
+
+    return per_object(surface, ("moments", q.tobytes(), int(n)), compute)
 
 
 def separation_moments(surface, q: np.ndarray) -> np.ndarray:
     """(int_{q0}^{q_i} q^3 C dq)^(1/2) at every node, the integration variable of the mean separation
     (:func:`persson.contact.separation.mean_separation`, its ``s``), exact across the PSD's breakpoints between
-    nodes; memoised like :func:`psd_moment`."""
-    q = np.asarray(q, dtype=float)
-
-    def compute():
-        s = np.sqrt(np.maximum(cumulative_moment(surface, q, 3) / (2.0 * math.pi), 0.0))
-        s[0] = 0.0
-        s.setflags(write=False)
-        return s
-
-    return per_object(surface, ("separation moments", q.tobytes()), compute)
+    nodes (from :func:`moments_at_nodes`)."""
+    s = np.sqrt(np.maximum(moments_at_nodes(surface, q, 3) / (2.0 * math.pi), 0.0))
+    s[0] = 0.0
+    return s
 
 
 def cumulative_moment(surface, q: np.ndarray, n: int, n_gauss: int = 6) -> np.ndarray:

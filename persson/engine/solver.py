@@ -28,7 +28,8 @@ from ..errors import ConvergenceWarning, InputError
 from .grid import GridSettings
 from .jit import threaded
 from ..notes import Note
-from .quadrature import cumulative_moment, psd_breakpoints, psd_moment, quadrature_rule  # noqa: F401 (public here too)
+from .quadrature import (cumulative_moment, moments_at_nodes, psd_breakpoints, psd_moment,  # noqa: F401
+                         quadrature_rule)  # (public here too)
 from .tabulate import ShiftTable, angular_table, relative_shifts, shift_table
 
 __all__ = ["Solved", "Prepared", "solve", "prepare", "run_plain", "run_flash", "run_temperature",
@@ -490,7 +491,7 @@ def _assemble(surface, q, v, T0, pressure, scale, table, stab, s_v, b_v, modulus
     fq = gq = np.ones((nv, nq))
     f_tab = g_tab = np.ones((1, 2))
     if modulus is not None:
-        slope = np.sqrt(cumulative_moment(surface, q, 3))
+        slope = np.sqrt(moments_at_nodes(surface, q, 3))
         if flash:
             T_grid = stab.T_lo + stab.dT * np.arange(stab.shift.size)
             f_tab, g_tab = _factors(modulus, slope[:, None], T_grid[None, :], (nq, T_grid.size))
