@@ -56,7 +56,8 @@ class FlashTemperature(Effect):
     tol : float
         Convergence tolerance on max |T_new - T| over the scales, K (default 1e-3).
     max_iter : int
-        Largest number of fixed-point iterations (default 300).
+        Largest number of fixed-point iterations per start (default 300; a speed that does not converge with
+        Anderson mixing starts again with Aitken's relaxation, then with the half step T <- (T + g(T)) / 2).
     """
 
     name = "flash_temperature"

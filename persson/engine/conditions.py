@@ -121,7 +121,8 @@ class TemperatureSolverOptions:
     tol : float
         Convergence tolerance on max |T_new - T| over the scales, K.
     max_iter : int
-        Most fixed-point iterations per start (the solver starts once more with Aitken's relaxation).
+        Most fixed-point iterations per start (the solver starts up to twice more: with Aitken's relaxation, then
+        with the half step).
     notes : tuple of persson.notes.Note
         Facts every result solved with these settings carries (e.g. a q_m the effect had to assume).
 

@@ -288,7 +288,8 @@ class FixedPoint(NamedTuple):
     tol : float
         Converged when max |T_new - T| over the nodes is below it, K.
     max_iter : int
-        Iterations of the first start (Anderson mixing) and of the second (Aitken's relaxation).
+        Iterations of each start: the first (Anderson mixing), the second (Aitken's relaxation) and the third
+        (the half step T <- (T + g(T)) / 2).
     """
 
     tol: float

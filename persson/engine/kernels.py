@@ -777,6 +777,8 @@ friction_kernel = njit(cache=True, nogil=True)(_friction_all)
 # _relax_step where the mixing fails).
 #: Smallest relaxation factor of the flash iteration (Aitken's factor is clamped to [_MIN_RELAX, 1]).
 _MIN_RELAX = 1e-4
+#: Fixed relaxation factor of the third start of the flash iteration (Krasnosel'skii-Mann, see :func:`_flash_speed`).
+_MANN_RELAX = 0.5
 
 
 def _flash_all(nodes, rule, speeds, angular, shape, law, temperature, heat, iteration, out, T_out, it_out, res_out,
@@ -836,9 +838,15 @@ def _flash_speed(iv, nodes, rule, speeds, angular, shape, law, temperature, heat
     accelerated by Anderson mixing over the last ``_ANDERSON_DEPTH`` steps (D. G. Anderson, J. ACM 12, 547 (1965);
     H. F. Walker and P. Ni, SIAM J. Numer. Anal. 49, 1715 (2011); :func:`_anderson_step`). Where that fails
     within ``iteration.max_iter`` iterations, again from T0 with Aitken's dynamic relaxation (B. M. Irons and
-    R. C. Tuck, Int. J. Numer. Meth. Eng. 1, 275 (1969)). The fixed point, and so the result to within the
-    tolerance, does not depend on the acceleration: over the regime of ``benchmarks/accuracy.py`` the errors are
-    those of the under-relaxed iteration it replaced, which took about 1.5 times as many iterations.
+    R. C. Tuck, Int. J. Numer. Meth. Eng. 1, 275 (1969)), and where that fails too, a third time from T0 with the
+    fixed relaxation T <- (T + g(T)) / 2 (the Krasnosel'skii-Mann iteration: W. R. Mann, Proc. Am. Math. Soc. 4,
+    506 (1953); M. A. Krasnosel'skii, Uspekhi Mat. Nauk 10, 123 (1955)). Both accelerations can stall near a
+    near-fixed point (a "ghost" of a fold, where the residual has a small, non-zero minimum and the Jacobian an
+    eigenvalue close to 1), and Aitken's factor then shrinks towards its floor; the half step, which converges
+    wherever the Jacobian's eigenvalues lie within the disc |lambda - (-1)| < 2 around -1 (real ones above -3),
+    keeps moving through it. The fixed point, and so the result to within the tolerance, does not depend on the
+    acceleration: over the regime of ``benchmarks/accuracy.py`` the errors are those of the under-relaxed
+    iteration it replaced, which took about 1.5 times as many iterations.
 
     Parameters
     ----------
@@ -889,11 +897,11 @@ def _flash_speed(iv, nodes, rule, speeds, angular, shape, law, temperature, heat
     relax = 1.0
     res = 0.0
     it = 0
-    for it in range(1, 2 * max_iter + 1):
-        if it == max_iter + 1:  # Anderson mixing failed: start again with Aitken's relaxation
+    for it in range(1, 3 * max_iter + 1):
+        if it == max_iter + 1 or it == 2 * max_iter + 1:  # the previous start failed: start again from T0
             for i in range(nq):
                 T[i] = T0
-            relax = 1.0
+            relax = 1.0 if it == max_iter + 1 else _MANN_RELAX
         integrands_at(iv, T, nodes, rule, speeds, angular, shape, temperature, factors, K, out)
         G = out.G[iv]
         P_m = area(_at_G(G, nodes.x, heat.x_m), law)
@@ -910,7 +918,7 @@ def _flash_speed(iv, nodes, rule, speeds, angular, shape, law, temperature, heat
             # period-2 oscillation of a hot contact (a cold profile heats by hundreds of K, a hot one barely)
             n_hist = _anderson_step(T_new, T, T_prev, r_prev, dT, dR, n_hist)
             continue
-        if it > max_iter + 1:
+        if max_iter + 1 < it <= 2 * max_iter:
             relax = _aitken(T_new, T, r_prev, relax)
         _relax_step(T_new, T, r_prev, relax)
     for i in range(nq):
