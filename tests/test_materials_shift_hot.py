@@ -200,3 +200,32 @@ def test_a_case_file_hands_the_wlf_law_over_to_arrhenius_above_T_upper_C(tmp_pat
     case.write_text('[surface]\nexample = "road"\n[material]\nexample = "tread"\nT_upper_C = -90\n')
     with pytest.raises(persson.InputError, match="T_upper_C"):
         read_case(case)
+
+
+def test_a_kept_friction_table_does_not_carry_a_hotter_solutions_note_over(fitted_material):
+    # a fit keeps one table for every heating strength (the lattice does not depend on it): a hot solution grows
+    # it beyond the fitted range; a cool one that follows says what a fresh table says, nothing
+    from persson import slip as ps
+
+    road = surfaces.SelfAffine(hurst=0.8, q0=2 * math.pi / 5e-3, q1=1e5, hrms=0.2e-3)
+    grid = persson.GridSettings(q_per_decade=12, n_phi=16, omega_per_decade=20, tolerance=1e-2)
+    model = persson.Model(road, fitted_material, grid=grid)
+    contact = ps.Contact(0.12, 0.15, 1e8, n_points=51)
+    rows = dict(slip=np.array([0.05, 0.3, 1.0]), speed=30.0, temperature=40.0, pressure=0.3e6)
+    hot, cool = ps.PatchHeating(), ps.PatchHeating(heat_fraction=0.02)
+    kept = {}
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        first = ps.patch_friction(model, hot, contact, tables=kept, **rows)
+        assert float(np.max(first.max_rise)) > 21.0        # 40 C + the rise: beyond the fitted 60 C
+        assert sum(materials.SHIFT_RANGE_NOTE in n for n in first.notes) == 1
+        caught.clear()
+        after = ps.patch_friction(model, cool, contact, tables=kept, **rows)
+        assert after.engine_calls == 0                     # the kept table served it
+        warned_after = [str(w.message) for w in caught]
+        fresh = ps.patch_friction(model, cool, contact, tables={}, **rows)
+    assert float(np.max(after.max_rise)) < 19.0
+    assert not any(materials.SHIFT_RANGE_NOTE in n for n in after.notes)
+    assert not any(materials.SHIFT_RANGE_NOTE in m for m in warned_after)
+    assert after.notes == fresh.notes
+    np.testing.assert_allclose(after.mu, fresh.mu, rtol=1e-9)

@@ -59,10 +59,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from frictioncite import doi
-from materials.shift import SHIFT_RANGE_NOTE
+from materials.shift import extrapolated_shift_note
 
 from ..effects.base import Effect, Parameter
-from ..errors import InputError
+from ..errors import InputError, PhysicsWarning
 from ..notes import Note, kinds
 from .heating_arrays import Patch, PatchRows
 from .heating_kernels import march as _march
@@ -260,8 +260,10 @@ def patch_friction(model, heating: PatchHeating, contact, slip, speed, temperatu
     profiles : bool
         Also return T(x), the shear and mu(x) on the patch nodes.
     warn_shift_range : bool
-        Raise the engine's warning that the rubber left the shift law's fitted range (it is in the notes either
-        way); False where the caller warns once for several solutions (:func:`persson.slip.mu_slip`).
+        Raise the warning that the rubber left the shift law's fitted range (it is in the notes either way);
+        False where the caller warns once for several solutions (:func:`persson.slip.mu_slip`). The range is
+        that of the table nodes this solution interpolates (background, patch and flash temperatures), so a
+        table kept in ``tables`` that an earlier, hotter solution has grown does not carry its note over.
     tables : dict, optional
         A cache (a dict the caller keeps) of friction tables: reused when the engine (:func:`engine_key`), the
         table settings (``max_rise``, ``n_pressure``, ``temperature_points_per_decade``), the contact's pressure
@@ -290,7 +292,8 @@ def patch_friction(model, heating: PatchHeating, contact, slip, speed, temperatu
     tensor-product four-point Lagrange interpolation. The lattice does not depend on the heating parameters, so
     a table kept in ``tables`` serves any counter-surface effusivity or heat fraction and only grows (one engine
     call for the missing nodes) when a hotter patch needs a higher temperature range. Along the patch (the
-    contact's nodes), the stick zone ends at the first sign change of :math:`\mu(v_s, p, T_0)p - k\theta x` (as in :func:`persson.slip.mu_slip`); behind it the
+    contact's nodes), the stick zone ends at the first sign change of :math:`\mu(v_s, p, T_0)p - k\theta x` (as in
+    :func:`persson.slip.mu_slip`); behind it the
     Abel integral is evaluated by product integration (the shear piecewise linear between nodes, the kernel
     integrated exactly), implicitly at the new node (secant iteration, bisection as fallback). The stick part is
     integrated exactly, the slide part by the trapezoid rule, as in the brush model without heating.
@@ -392,12 +395,19 @@ def patch_friction(model, heating: PatchHeating, contact, slip, speed, temperatu
     if hot:
         notes.append(Note(f"patch_heating: background temperature rise above the table ({heating.max_rise:g} K cap) "
                           f"at {len(hot)} condition(s); evaluated at the cap", "accuracy"))
+    # the rubber's temperatures beyond the shift law's fitted range, over the table nodes this solution
+    # interpolates (background, patch and flash temperatures): the same note whatever the table's history
+    t_lo, t_hi = tab.rubber_range(np.array([float(np.max(rise[sweep == c])) for c in range(keys.shape[0])]))
+    shift_note = extrapolated_shift_note(material, t_lo, t_hi) if material is not None else None
+    if shift_note is not None:
+        notes.append(Note(shift_note, "extrapolated"))
     mu_loc = tab.mu_at_sigma0(vs, sweep)
     # the engine's warnings, recorded while the table was filled, reach the caller as warnings (once each) as
     # well as in the notes
     for category, message in tab.warned:
-        if warn_shift_range or SHIFT_RANGE_NOTE not in message:
-            warnings.warn(message, category, stacklevel=2)
+        warnings.warn(message, category, stacklevel=2)
+    if shift_note is not None and warn_shift_range:
+        warnings.warn(shift_note, PhysicsWarning, stacklevel=2)
     return PatchSolution(mu=mu, stick_fraction=xc, mu_local=mu_loc, max_rise=rise, xi=xi.copy(),
                          temperature=Tprof if profiles else None, shear=shear if profiles else None,
                          mu_profile=muprof if profiles else None, table_points=tab.points - points0,

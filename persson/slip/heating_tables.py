@@ -1,4 +1,5 @@
-"""Tables of the patch-heating march: the modulus shift coordinate and the friction lattice over (speed, pressure, temperature)."""
+"""Tables of the patch-heating march: the modulus shift coordinate and the friction lattice over (speed, pressure,
+temperature)."""
 
 from __future__ import annotations
 
@@ -8,6 +9,8 @@ import math
 import numpy as np
 
 from ..errors import InputError
+from materials.shift import SHIFT_RANGE_NOTE
+
 from ..notes import Note, kind_of_warning
 
 from .heating_arrays import FrictionLattice, TemperatureAxis
@@ -57,6 +60,11 @@ class _Tables:
         # (category, message) of every warning the engine raised while filling the table, in order, once each:
         # patch_friction issues them again to its caller (they are recorded here so that the notes keep them)
         self.warned: dict[tuple, None] = {}
+        # The engine's note that the rubber left the shift law's fitted range depends on the temperatures of the
+        # call that raised it; a table that a hotter solution has grown keeps its nodes, so that note would follow
+        # the table's history. It is left out here, and every node keeps the coldest and hottest rubber
+        # temperature of its evaluation instead (background and flash), from which patch_friction notes the range
+        # of the nodes its own solution interpolates (:meth:`rubber_range`).
         self._warnings = warnings
         nc = keys.shape[0]
         ng = gnodes.size
@@ -76,9 +84,12 @@ class _Tables:
             V_.append(a.ravel())
             G_.append(b.ravel() * self.sig0[c])
         T_ = [np.full(int(voff[c + 1] - voff[c]) * ng, self.T0[c]) for c in range(nc)]
-        mu, parts = self._call(np.concatenate(V_), np.concatenate(T_), np.concatenate(G_))
-        # blocks[c]: (n_v of sweep c, n_g, capacity) friction values; nus[c]: nodes filled at each speed node
+        mu, parts, (t_lo, t_hi) = self._call(np.concatenate(V_), np.concatenate(T_), np.concatenate(G_))
+        # blocks[c]: (n_v of sweep c, n_g, capacity) friction values; nus[c]: nodes filled at each speed node;
+        # t_lo[c], t_hi[c] (same shape): the coldest and hottest rubber temperature of each node's evaluation, C
         self.blocks = [mu.reshape(-1, ng)[voff[c]:voff[c + 1], :, None].copy() for c in range(nc)]
+        self.t_lo = [t_lo.reshape(-1, ng)[voff[c]:voff[c + 1], :, None].copy() for c in range(nc)]
+        self.t_hi = [t_hi.reshape(-1, ng)[voff[c]:voff[c + 1], :, None].copy() for c in range(nc)]
         self.parts = None
         if parts is not None:
             self.parts = [[a.reshape(-1, ng)[voff[c]:voff[c + 1], :, None].copy() for c in range(nc)] for a in parts]
@@ -142,6 +153,8 @@ class _Tables:
             blk = self.blocks[c]
             if int(n_new.max()) > blk.shape[2]:
                 self.blocks[c] = _widened(blk, max(int(n_new.max()), 2 * blk.shape[2]))
+                self.t_lo[c] = _widened(self.t_lo[c], self.blocks[c].shape[2])
+                self.t_hi[c] = _widened(self.t_hi[c], self.blocks[c].shape[2])
                 for part in self.parts or ():
                     part[c] = _widened(part[c], self.blocks[c].shape[2])
             for i in grow:
@@ -155,11 +168,13 @@ class _Tables:
             self.nus[c] = n_new
         if not where:
             return
-        mu, parts = self._call(np.concatenate(V_), np.concatenate(T_), np.concatenate(P_))
+        mu, parts, (t_lo, t_hi) = self._call(np.concatenate(V_), np.concatenate(T_), np.concatenate(P_))
         k = 0
         for c, i, n0, n1 in where:
             m = ng * (n1 - n0)
             self.blocks[c][i, :, n0:n1] = mu[k:k + m].reshape(ng, n1 - n0)
+            self.t_lo[c][i, :, n0:n1] = t_lo[k:k + m].reshape(ng, n1 - n0)
+            self.t_hi[c][i, :, n0:n1] = t_hi[k:k + m].reshape(ng, n1 - n0)
             for part, values in zip(self.parts or (), parts or ()):
                 part[c][i, :, n0:n1] = values[k:k + m].reshape(ng, n1 - n0)
             k += m
@@ -209,8 +224,8 @@ class _Tables:
         return True
 
     def _call(self, v, T, p):
-        """The engine's friction at the points (v, T, p), and with an adhesion scale its (rest, unit) parts
-        (None otherwise)."""
+        """The engine's friction at the points (v, T, p); with an adhesion scale its (rest, unit) parts (None
+        otherwise); and the coldest and hottest rubber temperature at each point (background and flash), C."""
         from .._checks import UnitWarning
 
         with self._warnings.catch_warnings(record=True) as caught:
@@ -218,12 +233,14 @@ class _Tables:
             r = self.model.friction(v, temperature=T, pressure=p)
         r_notes = tuple(getattr(r, "notes", ()) or ())
         for note in r_notes:
-            if note not in self.notes:
+            if note not in self.notes and SHIFT_RANGE_NOTE not in note:
                 self.notes.append(note)
         for w in caught:
             if issubclass(w.category, UnitWarning):
                 continue  # the table's temperatures are degrees Celsius by construction
             msg = str(w.message)
+            if SHIFT_RANGE_NOTE in msg:
+                continue  # noted from the nodes a solution uses (rubber_range)
             self.warned[(w.category, msg)] = None
             if msg not in self.notes:  # the engine's warnings are among its notes already: once each
                 self.notes.append(Note(msg, kind_of_warning(w.category)))
@@ -238,8 +255,9 @@ class _Tables:
             j = int(np.argmax(bad))
             raise InputError(f"model: local sliding friction {mu[j]!r} at v_s = {v[j]:g} m/s, T = {T[j]:g} C, "
                              f"p = {p[j]:g} Pa; expected a finite value >= 0")
+        trange = _rubber_range(r, T)
         if not self.rescalable:
-            return mu, None
+            return mu, None, trange
         terms = getattr(r, "mu_terms", None) or {}
         adh = np.atleast_1d(np.asarray(terms.get("adhesion", np.full_like(mu, np.nan)), dtype=float))
         rest, unit = mu - adh, adh / self.scale
@@ -249,8 +267,22 @@ class _Tables:
                 or not _level_note_free(mu)):
             self.rescalable = False
             self.parts = None
-            return mu, None
-        return mu, (rest, unit)
+            return mu, None, trange
+        return mu, (rest, unit), trange
+
+    def rubber_range(self, rise_top) -> tuple[float, float]:
+        """The coldest and hottest rubber temperature (C) over the nodes a solution interpolates: for each sweep c,
+        every speed and pressure node, and the temperature nodes up to the four-point stencil around the
+        hottest background temperature T0 + ``rise_top[c]`` of its rows. A function of the solution and of the
+        lattice only (the same whichever calls filled the table)."""
+        lo, hi = math.inf, -math.inf
+        for c in range(self.B.size):
+            top = float(np.floor(self.y_of(c, self.T0[c] + max(float(rise_top[c]), 0.0)) / self.hy + 1e-9)) + 3
+            n = np.minimum(self.nus[c], int(max(top, 1)))
+            used = np.arange(self.t_lo[c].shape[2])[None, :] < n[:, None]        # (n_v, capacity)
+            lo = min(lo, float(np.min(self.t_lo[c].transpose(0, 2, 1)[used])))
+            hi = max(hi, float(np.max(self.t_hi[c].transpose(0, 2, 1)[used])))
+        return lo, hi
 
     def args(self) -> FrictionLattice:
         """The friction lattice, as the kernels take it."""
@@ -260,6 +292,17 @@ class _Tables:
     def mu_at_sigma0(self, vs, sweep):
         """mu(v_s, sigma0, T0) of every row, interpolated in the T0 slice of the table."""
         return _interp_rows(sweep=sweep.astype(np.int64), log_speed=np.log(vs), lattice=self.args())
+
+
+def _rubber_range(result, T) -> tuple[np.ndarray, np.ndarray]:
+    """The coldest and hottest rubber temperature at each point of an engine result, C: its temperature at every
+    scale (``temperature_q``, the flash temperature) where the result has one, else the background ``T``."""
+    T = np.asarray(T, dtype=float)
+    tq = getattr(result, "temperature_q", None)
+    if tq is None:
+        return T.copy(), T.copy()
+    tq = np.asarray(tq, dtype=float).reshape(T.size, -1)
+    return np.minimum(np.min(tq, axis=1), T), np.maximum(np.max(tq, axis=1), T)
 
 
 def _widened(block: np.ndarray, capacity: int) -> np.ndarray:
