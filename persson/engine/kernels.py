@@ -878,8 +878,8 @@ def _flash_speed(iv, nodes, rule, speeds, angular, shape, law, temperature, heat
     506 (1953); M. A. Krasnosel'skii, Uspekhi Mat. Nauk 10, 123 (1955)). Both accelerations can stall near a
     near-fixed point (a "ghost" of a fold, where the residual has a small, non-zero minimum and the Jacobian an
     eigenvalue close to 1), and Aitken's factor then shrinks towards its floor; the half step, which converges
-    wherever the Jacobian's eigenvalues lie within the disc |lambda - (-1)| < 2 around -1 (real ones above -3),
-    keeps moving through it. The fixed point, and so the result to within the tolerance, does not depend on the
+    wherever the Jacobian's eigenvalues lie in the disc |lambda + 1| < 2 (real ones above -3), keeps moving
+    through it. The fixed point, and so the result to within the tolerance, does not depend on the
     acceleration: over the regime of ``benchmarks/accuracy.py`` the errors are those of the under-relaxed
     iteration it replaced, which took about 1.5 times as many iterations.
 

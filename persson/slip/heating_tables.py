@@ -8,9 +8,9 @@ import math
 
 import numpy as np
 
-from ..errors import InputError
 from materials.shift import SHIFT_RANGE_NOTE
 
+from ..errors import InputError
 from ..notes import Note, kind_of_warning
 
 from .heating_arrays import FrictionLattice, TemperatureAxis
