@@ -14,7 +14,7 @@ Each case is drawn at random and made by a path independent of the diagnosis:
 * **hidden physics**: none; one effect (adhesion, flash temperature, microtexture, strain softening, patch
   heating); a pair; wet rows with nothing hidden; or physics outside the candidate list (a Cole-Cole filler
   relaxation of the compound that shifts with an Arrhenius law instead of WLF);
-* **truth**: the engine on a converged grid (4x the wavevector nodes, 3x the modulus table, a 2.5x finer
+* **truth**: the engine on a converged grid (6x the default wavevector nodes, 3x the modulus table, a 2.5x finer
   temperature table, a brush model with 1601 nodes), never the diagnosis's settings;
 * **noise**: Gaussian, its level set by an effect-to-noise ratio (rms of the hidden physics' change of mu over the
   noise; for a pair, that of the weaker effect) drawn log-uniformly from 0.5-20 (0.004-0.02 in mu without hidden
@@ -363,8 +363,8 @@ def summarize(results: list) -> str:
                  f"of {len(out)} (verdicts: {', '.join(r['verdict'] for r in out) or '-'})")
     far = [r for r in out if r.get("distinguishable", math.nan) >= 2]
     if far:
-        lines.append(f"  of those that no single candidate absorbs (distinguishable ratio >= 2, what the best candidate "
-                     f"fitted to the noise-free truth leaves, over the noise): "
+        lines.append(f"  of those that no single candidate absorbs (distinguishable ratio >= 2, what the best "
+                     f"candidate fitted to the noise-free truth leaves, over the noise): "
                      f"{sum(r['verdict'] == 'explained' for r in far)} of {len(far)}; the others: " + ", ".join(
                          f"case {r['index']} {r['distinguishable']:.2f} {r['verdict']}"
                          for r in out if r not in far))

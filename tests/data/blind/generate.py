@@ -7,11 +7,11 @@ Usage (from the repository root)::
 
 Why these data are not an inverse crime
 ---------------------------------------
-The diagnosis evaluates the engine at its default resolution (``persson.GridSettings()``: 24 wavevector nodes
-per decade, refined where its error estimate asks for it, 40 modulus nodes per decade; brush model with 401 nodes).
-The truth here is computed
+The diagnosis evaluates the engine at its default resolution (``persson.GridSettings()``: 16 wavevector nodes
+per decade, refined where its error estimate asks for it, 40 modulus nodes per decade; brush model with 401 nodes;
+the cases were generated when the default was 24 nodes per decade). The truth here is computed
 
-* with the engine at a far finer, converged resolution (:data:`TRUTH_GRID`: 4x the wavevector nodes, 3x the
+* with the engine at a far finer, converged resolution (:data:`TRUTH_GRID`: 6x the wavevector nodes, 3x the
   modulus table, a 2.5x finer temperature table; brush model with 1601 nodes), so the data do not
   carry the discretisation of the settings the diagnosis uses;
 * checked, for the hysteresis and contact-area part, against :func:`persson.engine.reference.reference_friction`, an
@@ -148,7 +148,8 @@ class FillerNetwork:
     def E(self, omega, T):
         omega = np.asarray(omega, dtype=float)
         T = np.asarray(T, dtype=float)
-        tau = np.exp(self.E_a / 8.314462618 * (1.0 / (T + 273.15) - 1.0 / (T_REF + 273.15))) / (2 * math.pi * self.f_ref_Hz)
+        tau = (np.exp(self.E_a / 8.314462618 * (1.0 / (T + 273.15) - 1.0 / (T_REF + 273.15)))
+               / (2 * math.pi * self.f_ref_Hz))
         x = (1j * omega * tau) ** self.alpha
         return self.base.E(omega, T) + self.delta_E * x / (1.0 + x)
 
