@@ -518,15 +518,29 @@ def _graded_nodes(q: np.ndarray, surface, table, lw_speed: np.ndarray, ln_b: np.
     """
     x0, h = math.log(q[0]), math.log(q[1] / q[0])
     c0 = q[0] ** 4 * float(np.asarray(surface.C(q[0]), dtype=float))
-    g0 = 0.0
-    angular = _angular_arrays(table)
-    for lw, lb, sc in zip(lw_speed, ln_b, scale):
-        are, aim, _ = _kernels.angular_at(math.log10(q[0]) + lw, angular)
-        g0 = max(g0, 0.125 * c0 * math.exp(2.0 * lb) * (are + aim) * sc * sc)
+    # A_re + A_im at log10(q0 v a_T) of every speed, by the kernels' cubic interpolation of the table's logs
+    # (vectorised: a fit's table solves have thousands of speeds); only the number of halvings depends on it
+    x = (math.log10(q[0]) + np.asarray(lw_speed, dtype=float) - table.lw0) * (1.0 / table.dlw)
+    ends = _cubic_at(table.ln_are, x), _cubic_at(table.ln_aim, x)
+    g0 = float(np.max(0.125 * c0 * np.exp(2.0 * np.asarray(ln_b, dtype=float)) * (np.exp(ends[0]) + np.exp(ends[1]))
+                      * np.asarray(scale, dtype=float) ** 2, initial=0.0))
     levels = int(min(_MAX_GRADING, max(0.0, math.ceil(math.log2(max(g0 * h, 1.0))) + 1)))
     if levels == 0:
         return q
     return np.unique(np.concatenate([q, np.exp(x0 + h * 2.0 ** -np.arange(1, levels + 1))]))
+
+
+def _cubic_at(tab: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """``tab`` at the fractional indices ``x`` by four-point Lagrange interpolation, clamped to the ends: the
+    vectorised form of :func:`persson.engine.kernels._cubic`."""
+    n = tab.size
+    i = np.clip(np.floor(x).astype(np.int64), 0, n - 2)
+    t = x - i
+    c = (-t * (t - 1.0) * (t - 2.0) / 6.0 * tab[np.maximum(i - 1, 0)]
+         + (t + 1.0) * (t - 1.0) * (t - 2.0) / 2.0 * tab[i]
+         - (t + 1.0) * t * (t - 2.0) / 2.0 * tab[i + 1]
+         + (t + 1.0) * t * (t - 1.0) / 6.0 * tab[np.minimum(i + 2, n - 1)])
+    return np.where(x <= 0.0, tab[0], np.where(x >= n - 1, tab[n - 1], c))
 
 
 def run_plain(prep: Prepared, *, estimate: bool = True) -> Solved:
@@ -855,7 +869,7 @@ def _flash(prep, q_m, a_t0, D, heat_factor, tol, max_iter, T_start=None):
     res = np.zeros(nv)
     EX = erfcx(2.0 * prep.q[None, :] * np.sqrt(a_t0)[:, None])
     st = prep.shift_table
-    S1, S2 = _kernels.heat_kernel_factors(prep.q)
+    S1, S2 = _heat_factors(prep.q.tobytes())
     threaded(
         _kernels.flash_kernel, nv, min_items=_PARALLEL_MIN_SPEEDS_FLASH, nodes=prep.kernel_nodes, rule=prep.quad,
         speeds=_kernels.FlashSpeeds(lv10=prep.lv10, v=prep.v, scale=prep.scale, T0=prep.T0,
@@ -870,6 +884,14 @@ def _flash(prep, q_m, a_t0, D, heat_factor, tol, max_iter, T_start=None):
         iteration=_kernels.FixedPoint(tol=float(tol), max_iter=int(max_iter)),
         out=out, T_out=T_q, it_out=it, res_out=res)
     return out, T_q, it, res
+
+
+@functools.lru_cache(maxsize=16)
+def _heat_factors(q_bytes: bytes) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`persson.engine.kernels.heat_kernel_factors` of the nodes (their bytes), kept for the next solves on
+    the same nodes (a fit solves its fine and coarse grids again at every evaluation). The kernels only read
+    them."""
+    return _kernels.heat_kernel_factors(np.frombuffer(q_bytes, dtype=float))
 
 
 def contact_law(gamma: float, correction: str | None = None) -> _kernels.ContactLaw:
