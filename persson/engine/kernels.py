@@ -928,7 +928,9 @@ def _flash_speed(iv, nodes, rule, speeds, angular, shape, law, temperature, heat
     T_prev = np.empty(nq)
     dT = np.zeros((_ANDERSON_DEPTH, nq))
     dR = np.zeros((_ANDERSON_DEPTH, nq))
-    n_hist = -1  # steps in the Anderson history; -1: no previous step to difference against
+    # steps in the Anderson history; -1: no previous step to difference against (an int64, not the literal -1:
+    # numba would compile _anderson_step once more for the literal's own type)
+    n_hist = np.int64(-1)
     relax = 1.0
     res = 0.0
     it = 0

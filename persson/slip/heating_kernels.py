@@ -24,6 +24,10 @@ from numba import njit
 from ..engine.jit import threaded
 from .heating_arrays import MarchOutputs
 
+#: The integer 0 as an int64 for the kernels' calls: a literal 0 would make numba compile the callee once more
+#: for the literal's own type.
+_ZERO = np.int64(0)
+
 
 # ==================================================================================================== march
 def march(rows, patch, lattice, axis, profiles: bool, min_rows: int = 4) -> MarchOutputs:
@@ -135,7 +139,7 @@ def _march_row(r, rows, patch, lattice, axis, profiles, g_first, g_weights, abel
         out.mu[r] = 0.5 * a
         out.stick_fraction[r] = 1.0
         if profiles:
-            _write_profiles(r, T0, a, xi, mu_T0, N, 0, np.empty(0), np.empty(0), np.empty(0), out)
+            _write_profiles(r, T0, a, xi, mu_T0, N, _ZERO, np.empty(0), np.empty(0), np.empty(0), out)
         return
     xc = 0.0 if pure else xi[i - 1] + t * h
     # the sliding points: x_c when it lies between nodes, then the nodes behind it
@@ -208,7 +212,7 @@ def _pressure_stencils(g, g_nodes):
     weights = np.empty((N + 1, 4))
     for j in range(N):
         gj = g[j] if g[j] > glo else glo
-        first[j] = _lagrange(g_nodes, 0, ng, gj, weights[j])
+        first[j] = _lagrange(g_nodes, _ZERO, ng, gj, weights[j])
     return first, weights
 
 
@@ -396,7 +400,7 @@ def _slide_points(i, t, xc, pure, iv, w_speed, mv, mg, lattice, w_temperature, m
         n_slide = 1
         glo = lattice.g_nodes[0]
         w_edge = np.empty(4)
-        ig = _lagrange(lattice.g_nodes, 0, lattice.g_nodes.size, gc if gc > glo else glo, w_edge)
+        ig = _lagrange(lattice.g_nodes, _ZERO, lattice.g_nodes.size, gc if gc > glo else glo, w_edge)
         shear[0] = _mu_at(iv, w_speed, mv, ig, w_edge, mg, 0.0, lattice.values, lattice.value_offset,
                           lattice.n_temperature, w_temperature) * gc
     first_node = 0 if pure else i
@@ -829,7 +833,7 @@ def _interp(c, lv, gq, x, lattice, wv, wg, wu):
     nv = lattice.v_offset[c + 1] - lattice.v_offset[c]
     ng = lattice.g_nodes.size
     iv = _lagrange(lattice.log_speed, lattice.v_offset[c], nv, lv, wv)
-    ig = _lagrange(lattice.g_nodes, 0, ng, gq, wg)
+    ig = _lagrange(lattice.g_nodes, _ZERO, ng, gq, wg)
     mv = 4 if nv >= 4 else nv
     mg = 4 if ng >= 4 else ng
     return _mu_at(iv, wv, mv, ig, wg, mg, x, lattice.values, lattice.value_offset, lattice.n_temperature, wu)
