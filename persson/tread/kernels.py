@@ -445,7 +445,7 @@ def march_points(z, tan_alpha, dx_road, x_start, n_steps, dt, v_slide, v_roll, n
         mu_t, c_t, p_t, res, jam, stk, _, _, jam_t = march(
             z, tan_alpha, dx_road, x_start, n_steps[i], dt[i], v_slide[i], v_roll[i], n_elem, dx_elem, land, shape,
             offset_scale[i], stiffness[i], damping[i], shear_stiffness[i], area, load[i], load_total, p0,
-            dp, mu_table[i], jam_min, -1)
+            dp, mu_table[i], jam_min, np.int64(-1))  # int64, not a literal: march compiles once for both callers
         mean, err = block_mean(mu_t[skip[i]:], n_blocks)
         stats[i, 0] = mean
         stats[i, 1] = err
