@@ -810,19 +810,17 @@ def _table_feedback(prep: Prepared, mu: np.ndarray, T_q: np.ndarray, ok: np.ndar
 
 
 def _halved(tab: np.ndarray) -> np.ndarray:
-    """The table ``tab`` (nodes along its last axis) at half its step: the nodes kept, the midpoints on the
-    quadratic through the neighbouring nodes (:func:`_between_nodes` at t = 1/2)."""
+    """The table ``tab`` (nodes along its last axis) at half its step: the nodes kept, the midpoints where
+    :func:`_between_nodes` puts them (at t = 1/2: linear plus its quadratic term, so the same curve)."""
     n = tab.shape[-1]
-    out = np.empty(tab.shape[:-1] + (2 * n - 1,))
-    out[..., ::2] = tab
-    if n < 3:
-        out[..., 1::2] = 0.5 * (tab[..., :-1] + tab[..., 1:])
-        return out
-    d2 = tab[..., :-2] - 2.0 * tab[..., 1:-1] + tab[..., 2:]      # centred on nodes 1 .. n-2
-    i = np.arange(n - 1)
-    c = 0.5 * (d2[..., np.clip(i - 1, 0, n - 3)] + d2[..., np.clip(i, 0, n - 3)])
-    out[..., 1::2] = 0.5 * (tab[..., :-1] + tab[..., 1:]) - c / 8.0
-    return out
+    rows = np.reshape(tab, (-1, n))
+    out = np.empty((rows.shape[0], 2 * n - 1))
+    out[:, ::2] = rows
+    mid = np.arange(n - 1)[None, :] + 0.5
+    for r in range(rows.shape[0]):
+        linear, quadratic = _between_nodes(rows[r:r + 1], mid)
+        out[r, 1::2] = (linear + quadratic)[0]
+    return out.reshape(tab.shape[:-1] + (2 * n - 1,))
 
 
 def _between_nodes(tab: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
