@@ -199,7 +199,7 @@ def plausible_modulus(value, name: str, *, strict: bool = False, stacklevel: int
     return E
 
 
-def unit_slip_notes(surface, mu, contact_area) -> list[str]:
+def unit_slip_notes(surface, mu, contact_area, *, low_mu_explained: bool = False) -> list[str]:
     """Results that signal a unit slip on a road-scale surface (wavelengths from >= 1 cm to <= 1 mm), as messages.
 
     On a road the rms roughness is 0.05-5 mm, the real contact a few per cent of the nominal one and the friction
@@ -213,14 +213,14 @@ def unit_slip_notes(surface, mu, contact_area) -> list[str]:
         The PSD (``q_range``, and ``hrms()`` when it has one).
     mu, contact_area : float or ndarray
         Friction coefficient and A/A0 per speed (or pressure).
+    low_mu_explained : bool
+        The caller has found that the compound's own loss explains a friction below 1e-3 (a rubber that is
+        nearly loss-free at the frequencies the surface excites, see :func:`low_road_friction`): no unit-slip
+        message for it.
     """
-    try:
-        q_lo, q_hi = (float(x) for x in surface.q_range)
-    except (AttributeError, TypeError, ValueError, IndexError):
+    if not road_scale(surface):
         return []
-    longest, shortest = _ROAD_WAVELENGTHS_M
-    if not (q_lo > 0 and 2.0 * math.pi / q_lo >= longest and 2.0 * math.pi / q_hi <= shortest):
-        return []
+    q_lo = float(surface.q_range[0])
     out = []
     hrms = getattr(surface, "hrms", None)
     h = float(hrms()) if callable(hrms) else None
@@ -234,10 +234,31 @@ def unit_slip_notes(surface, mu, contact_area) -> list[str]:
                    "cent; check the units of the modulus (MPa typed as Pa?), the pressure and the profile heights")
     m = np.atleast_1d(np.asarray(mu, dtype=float))
     m = m[m > 0]  # exactly 0 is a lossless material, not a unit slip
-    if m.size and np.min(m) < _MIN_ROAD_MU:
+    if m.size and np.min(m) < _MIN_ROAD_MU and not low_mu_explained:
         out.append(f"friction coefficient {np.min(m):.3g} (< 1e-3) on {road}: rubber on a road gives 0.1-2; "
                    "check the units of the modulus, the pressure and the profile heights")
     return out
+
+
+def road_scale(surface) -> bool:
+    """The surface's wavelengths reach from 1 cm or more down to 1 mm or less (a road or road-like texture)."""
+    try:
+        q_lo, q_hi = (float(x) for x in surface.q_range)
+    except (AttributeError, TypeError, ValueError, IndexError):
+        return False
+    longest, shortest = _ROAD_WAVELENGTHS_M
+    return q_lo > 0 and 2.0 * math.pi / q_lo >= longest and 2.0 * math.pi / q_hi <= shortest
+
+
+def low_road_friction(surface, mu) -> int | None:
+    """Index of the lowest positive friction coefficient when it lies below 1e-3 on a road-scale surface (where
+    :func:`unit_slip_notes` would take it for a unit slip), else None."""
+    if not road_scale(surface):
+        return None
+    m = np.atleast_1d(np.asarray(mu, dtype=float))
+    m = np.where(m > 0, m, np.inf)
+    i = int(np.argmin(m))
+    return i if m[i] < _MIN_ROAD_MU else None
 
 
 def _pressure_slip(p: float) -> str:

@@ -29,7 +29,8 @@ from materials.shift import extrapolated_shift_note
 from ..contact import corrections, separation
 from . import directional, solver
 from .anisotropic import is_anisotropic
-from .._checks import UnitWarning, number, plausible_pressure, plausible_speed, plausible_temperature, unit_slip_notes
+from .._checks import (UnitWarning, low_road_friction, number, plausible_pressure, plausible_speed,
+                      plausible_temperature, unit_slip_notes)
 from .conditions import Conditions, SolverState
 from ..effects.base import Effect
 from ..errors import AccuracyWarning, ConvergenceWarning, InputError, PhysicsWarning
@@ -226,7 +227,11 @@ class Model:
         if msg is not None:
             notes.append(Note(msg, "extrapolated"))
             warnings.warn(msg, PhysicsWarning, stacklevel=3)
-        for msg in unit_slip_notes(surface, mu_total, solved.P[:, -1]):
+        loss_free = _loss_free_note(surface, material, solved, v, mu_total, self.gamma)
+        if loss_free is not None:
+            notes.append(Note(loss_free, "physics"))
+            warnings.warn(loss_free, PhysicsWarning, stacklevel=3)
+        for msg in unit_slip_notes(surface, mu_total, solved.P[:, -1], low_mu_explained=loss_free is not None):
             notes.append(Note(msg, "input"))
             warnings.warn(msg, UnitWarning, stacklevel=3)
         if not solved.converged:
@@ -351,6 +356,64 @@ def _physics_notes(original, surface, solved, mu, effects):
 #: Above these the result carries a PhysicsWarning (small-slope theory; friction of rubber).
 _MAX_SLOPE = 3.0
 _MAX_MU = 3.0
+
+
+def _loss_free_note(surface, material, solved, v, mu, gamma) -> str | None:
+    r"""A friction coefficient below 1e-3 on a road-scale surface that the compound's own loss explains, as a
+    message (None otherwise, and :func:`persson._checks.unit_slip_notes` then takes it for a unit slip).
+
+    In small contact Persson's hysteresis friction for a modulus of constant phase :math:`\delta` tends to
+
+    .. math:: \mu \to \frac{4\sqrt 2}{\pi^{3/2}}\, \gamma \sin\delta\; \xi(q_1)
+              \approx 1.02\, \gamma \sin\delta\; \xi(q_1)
+
+    (Persson, J. Chem. Phys. 115, 3840 (2001), with :math:`S = \gamma + (1 - \gamma) P^2` of Yang & Persson,
+    J. Phys.: Condens. Matter 20, 215214 (2008); :math:`\xi(q_1)` the rms slope). A glassy rubber, or an unfilled
+    one on its rubbery plateau, has :math:`\tan\delta` of 0.001-0.05 and so a friction that can fall below 1e-3 on
+    any road. The low friction is taken as the compound's when the largest :math:`\tan\delta` at the frequencies
+    the surface excites at the lowest-friction speed, :math:`\omega = q v \cos\phi` with :math:`\cos\phi` from
+    0.1 to 1 (99.5 % of the :math:`\cos\phi`-weighted angular integral) at each scale's rubber temperature, is
+    below :data:`_LOSS_FREE_TAN` and the friction is within 3 times that limit (a modulus rising with frequency gives
+    somewhat more than the constant-phase value).
+    """
+    i = low_road_friction(surface, mu)
+    if i is None:
+        return None
+    q = np.asarray(solved.q, dtype=float)
+    T = np.asarray(solved.T_q, dtype=float)[i]
+    cos_phi = np.geomspace(0.1, 1.0, 5)
+    tan_max, E_lo, E_hi = 0.0, math.inf, 0.0
+    for j in range(q.size):
+        E = np.asarray(material.E(v[i] * q[j] * cos_phi, float(T[j])), dtype=complex)
+        tan_max = max(tan_max, float(np.max(E.imag / E.real)))
+        E_lo, E_hi = min(E_lo, float(np.min(np.abs(E)))), max(E_hi, float(np.max(np.abs(E))))
+    xi = math.sqrt(max(solver.psd_moment(surface, q, 3), 0.0))
+    limit = 4.0 * math.sqrt(2.0) / math.pi ** 1.5 * gamma * math.sin(math.atan(tan_max)) * xi
+    m = float(np.atleast_1d(mu)[i])
+    if not (tan_max < _LOSS_FREE_TAN and m <= 3.0 * limit):
+        return None
+    state = ("glassy" if E_lo > _GLASSY_E else "on its rubbery plateau" if E_hi < _GLASSY_E else
+             "glassy at its smallest scales")
+    return (f"friction coefficient {m:.3g} at {v[i]:.3g} m/s on a road-scale surface: the compound is nearly "
+            f"loss-free at the frequencies this surface excites there ({state}: tan delta at most {tan_max:.2g} "
+            f"for omega = {0.1 * v[i] * q[0]:.3g}-{v[i] * q[-1]:.3g} rad/s at {_span(T, 'C')}, |E| = "
+            f"{_span((E_lo, E_hi), 'Pa')}), and Persson's hysteresis in small contact "
+            f"is about 1.02 gamma sin(delta) times the rms slope ({xi:.3g}): at most {limit:.2g}. That is the "
+            "compound's modulus, not a unit slip; check its loss at these frequencies (beyond the measured ones it "
+            "is an extrapolation of the master curve, and a Prony series has no loss above its shortest relaxation "
+            "time)")
+
+
+def _span(x, unit: str) -> str:
+    lo, hi = float(np.min(x)), float(np.max(x))
+    return f"{lo:.3g} {unit}" if f"{lo:.3g}" == f"{hi:.3g}" else f"{lo:.3g} to {hi:.3g} {unit}"
+
+
+#: Largest tan delta of a compound taken as nearly loss-free (rubber in its glass transition has 0.2-1.5, a filled
+#: compound 0.1-0.2 on its rubbery plateau; a glassy polymer 0.001-0.05).
+_LOSS_FREE_TAN = 0.05
+#: Above this |E| (Pa) the rubber is called glassy in the message (rubbery plateaus are 1-20 MPa, glasses ~1 GPa).
+_GLASSY_E = 1.0e8
 
 
 def _surface_notes(surface):
