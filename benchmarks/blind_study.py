@@ -23,7 +23,12 @@ Each case is drawn at random and made by a path independent of the diagnosis:
 * **distinguishable ratio**: what is left of the hidden effect after a refit of every other free parameter (the
   case's fitted ones, those of the other hidden effect of a pair) to the noise-free truth, over the noise: the part
   a diagnosis can see at all (a strain softening under a fitted adhesion is largely absorbed by it); for physics
-  outside the candidates, what the best single candidate fitted with the baseline leaves of it.
+  outside the candidates, what the best single candidate fitted with the baseline leaves of it;
+* **separable ratio** r (where the distinguishable ratio is 2 or more): what the closest other candidate set,
+  fitted with the baseline to the noise-free truth, leaves of it (rms), over the noise (sets of one candidate for a
+  hidden single effect, of one or two for a pair or outside physics). n r^2 is the chi^2 by which that set misses
+  the truth on n rows: below 10 it lies within the band in which the selection calls sets equally supported, and no
+  selection can be expected to tell them apart (a tie, which the verdict should name).
 
 The diagnosis sees the case as a user would (:func:`validation.improve` with the default candidates) and the
 outcome is compared with the truth. Printed: the confusion matrix (hidden physics against the set of effects
@@ -35,6 +40,7 @@ coverage of the reported 68 % and 95 % intervals of the parameters of a hidden e
 from __future__ import annotations
 
 import argparse
+import itertools
 import json
 import math
 import sys
@@ -77,6 +83,8 @@ class BlindCase:
     sigma: float
     distinguishable: float             # the part of the effect no refit of the other parameters absorbs, / sigma
     noise_kind: str
+    separable: float = math.nan        # what the closest other candidate set leaves of the truth, / sigma
+    closest: tuple = ()                # that set
     notes: dict = field(default_factory=dict)
 
 
@@ -161,22 +169,21 @@ def draw(index: int, seed: int) -> BlindCase:
             free.append(tuple(fit))
         effect_rms = min(float(np.sqrt(np.mean((mu_true - validation.predict(w, skeleton, contact_truth).mu) ** 2)))
                          for w in withouts)
-        unabsorbed = math.nan
+        unabsorbed, known = math.nan, {}
         truth_rows = validation.Measurements.from_arrays(slip=slip, speed=V, temperature=T, pressure=p, mu=mu_true,
                                                          wet=wet.astype(bool), contact=contact_case)
         if kind in ("single", "pair"):
             unabsorbed = min(_unabsorbed_rms(w, truth_rows, contact_case, names) for w, names in zip(withouts, free))
         elif kind == "outside":
             # what the best single candidate, fitted with the baseline, leaves of the outside physics
-            rest = []
             for n in SINGLES:
                 if (n == "patch_heating" and contact_case is None) or n in withouts[0].effect_names:
                     continue
                 e = fx.get(n)
                 model = withouts[0].with_effect(e)
-                rest.append(_unabsorbed_rms(model, truth_rows, contact_case, tuple(fit) + tuple(
-                    f"{n}.{q.name}" for q in e.parameters if q.fittable)))
-            unabsorbed = min(rest)
+                known[n,] = _unabsorbed_rms(model, truth_rows, contact_case, tuple(fit) + tuple(
+                    f"{n}.{q.name}" for q in e.parameters if q.fittable))
+            unabsorbed = min(known.values())
     if kind in ("null", "wet"):
         ratio, sigma = math.nan, 10 ** rng.uniform(math.log10(0.004), math.log10(0.02))
     else:
@@ -184,14 +191,46 @@ def draw(index: int, seed: int) -> BlindCase:
         sigma = float(np.clip(effect_rms / ratio, 0.002, 0.05))
         ratio = effect_rms / sigma
     distinguishable = unabsorbed / sigma if kind in ("single", "pair", "outside") else math.nan
+    separable, closest = math.nan, ()
+    if distinguishable >= 2:
+        # only where the hidden physics shows at all: a fit per candidate set, the slowest part of a draw
+        base = persson.Model(case_surface, material, effects=base_true)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            rms, closest = _closest_other_set(kind, hidden_names, base, truth_rows, contact_case, fit, known)
+        separable = rms / sigma
     mu = np.clip(mu_true + rng.normal(0.0, sigma, mu_true.size), 0.0, None)
     meas = validation.Measurements.from_arrays(slip=slip, speed=V, temperature=T, pressure=p, mu=np.round(mu, 6),
                                                mu_std=np.full(mu.size, sigma) if use_std else None,
                                                wet=wet.astype(bool), source=f"blind case {index}", contact=contact_case)
     return BlindCase(index=index, kind=kind, hidden=hidden, model=case_model, measurements=meas,
                      contact=contact_case, fit=fit, ratio=ratio, sigma=sigma, distinguishable=distinguishable,
+                     separable=separable, closest=closest,
                      noise_kind="mu_std" if use_std else "replicates" if replicate else "local differences",
                      notes=notes)
+
+
+def _closest_other_set(kind, hidden, base, truth_rows, contact, fit, known) -> tuple[float, tuple]:
+    """(rms, set): the candidate set other than the hidden one whose fit to the noise-free truth (with the baseline
+    and its fitted parameters) leaves the least of it. Sets of one candidate for a hidden single effect (a larger set
+    that fits as well loses on its parameter count), of one or two otherwise (physics outside the candidates may be
+    absorbed by two together). Where this is within the noise, no selection can tell the answer from that set.
+    ``known``: rms already computed for some sets."""
+    pool = [n for n in SINGLES if not (n == "patch_heating" and contact is None) and n not in base.effect_names]
+    best = (math.inf, ())
+    for k in range(1, (1 if kind == "single" else 2) + 1):
+        for names in itertools.combinations(pool, k):
+            if set(names) == set(hidden):
+                continue
+            if names not in known:
+                model, free = base, tuple(fit)
+                for n in names:
+                    e = fx.get(n)
+                    model = model.with_effect(e)
+                    free += tuple(f"{n}.{q.name}" for q in e.parameters if q.fittable)
+                known[names] = _unabsorbed_rms(model, truth_rows, contact, free)
+            best = min(best, (known[names], names))
+    return best
 
 
 def _unabsorbed_rms(without, truth_rows, contact, names) -> float:
@@ -298,7 +337,8 @@ def run(case: BlindCase) -> dict:
     found = tuple(sorted(imp.added))
     truth = tuple(sorted(case.hidden))
     out = {"index": case.index, "kind": case.kind, "hidden": truth, "found": found, "verdict": imp.verdict,
-           "ratio": case.ratio, "distinguishable": case.distinguishable, "sigma": case.sigma,
+           "ratio": case.ratio, "distinguishable": case.distinguishable, "separable": case.separable,
+           "closest": list(case.closest), "sigma": case.sigma,
            "noise": case.noise_kind, "rows": case.measurements.n,
            "noise_estimate": imp.noise, "seconds": time.perf_counter() - t0,
            "supported": [list(s.effects) for s in imp.selection.supported] if imp.selection else [],
@@ -331,6 +371,23 @@ def right(r: dict) -> bool:
     if r["kind"] == "outside":
         return r["verdict"] != "explained"
     return set(r["found"]) == set(r["hidden"])
+
+
+#: Sets whose fits to the noise-free truth differ by less than this in chi^2 (n r^2, r the separable ratio) are
+#: within the band in which the selection calls sets equally supported (10 BIC units): a tie, not a miss.
+TIE_GAP = 10.0
+
+
+def _gap(r: dict) -> float:
+    """n r^2: the chi^2 by which the closest other candidate set misses the noise-free truth (inf: not computed)."""
+    sep = _value(r, "separable")
+    return math.inf if math.isnan(sep) else r["rows"] * sep ** 2
+
+
+def _value(r: dict, key: str) -> float:
+    """``r[key]`` as a float, NaN where missing or not computed (JSON writes NaN as null)."""
+    v = r.get(key)
+    return math.nan if v is None else float(v)
 
 
 def summarize(results: list) -> str:
@@ -368,6 +425,10 @@ def summarize(results: list) -> str:
                      f"{sum(r['verdict'] == 'explained' for r in far)} of {len(far)}; the others: " + ", ".join(
                          f"case {r['index']} {r['distinguishable']:.2f} {r['verdict']}"
                          for r in out if r not in far))
+    tied = [r for r in out if _value(r, "distinguishable") >= 2 and _value(r, "separable") < 2]
+    if tied:
+        lines.append("  of those, absorbed by a set of two candidates (separable ratio < 2): " + ", ".join(
+            f"case {r['index']} {'+'.join(r['closest'])} {r['separable']:.2f} {r['verdict']}" for r in tied))
     for key, title in (("ratio", "the effect-to-noise ratio (the truth's change of mu without the effect)"),
                        ("distinguishable", "the distinguishable ratio (what a refit of the other parameters leaves "
                                            "of that change)")):
@@ -383,6 +444,14 @@ def summarize(results: list) -> str:
             ge2 = [r for r in sel if r[key] >= 2]
             lines.append(f"  {kind:<7} " + ", ".join(parts)
                          + f"; at ratio >= 2: {sum(right(r) for r in ge2)}/{len(ge2)}")
+            if key == "distinguishable" and any(not math.isnan(_value(r, "separable")) for r in ge2):
+                ties = [r for r in ge2 if _gap(r) < TIE_GAP]
+                sep = [r for r in ge2 if r not in ties]
+                lines.append(f"          where no other set comes within {TIE_GAP:g} units of chi^2 of the truth (n "
+                             f"times the separable ratio squared): {sum(right(r) for r in sep)}/{len(sep)}"
+                             + ("; the others: " + ", ".join(
+                                 f"case {r['index']} {'ok' if right(r) else 'missed'} ({'+'.join(r['closest'])}: "
+                                 f"{r['separable']:.2f}, {_gap(r):.1f})" for r in ties) if ties else ""))
     cov = [c for r in results for c in r["coverage"]]
     if cov:
         lines.append(f"Coverage of the reported intervals (parameters of hidden effects found exactly, {len(cov)} "
@@ -417,7 +486,7 @@ def main(argv=None) -> int:
         r = run(case)
         results.append(r)
         print(f"case {i:>3} {case.kind:<8} hidden {'+'.join(r['hidden']) or '-':<36} ratio {r['ratio']:6.2f} "
-              f"({r['distinguishable']:6.2f}) "
+              f"({r['distinguishable']:6.2f}, {_value(r, 'separable'):6.2f}) "
               f"{r['rows']:>3} rows {r['noise']:<18} -> {r['verdict']:<17} {'+'.join(r['found']) or '-':<36} "
               f"{'ok' if right(r) else 'WRONG'} ({r['seconds']:.0f} s)", flush=True)
         if args.out:
