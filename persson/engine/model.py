@@ -384,7 +384,10 @@ def _loss_free_note(surface, material, solved, v, mu, gamma) -> str | None:
     cos_phi = np.geomspace(0.1, 1.0, 5)
     tan_max, E_lo, E_hi = 0.0, math.inf, 0.0
     for j in range(q.size):
-        E = np.asarray(material.E(v[i] * q[j] * cos_phi, float(T[j])), dtype=complex)
+        try:
+            E = np.asarray(material.E(v[i] * q[j] * cos_phi, float(T[j])), dtype=complex)
+        except (ValueError, ArithmeticError):  # a material that refuses these conditions: say what is known
+            return None
         tan_max = max(tan_max, float(np.max(E.imag / E.real)))
         E_lo, E_hi = min(E_lo, float(np.min(np.abs(E)))), max(E_hi, float(np.max(np.abs(E))))
     xi = math.sqrt(max(solver.psd_moment(surface, q, 3), 0.0))
