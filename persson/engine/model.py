@@ -240,6 +240,12 @@ class Model:
                    f"(max residual {np.max(solved.residual):.3g} K)")
             notes.append(Note(msg, "convergence"))
             warnings.warn(msg, ConvergenceWarning, stacklevel=3)
+        outside = modulus_extrapolated_share(self.material, v, solved.q, solved.T_q, solved.mu_cumulative)
+        msg = None if outside is None else _outside_modulus_note(self.material, outside)
+        if msg is not None:
+            notes.append(Note(msg, "extrapolated"))
+            if float(np.max(outside)) > MODULUS_SHARE_WARNING:
+                warnings.warn(msg, PhysicsWarning, stacklevel=3)
         coarse_grid = solved.error_estimate > self.grid.tolerance
         if np.any(coarse_grid):
             bad = np.flatnonzero(coarse_grid)
@@ -279,6 +285,7 @@ class Model:
             mu_cumulative=solved.mu_cumulative * np.broadcast_to(np.asarray(load_share, dtype=float), v.shape)[:, None],
             load_share=out(np.broadcast_to(np.asarray(load_share, dtype=float), v.shape).copy(), scalar),
             error_estimate=out(solved.error_estimate, scalar),
+            modulus_extrapolated_share=None if outside is None else out(outside, scalar),
             effects=tuple(e.name for e in self.effects), converged=bool(solved.converged),
             iterations=solved.iterations, residual=solved.residual, notes=tuple(notes),
             citations=citations_of(type(self), separation.mean_separation, surface, material,
@@ -356,6 +363,73 @@ def _physics_notes(original, surface, solved, mu, effects):
 #: Above these the result carries a PhysicsWarning (small-slope theory; friction of rubber).
 _MAX_SLOPE = 3.0
 _MAX_MU = 3.0
+
+
+def modulus_extrapolated_share(material, speed, q, temperature_q, mu_cumulative) -> np.ndarray | None:
+    r"""Share of the hysteresis friction that comes from reduced frequencies outside the compound's measured range.
+
+    At scale q the loss integral :math:`\int_0^{\pi/2} \cos\phi\, \mathrm{Im}\,E(q v \cos\phi)\, d\phi`
+    (Persson, J. Chem. Phys. 115, 3840 (2001)) samples the reduced frequencies
+    :math:`\omega_r = q v \cos\phi\, a_T(T_q)` from 0 up to :math:`\Omega = q v a_T`. With the weight
+    :math:`\cos\phi` (the modulus held aside), the part of the band above the data's top :math:`\omega_{hi}` is
+    :math:`\sqrt{1 - c_{hi}^2}` with :math:`c_{hi} = \min(1, \omega_{hi}/\Omega)`, the part below its bottom
+    :math:`\omega_{lo}` is :math:`1 - \sqrt{1 - c_{lo}^2}`; each interval of the wavevector grid carries its own
+    friction (the differences of ``mu_cumulative``) times the mean of these fractions at its ends.
+
+    Parameters
+    ----------
+    material : object
+        The compound; needs ``frequency_range`` (rad/s at its reference temperature, as
+        :class:`materials.MasterCurve` has) and ``log10_aT``, else None is returned.
+    speed : ndarray (n_speed,)
+        Sliding speeds, m/s.
+    q : ndarray (n_q,)
+        Wavevector nodes, rad/m.
+    temperature_q : ndarray (n_speed, n_q)
+        Rubber temperature at each scale (background and flash), deg C.
+    mu_cumulative : ndarray (n_speed, n_q)
+        Hysteresis friction of the scales q0..q.
+
+    Returns
+    -------
+    ndarray (n_speed,) or None
+        In [0, 1]; 0 where the friction is 0.
+    """
+    rng, shift = getattr(material, "frequency_range", None), getattr(material, "log10_aT", None)
+    if rng is None or not callable(shift):
+        return None
+    lo, hi = (float(x) for x in rng)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")   # a shift beyond its fitted temperatures has its own note
+        log_aT = np.asarray(shift(np.asarray(temperature_q, dtype=float)), dtype=float)
+    top = np.asarray(speed, dtype=float)[:, None] * np.asarray(q, dtype=float)[None, :] * 10.0 ** log_aT
+    c_hi = np.clip(hi / top, 0.0, 1.0)
+    c_lo = np.clip(lo / top, 0.0, 1.0)
+    frac = np.clip(np.sqrt(1.0 - c_hi ** 2) + 1.0 - np.sqrt(1.0 - c_lo ** 2), 0.0, 1.0)
+    cum = np.atleast_2d(np.asarray(mu_cumulative, dtype=float))
+    part = np.sum(np.diff(cum, axis=1) * 0.5 * (frac[:, 1:] + frac[:, :-1]), axis=1)
+    total = cum[:, -1]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.clip(np.where(total > 0, part / np.where(total > 0, total, 1.0), 0.0), 0.0, 1.0)
+
+
+#: Above this share of mu_hysteresis from frequencies outside the measured master curve a result warns
+#: (PhysicsWarning); from 1 % on it carries a note.
+MODULUS_SHARE_WARNING = 0.5
+_MODULUS_SHARE_NOTE = 0.01
+
+
+def _outside_modulus_note(material, share) -> str | None:
+    top = float(np.max(share)) if np.size(share) else 0.0
+    if top < _MODULUS_SHARE_NOTE:
+        return None
+    rng = f"{top:.0%}" if np.size(share) == 1 or np.ptp(share) < 0.005 else f"{float(np.min(share)):.0%}-{top:.0%}"
+    lo, hi = material.frequency_range
+    T_ref = getattr(material, "T_ref", None)
+    at = f" at T_ref = {float(T_ref):g} C" if isinstance(T_ref, (int, float)) else ""
+    return (f"{rng} of mu_hysteresis comes from reduced frequencies outside the measured master curve ({lo:.3g}-"
+            f"{hi:.3g} rad/s{at}), where the modulus is its extrapolation (modulus_extrapolated_share per speed); "
+            "measurements at lower temperatures or higher frequencies would cover the small scales")
 
 
 def _loss_free_note(surface, material, solved, v, mu, gamma) -> str | None:

@@ -70,12 +70,18 @@ class FrictionResult:
         same rules on every other node, divided by sqrt(21) (the rules are third order for smooth PSDs, second
         order across the kinks of a tabulated PSD), or the same estimate one level up (every fourth node) divided
         by a further 16 where that is larger, which catches a coarse and a fine result that agree by accident
-        (the first term alone with the flash temperature; see ``benchmarks/accuracy.py``). Results whose estimate exceeds
-        ``GridSettings.tolerance`` warn and say so in ``notes``.
+        (the first term alone with the flash temperature; see ``benchmarks/accuracy.py``). Results whose estimate
+        exceeds ``GridSettings.tolerance`` warn and say so in ``notes``.
     strain_extrapolated_share : float or ndarray or None
         With measured strain factors (``StrainSoftening(factors=...)``): the share of ``mu_hysteresis`` that comes
         from length scales whose local strain exceeds the largest measured strain, where the factors are
         extrapolated (see :mod:`persson.effects.strain`); None otherwise.
+    modulus_extrapolated_share : float or ndarray or None
+        For a compound measured over a known range of reduced frequencies (a :class:`materials.MasterCurve`, its
+        ``frequency_range``): the share of ``mu_hysteresis`` that comes from frequencies outside that range, where
+        the modulus is the master curve's extrapolation (each scale's angular band ``omega = q v cos(phi)``,
+        weighted by ``cos(phi)`` as in the loss integral, at the scale's rubber temperature); None for a compound
+        without a measured range (a Prony series given as such, a constant modulus).
     effects : tuple of str
         Names of the effects switched on.
     converged : bool
@@ -109,6 +115,7 @@ class FrictionResult:
     excited_layer_thickness: np.ndarray | None = None
     max_flash_temperature: np.ndarray | float = 0.0
     strain_extrapolated_share: np.ndarray | float | None = None
+    modulus_extrapolated_share: np.ndarray | float | None = None
     effects: tuple = ()
     converged: bool = True
     iterations: np.ndarray | None = None
@@ -146,8 +153,8 @@ class FrictionResult:
     def as_table(self) -> dict[str, np.ndarray]:
         """Columns ``speed_m_s, T_C, pressure_Pa, mu, mu_hysteresis, mu_adhesion, contact_area``,
         ``max_flash_temperature_K`` (the flash temperature RISE above ``T_C``, K; not an absolute temperature)
-        and, when computed, ``mean_separation_m``, ``penetration_depth_m``, ``strain_extrapolated_share`` per
-        speed."""
+        and, when computed, ``mean_separation_m``, ``penetration_depth_m``, ``strain_extrapolated_share``,
+        ``modulus_extrapolated_share`` per speed."""
         cols = {
             "speed_m_s": self.speed,
             "T_C": np.broadcast_to(np.asarray(self.temperature, dtype=float), self.speed.shape),
@@ -164,4 +171,6 @@ class FrictionResult:
             cols["penetration_depth_m"] = np.atleast_1d(self.penetration_depth)
         if self.strain_extrapolated_share is not None:
             cols["strain_extrapolated_share"] = np.atleast_1d(self.strain_extrapolated_share)
+        if self.modulus_extrapolated_share is not None:
+            cols["modulus_extrapolated_share"] = np.atleast_1d(self.modulus_extrapolated_share)
         return cols

@@ -1,0 +1,82 @@
+"""How much of the friction rests on a master curve's extrapolation.
+
+A DMA master curve covers a finite band of reduced frequencies; at road speeds the small scales excite the rubber
+far above it (q v a_T up to 1e9 rad/s and more), where the modulus is the curve's extrapolation. The result says
+which share of mu_hysteresis comes from there: each scale's angular band omega = q v cos(phi), weighted by
+cos(phi) as in Persson's loss integral, outside the measured band.
+"""
+
+import math
+import warnings
+
+import numpy as np
+import pytest
+
+import materials
+import persson
+import surfaces
+from persson.errors import PhysicsWarning
+
+ROAD = surfaces.SelfAffine(hurst=0.8, q0=2 * math.pi / 0.01, q1=1e6, hrms=0.2e-3)
+TRUTH = materials.example_tread()
+
+
+def master(f_lo_Hz, f_hi_Hz):
+    """The example compound's 20 C curve measured from f_lo to f_hi (Hz), with its WLF law."""
+    f = np.logspace(math.log10(f_lo_Hz), math.log10(f_hi_Hz), 25)
+    E = TRUTH.E(2 * math.pi * f, 20.0)
+    return materials.MasterCurve.from_table({"f_Hz": f, "E_storage_Pa": E.real, "E_loss_Pa": E.imag}, TRUTH.wlf)
+
+
+def friction(material, speeds, T=20.0):
+    with warnings.catch_warnings(record=True) as rec:
+        warnings.simplefilter("always")
+        r = persson.Model(ROAD, material, grid=persson.GridSettings(q_per_decade=12)).friction(
+            np.asarray(speeds, dtype=float), temperature=T)
+    return r, [w for w in rec if issubclass(w.category, PhysicsWarning)]
+
+
+def brute_force_share(r, material, i):
+    """The share by direct sampling of the angle at every node (10^5 angles, midpoint rule), independent of the
+    closed form: the cos(phi)-weighted fraction of each scale's band outside the curve, averaged over the ends of
+    each interval of the engine's cumulative friction."""
+    lo, hi = material.frequency_range
+    phi = (np.arange(100_000) + 0.5) * (math.pi / 2) / 100_000
+    w = np.cos(phi) * (math.pi / 2) / 100_000
+    a_T = 10.0 ** np.asarray(material.log10_aT(r.temperature_q[i]), dtype=float)
+    frac = np.array([np.sum(w[(r.speed[i] * q * np.cos(phi) * a > hi) | (r.speed[i] * q * np.cos(phi) * a < lo)])
+                     for q, a in zip(r.q, a_T)])
+    cum = r.mu_cumulative[i]
+    return float(np.sum(np.diff(cum) * 0.5 * (frac[1:] + frac[:-1])) / cum[-1])
+
+
+def test_share_matches_a_direct_sampling_of_the_angular_band():
+    m = master(1e-1, 1e3)
+    r, _ = friction(m, [1e-3, 1e-1, 1.0])
+    for i in range(3):
+        assert r.modulus_extrapolated_share[i] == pytest.approx(brute_force_share(r, m, i), abs=2e-4)
+
+
+def test_a_narrow_curve_at_road_speed_warns_and_says_which_share():
+    m = master(1e-1, 1e3)
+    r, warned = friction(m, [1e-4, 1e-2, 1.0])
+    share = r.modulus_extrapolated_share
+    # at road speed the small scales leave the data at its top (slow, the large ones fall below its bottom)
+    assert share[2] > 0.5 and share[2] > 5 * max(share[0], share[1])
+    assert [n.kind for n in r.notes if "outside the measured master curve" in n] == ["extrapolated"]
+    assert any("outside the measured master curve" in str(w.message) for w in warned)
+    assert "modulus_extrapolated_share" in r.as_table()
+    # warmer rubber shifts the same scales to lower reduced frequencies, back into the data
+    hot, _ = friction(m, [1.0], T=60.0)
+    assert hot.modulus_extrapolated_share[0] < share[2]
+
+
+def test_a_curve_that_covers_every_excited_frequency_says_nothing():
+    r, warned = friction(master(1e-8, 1e14), [1e-4, 1.0])
+    assert np.all(r.modulus_extrapolated_share < 1e-4)
+    assert not any("master curve" in n for n in r.notes) and not warned
+
+
+def test_a_compound_without_a_measured_range_has_no_share():
+    r, _ = friction(TRUTH, [1.0])
+    assert r.modulus_extrapolated_share is None and "modulus_extrapolated_share" not in r.as_table()
