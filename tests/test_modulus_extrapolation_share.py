@@ -80,3 +80,26 @@ def test_a_curve_that_covers_every_excited_frequency_says_nothing():
 def test_a_compound_without_a_measured_range_has_no_share():
     r, _ = friction(TRUTH, [1.0])
     assert r.modulus_extrapolated_share is None and "modulus_extrapolated_share" not in r.as_table()
+
+
+def test_a_comparison_names_the_rows_that_rest_on_the_extrapolation():
+    import validation
+
+    m = master(1e-1, 1e3)
+    speeds = np.array([1e-4, 1e-2, 1.0, 3.0])
+    rows = validation.Measurements.from_arrays(slip=np.ones(4), speed=speeds, temperature=np.full(4, 20.0),
+                                               pressure=np.full(4, 0.3e6), mu=np.full(4, 0.5))
+    model = persson.Model(ROAD, m, grid=persson.GridSettings(q_per_decade=12))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", PhysicsWarning)
+        cmp = validation.compare(model, rows)
+        direct = model.friction(speeds, temperature=20.0, pressure=0.3e6)
+    np.testing.assert_allclose(cmp.rows_table()["modulus_extrapolated_share"], direct.modulus_extrapolated_share,
+                               rtol=1e-12)
+    assert list(cmp.rows_mostly_extrapolated()) == [2, 3]
+    assert "2 of 4 rows rest for more than half" in cmp.summary()
+    assert cmp.as_dict()["rows_mostly_extrapolated"] == 2
+    # a compound without a measured range: nothing to say, and no column
+    plain = validation.compare(persson.Model(ROAD, TRUTH, grid=persson.GridSettings(q_per_decade=12)), rows)
+    assert "modulus_extrapolated_share" not in plain.rows_table()
+    assert plain.as_dict()["rows_mostly_extrapolated"] is None

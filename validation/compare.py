@@ -95,6 +95,9 @@ class Comparison:
     band_note : str
         Why a fitted model's curves carry no band (shown under the figures; "" when there is a band, or when the
         model was not fitted here).
+    modulus_extrapolated_share : ndarray or None
+        Per row, the share of the hysteresis at the row's sliding point that rests on the master curve's
+        extrapolation (:class:`validation.predict.Prediction`); None where not known.
     """
 
     model: object
@@ -112,6 +115,7 @@ class Comparison:
     covariance: object = field(default=None, repr=False)
     band_note: str = ""
     _predictor: object = field(default=None, repr=False)
+    modulus_extrapolated_share: np.ndarray | None = field(default=None, repr=False)
 
     @property
     def n(self) -> int:
@@ -146,7 +150,19 @@ class Comparison:
                 f"{g.factor} {g.label}: bias {g.bias:+.3f} (n={g.n})" for g in worst))
         else:
             lines.append("no group deviates systematically (all |z| < 3)")
+        over = self.rows_mostly_extrapolated()
+        if over.size:
+            lines.append(f"{over.size} of {m.n} rows rest for more than half of their hysteresis on the master "
+                         f"curve's extrapolation (up to {float(np.max(self.modulus_extrapolated_share)):.0%}, column "
+                         "modulus_extrapolated_share): a misfit there may come from the compound's data beyond "
+                         "their frequencies rather than from a missing effect")
         return "\n".join(lines)
+
+    def rows_mostly_extrapolated(self) -> np.ndarray:
+        """Indices of the rows whose predicted hysteresis comes for more than half from reduced frequencies
+        outside the measured master curve (empty when that is not known)."""
+        s = self.modulus_extrapolated_share
+        return np.empty(0, dtype=int) if s is None else np.flatnonzero(np.asarray(s) > 0.5)
 
     def table_text(self) -> str:
         """The failure tables as aligned plain text."""
@@ -166,7 +182,9 @@ class Comparison:
         return {"name": self.name, "effects": list(self.effects), "n": self.n, "rmse": self.rmse,
                 "bias": self.bias, "max_abs": self.max_abs, "chi2": self.chi2,
                 "tables": {f: [g.as_dict() for g in t] for f, t in self.tables.items()},
-                "notes": list(self.notes)}
+                "notes": list(self.notes),
+                "rows_mostly_extrapolated": (None if self.modulus_extrapolated_share is None else
+                                             int(self.rows_mostly_extrapolated().size))}
 
     def to_json(self, path=None, *, overwrite: bool = False) -> str:
         """The :meth:`as_dict` summary as JSON text; written atomically to ``path`` when given (never over the
@@ -176,11 +194,14 @@ class Comparison:
         return json_text(self.as_dict(), path, overwrite=overwrite, inputs=source_files(self.measurements))
 
     def rows_table(self) -> dict[str, np.ndarray]:
-        """Per-row columns: the measurement columns plus ``mu_predicted`` and ``residual``."""
+        """Per-row columns: the measurement columns plus ``mu_predicted``, ``residual`` and, where known,
+        ``modulus_extrapolated_share``."""
         cols = dict(self.measurements.as_table())
         cols["sliding_speed_m_s"] = self.measurements.sliding_speed
         cols["mu_predicted"] = self.predicted
         cols["residual"] = self.residual
+        if self.modulus_extrapolated_share is not None:
+            cols["modulus_extrapolated_share"] = self.modulus_extrapolated_share
         return cols
 
     def to_csv(self, path, comments: tuple[str, ...] = (), *, overwrite: bool = False):
@@ -263,7 +284,8 @@ def comparison_from(model, measurements: Measurements, contact, prediction: Pred
                       rmse=float(np.sqrt(np.mean(r * r))), bias=float(np.mean(r)),
                       max_abs=float(np.max(np.abs(r))), chi2=chi2,
                       tables=breakdown(measurements, r, f), notes=tuple(prediction.notes), name=name,
-                      covariance=covariance, band_note=band_note, _predictor=predictor)
+                      covariance=covariance, band_note=band_note, _predictor=predictor,
+                      modulus_extrapolated_share=prediction.modulus_extrapolated_share)
 
 
 # ==========================================================================================================

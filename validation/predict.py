@@ -44,12 +44,18 @@ class Prediction:
         Whether every self-consistent iteration (flash temperature) converged.
     notes : tuple of str
         Notes of the friction results (extrapolated tails, convergence), without repeats.
+    modulus_extrapolated_share : ndarray or None
+        Per row, the share of the hysteresis friction at its sliding point (v_s, T0, sigma0) that comes from
+        reduced frequencies outside the compound's measured master curve
+        (``persson.FrictionResult.modulus_extrapolated_share``); None when the compound has no measured range or
+        some rows go through patch heating (whose tables do not keep it).
     """
 
     mu: np.ndarray
     mu_local: np.ndarray
     converged: bool = True
     notes: tuple = ()
+    modulus_extrapolated_share: np.ndarray | None = None
 
 
 def predict(model, measurements: Measurements, contact=None) -> Prediction:
@@ -165,6 +171,8 @@ class Predictor:
         raised: dict[tuple, None] = {}
         converged = True
         dry = wet = None
+        share = np.empty(m.n)
+        shared = True   # every group gave its share
         for g in self.groups:
             if g.wet:
                 if wet is None:
@@ -180,6 +188,7 @@ class Predictor:
                 mu_loc[g.idx] = sol.mu_local
                 notes.update(dict.fromkeys(sol.notes))
                 converged = converged and bool(sol.converged)
+                shared = False
                 continue
             with warnings.catch_warnings(record=True) as caught:
                 warnings.simplefilter("always")
@@ -197,6 +206,10 @@ class Predictor:
                 raise InputError(f"model: non-finite friction at v = {bad[0]:g} m/s, T = {bad[1]:g} C, "
                                  f"p = {bad[2]:g} Pa")
             mu_loc[g.idx] = mu_g[g.inverse]
+            if r.modulus_extrapolated_share is None:
+                shared = False
+            elif shared:
+                share[g.idx] = np.atleast_1d(np.asarray(r.modulus_extrapolated_share, dtype=float))[g.inverse]
             if g.slide.size:
                 mu[g.slide] = mu_loc[g.slide]
             for sw in g.sweeps:
@@ -204,7 +217,8 @@ class Predictor:
                                           m.speed[sw.rows])
         for category, message in raised:
             warnings.warn(message, category, stacklevel=2)
-        return Prediction(mu=mu, mu_local=mu_loc, converged=converged, notes=tuple(notes))
+        return Prediction(mu=mu, mu_local=mu_loc, converged=converged, notes=tuple(notes),
+                          modulus_extrapolated_share=share if shared else None)
 
     def _patch(self, model, rows, key):
         """Patch-heating predictions of ``rows`` (one table, two engine calls; the table is kept per wet/dry group
