@@ -103,3 +103,29 @@ def test_a_comparison_names_the_rows_that_rest_on_the_extrapolation():
     plain = validation.compare(persson.Model(ROAD, TRUTH, grid=persson.GridSettings(q_per_decade=12)), rows)
     assert "modulus_extrapolated_share" not in plain.rows_table()
     assert plain.as_dict()["rows_mostly_extrapolated"] is None
+
+
+def test_a_diagnosis_cautions_when_the_misfit_sits_where_the_modulus_is_extrapolated():
+    """Rows made with the compound itself, modelled with its curve measured at 0.1-1000 Hz only: the fast rows rest
+    on the extrapolation and carry the misfit, which no candidate effect is built to remove."""
+    import validation
+
+    speeds = np.geomspace(1e-4, 3.0, 8)
+    T = np.repeat([20.0, 40.0], speeds.size)
+    v = np.tile(speeds, 2)
+    grid = persson.GridSettings(q_per_decade=12)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", PhysicsWarning)
+        truth = persson.Model(ROAD, TRUTH, grid=grid).friction(v, temperature=T, pressure=0.3e6).mu
+        rows = validation.Measurements.from_arrays(slip=np.ones(v.size), speed=v, temperature=T,
+                                                   pressure=np.full(v.size, 0.3e6), mu=truth,
+                                                   mu_std=np.full(v.size, 0.01))
+        dx = validation.diagnose(persson.Model(ROAD, master(1e-1, 1e3), grid=grid), rows, candidates=["adhesion"])
+    share = dx.modulus_extrapolated_share
+    k = int(np.sum(share > 0.5))
+    assert k >= 2
+    r2 = dx.baseline.residual ** 2
+    assert np.sum(r2[share > 0.5]) / np.sum(r2) >= 0.5
+    assert f"Compound data: {k} of {v.size} rows rest for more than half" in dx.explanation
+    assert "rather than an effect of the list" in dx.explanation
+    assert dx.as_dict()["baseline"]["rows_mostly_extrapolated"] == k

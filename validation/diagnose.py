@@ -73,6 +73,10 @@ class Diagnosis:
     name : str
     verdict : validation.verdict.Verdict
     noise_estimate : validation.noise.NoiseEstimate
+    modulus_extrapolated_share : ndarray or None
+        Per row, the share of the refitted baseline's hysteresis that rests on the master curve's extrapolation
+        beyond its measured frequencies (the explanation cautions where rows rest on it for more than half; JSON
+        ``baseline.rows_mostly_extrapolated``); None when not known.
     """
 
     measurements: Measurements
@@ -91,6 +95,7 @@ class Diagnosis:
     noise_estimate: NoiseEstimate | None = None
     selection: object = None
     context: object = field(default=None, repr=False)
+    modulus_extrapolated_share: np.ndarray | None = field(default=None, repr=False)
 
     @property
     def noise_known(self) -> bool:
@@ -185,7 +190,9 @@ class Diagnosis:
                          "n": self.measurements.n, "noise": self.noise, "sigma_known": self.sigma_known,
                          "rule": self.rule, "explanation": self.explanation, "name": self.name,
                          "n_evaluations": self.n_evaluations, "seconds": self.seconds, "notes": list(b.notes),
-                         "notes_detail": [{"kind": note_kind(t), "text": t} for t in b.notes]},
+                         "notes_detail": [{"kind": note_kind(t), "text": t} for t in b.notes],
+                         "rows_mostly_extrapolated": (None if self.modulus_extrapolated_share is None else
+                                                      int(np.sum(self.modulus_extrapolated_share > 0.5)))},
             "candidates": cands,
         }
         if self.selection is not None:
@@ -304,14 +311,16 @@ def diagnose_single(model, measurements: Measurements | None = None, candidates=
         clusters, used = separate(clusters, results, m, contact)
         n_eval += used
     verdict = decide(baseline, results, noise)
-    explanation = explain(verdict, m, baseline, results, clusters, noise)
+    # the baseline at its optimum again: its solutions are kept by the predictor, so this costs no solve
+    extrapolated = predictor.predict(baseline.model).modulus_extrapolated_share
+    explanation = explain(verdict, m, baseline, results, clusters, noise, extrapolated_share=extrapolated)
     if progress is not None:
         progress(f"{len(effects)} candidates fitted", len(effects), len(effects))
     return Diagnosis(measurements=m, contact=contact, baseline=baseline, candidates=tuple(results),
                      clusters=tuple(clusters), explanation=explanation, rule=SIGNIFICANCE_RULE,
                      sigma_known=sigma_known, noise=_noise_level(noise), n_evaluations=n_eval,
                      seconds=time.perf_counter() - t_start, name=name, verdict=verdict, noise_estimate=noise,
-                     context=ctx)
+                     context=ctx, modulus_extrapolated_share=extrapolated)
 
 
 @dataclass(frozen=True, eq=False)

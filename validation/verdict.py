@@ -241,10 +241,15 @@ def _undetermined(baseline, credible, implausible, noise, close) -> Verdict:
                    indicated=indicated, not_identified=tuple(not_identified))
 
 
-def explain(verdict: Verdict, m, baseline, candidates, clusters, noise) -> str:
-    """The plain-language explanation: the verdict first, then the baseline, the candidates, the ambiguities."""
+def explain(verdict: Verdict, m, baseline, candidates, clusters, noise, *, extrapolated_share=None) -> str:
+    """The plain-language explanation: the verdict first, then the baseline, the candidates, the ambiguities;
+    ``extrapolated_share`` (per row, the share of the baseline's hysteresis that rests on the master curve's
+    extrapolation) adds a caution where rows rest on it for more than half."""
     paras = [verdict.headline, _noise_paragraph(noise)]
     paras.append(_baseline_paragraph(m, baseline))
+    caution = extrapolation_caution(m, baseline.residual, extrapolated_share)
+    if caution:
+        paras.append(caution)
     ok = [c for c in candidates if c.status == "ok"]
     sig = [c for c in ok if c.significant]
     credible = [c for c in sig if c.plausible]
@@ -288,6 +293,28 @@ def explain(verdict: Verdict, m, baseline, candidates, clusters, noise) -> str:
     return "\n\n".join(paras)
 
 
+def extrapolation_caution(m, residual, share) -> str:
+    """A caution when some rows rest for more than half of their predicted hysteresis on the compound's master
+    curve beyond its measured frequencies (``share`` per row, None when not known): how many, and which part of
+    the baseline's misfit (sum of squared residuals) they carry. A misfit there may come from the modulus, which
+    no candidate effect changes; "" when no row does."""
+    if share is None:
+        return ""
+    over = np.asarray(share, dtype=float) > 0.5
+    k = int(np.sum(over))
+    if k == 0:
+        return ""
+    r2 = np.asarray(residual, dtype=float) ** 2
+    part = float(np.sum(r2[over]) / np.sum(r2)) if np.sum(r2) > 0 else 0.0
+    text = (f"Compound data: {k} of {m.n} rows rest for more than half of their predicted hysteresis on the master "
+            f"curve beyond its measured frequencies (up to {float(np.max(share)):.0%}), and they carry "
+            f"{part:.0%} of the baseline's misfit (sum of squared residuals).")
+    if part >= 0.5:
+        text += (" The missing piece may be the modulus there rather than an effect of the list: measurements of "
+                 "the compound at lower temperatures or higher frequencies would tell.")
+    return text
+
+
 # ---- paragraphs --------------------------------------------------------------------------------------------
 def _noise_phrase(noise) -> str:
     if not noise.known:
@@ -327,7 +354,8 @@ def _candidate_paragraph(m, b, t, lead: str = "Most likely missing") -> str:
            + (_fmt_estimates(t.estimates) or "no free parameters")
            + (f"; placeholders kept: {', '.join(f'{k} = {v}' for k, v in fixed.items())}" if fixed else "")
            + (f"; baseline {_fmt_estimates(t.baseline_estimates)}" if t.baseline_estimates else "")
-           + ". It changes the prediction " + ("(mean change per group) " + "; ".join(ch_ph) if ch_ph else "in a pattern")
+           + ". It changes the prediction "
+           + ("(mean change per group) " + "; ".join(ch_ph) if ch_ph else "in a pattern")
            + f". That change follows the baseline residual (correlation {corr:+.2f}) and removes "
            f"{100 * t.explained:.1f} % of its sum of squares: RMSE {b.rmse:.3g} -> {t.rmse:.3g}, delta BIC "
            f"{t.delta_bic:+.1f}, p = {t.p_value:.2g} ({t.test} test); the score test of its signature gives "
