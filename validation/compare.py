@@ -267,7 +267,7 @@ def compare(model, measurements: Measurements, contact=None, *, name: str = "") 
     if not hasattr(model, "friction"):
         raise InputError(f"model: expected a persson.Model, got {type(model).__name__}")
     pred = Predictor(measurements, contact)
-    p = pred.predict(model)
+    p = pred.predict(model, full=True)
     return comparison_from(model, measurements, pred.contact, p, name=name, predictor=pred)
 
 

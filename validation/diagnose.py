@@ -311,8 +311,8 @@ def diagnose_single(model, measurements: Measurements | None = None, candidates=
         clusters, used = separate(clusters, results, m, contact)
         n_eval += used
     verdict = decide(baseline, results, noise)
-    # the baseline at its optimum again: its solutions are kept by the predictor, so this costs no solve
-    extrapolated = predictor.predict(baseline.model).modulus_extrapolated_share
+    # the baseline at its optimum again, in full: its solutions are kept by the predictor, so this costs no solve
+    extrapolated = predictor.predict(baseline.model, full=True).modulus_extrapolated_share
     explanation = explain(verdict, m, baseline, results, clusters, noise, extrapolated_share=extrapolated)
     if progress is not None:
         progress(f"{len(effects)} candidates fitted", len(effects), len(effects))

@@ -17,6 +17,7 @@ temperatures) for all its rows.
 
 from __future__ import annotations
 
+import contextlib
 import warnings
 from collections import OrderedDict
 from dataclasses import dataclass
@@ -47,8 +48,9 @@ class Prediction:
     modulus_extrapolated_share : ndarray or None
         Per row, the share of the hysteresis friction at its sliding point (v_s, T0, sigma0) that comes from
         reduced frequencies outside the compound's measured master curve
-        (``persson.FrictionResult.modulus_extrapolated_share``); None when the compound has no measured range or
-        some rows go through patch heating (whose tables do not keep it).
+        (``persson.FrictionResult.modulus_extrapolated_share``); None when the compound has no measured range,
+        when some rows go through patch heating (whose tables do not keep it), and in a fit's predictions
+        (:meth:`Predictor.predict` without ``full``).
     """
 
     mu: np.ndarray
@@ -72,7 +74,7 @@ def predict(model, measurements: Measurements, contact=None) -> Prediction:
     -------
     Prediction
     """
-    return Predictor(measurements, contact).predict(model)
+    return Predictor(measurements, contact).predict(model, full=True)
 
 
 def wet_model(model):
@@ -143,24 +145,27 @@ class Predictor:
             self.groups.append(_Group(wet=wet, idx=idx, points=points, inverse=inverse, slide=idx[s >= 1.0],
                                       sweeps=tuple(sweeps)))
 
-    def predict(self, model, contact=None) -> Prediction:
+    def predict(self, model, contact=None, *, full: bool = False) -> Prediction:
         """Predictions of ``model`` for every row (with ``contact`` instead of the predictor's, when given: e.g.
-        a refitted one)."""
+        a refitted one). A fit's predictions read the friction alone (:func:`persson.solver.friction_only`);
+        ``full=True`` keeps what the engine says besides (the share of the friction from the master curve's
+        extrapolation, ``Prediction.modulus_extrapolated_share``), for a one-off prediction."""
         if contact is not None and contact is not self.contact:
             import copy
 
             other = copy.copy(self)
             other.contact = contact
             try:
-                return other.predict(model)
+                return other.predict(model, full=full)
             finally:
                 self.n_calls = other.n_calls
         if not (hasattr(model, "friction") and hasattr(model, "effect_names")):
             raise InputError(f"model: expected a persson.Model, got {type(model).__name__}")
         from persson.solver import friction_only, reuse_solutions
 
-        # predictions read the friction alone: the contact geometry of each result would cost a fifth of a solve
-        with reuse_solutions(self._solutions), friction_only():
+        # a fit's predictions read the friction alone: the contact geometry of each result would cost a fifth of a
+        # solve
+        with reuse_solutions(self._solutions), (contextlib.nullcontext() if full else friction_only()):
             return self._predict(model)
 
     def _predict(self, model) -> Prediction:

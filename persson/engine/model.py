@@ -240,7 +240,9 @@ class Model:
                    f"(max residual {np.max(solved.residual):.3g} K)")
             notes.append(Note(msg, "convergence"))
             warnings.warn(msg, ConvergenceWarning, stacklevel=3)
-        outside = modulus_extrapolated_share(self.material, v, solved.q, solved.T_q, solved.mu_cumulative)
+        # inside solver.friction_only() (a fit's many calls) the friction alone
+        outside = (modulus_extrapolated_share(self.material, v, solved.q, solved.T_q, solved.mu_cumulative)
+                   if solver.wants_contact_geometry() else None)
         msg = None if outside is None else _outside_modulus_note(self.material, outside)
         if msg is not None:
             notes.append(Note(msg, "extrapolated"))

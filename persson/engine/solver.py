@@ -203,8 +203,9 @@ def reuse_solutions(memo: OrderedDict | None = None, size: int = 8):
 def friction_only():
     """Inside this context, :meth:`persson.Model.friction` skips the contact geometry: the mean separation and
     the penetration depth (their own quadrature over q, about a fifth of a plain solve) are left out, and the
-    results carry None there. For callers that read the friction alone many times over, such as the fits of the
-    diagnosis; everything else in the result is unchanged."""
+    results carry None there, as they do for ``modulus_extrapolated_share`` (with its note). For callers that read
+    the friction alone many times over, such as the fits of the diagnosis; everything else in the result is
+    unchanged."""
     token = _FRICTION_ONLY.set(True)
     try:
         yield
