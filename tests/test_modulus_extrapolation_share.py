@@ -98,6 +98,10 @@ def test_a_comparison_names_the_rows_that_rest_on_the_extrapolation():
                                rtol=1e-12)
     assert list(cmp.rows_mostly_extrapolated()) == [2, 3]
     assert "2 of 4 rows rest for more than half" in cmp.summary()
+    from validation.report import render_report
+
+    html = render_report([cmp], title="t")
+    assert "Compound data: 2 of 4 rows rest for more than half" in html
     assert cmp.as_dict()["rows_mostly_extrapolated"] == 2
     # a compound without a measured range: nothing to say, and no column
     plain = validation.compare(persson.Model(ROAD, TRUTH, grid=persson.GridSettings(q_per_decade=12)), rows)

@@ -150,13 +150,20 @@ class Comparison:
                 f"{g.factor} {g.label}: bias {g.bias:+.3f} (n={g.n})" for g in worst))
         else:
             lines.append("no group deviates systematically (all |z| < 3)")
-        over = self.rows_mostly_extrapolated()
-        if over.size:
-            lines.append(f"{over.size} of {m.n} rows rest for more than half of their hysteresis on the master "
-                         f"curve's extrapolation (up to {float(np.max(self.modulus_extrapolated_share)):.0%}, column "
-                         "modulus_extrapolated_share): a misfit there may come from the compound's data beyond "
-                         "their frequencies rather than from a missing effect")
+        if self.extrapolation_summary():
+            lines.append(self.extrapolation_summary())
         return "\n".join(lines)
+
+    def extrapolation_summary(self) -> str:
+        """How many rows rest for more than half of their predicted hysteresis on the master curve's extrapolation
+        beyond its measured frequencies, and what that means for a misfit there ("" when none, or not known)."""
+        over = self.rows_mostly_extrapolated()
+        if not over.size:
+            return ""
+        return (f"{over.size} of {self.n} rows rest for more than half of their hysteresis on the master curve's "
+                f"extrapolation (up to {float(np.max(self.modulus_extrapolated_share)):.0%}, column "
+                "modulus_extrapolated_share): a misfit there may come from the compound's data beyond their "
+                "frequencies rather than from a missing effect")
 
     def rows_mostly_extrapolated(self) -> np.ndarray:
         """Indices of the rows whose predicted hysteresis comes for more than half from reduced frequencies

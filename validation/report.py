@@ -198,6 +198,8 @@ def _comparison_html(cmp) -> str:
                         _num(cmp.max_abs), _num(None if cmp.chi2 is None else cmp.chi2 / cmp.n)]], left=(0,)))
     for note in cmp.notes:
         out.append(f"<p class='note'>Note: {_e(note)}</p>")
+    if cmp.extrapolation_summary():
+        out.append(f"<p class='note'>Compound data: {_e(cmp.extrapolation_summary())}.</p>")
     for name, fig in cmp.figures().items():
         out.append(_img(fig, f"{cmp.name} {name}"))
     out.append("<h3>Where the model fails</h3><p class='note'>Groups with |z| &ge; 3 (bias larger than three "
