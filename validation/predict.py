@@ -17,7 +17,6 @@ temperatures) for all its rows.
 
 from __future__ import annotations
 
-import contextlib
 import warnings
 from collections import OrderedDict
 from dataclasses import dataclass
@@ -148,8 +147,8 @@ class Predictor:
     def predict(self, model, contact=None, *, full: bool = False) -> Prediction:
         """Predictions of ``model`` for every row (with ``contact`` instead of the predictor's, when given: e.g.
         a refitted one). A fit's predictions read the friction alone (:func:`persson.solver.friction_only`);
-        ``full=True`` keeps what the engine says besides (the share of the friction from the master curve's
-        extrapolation, ``Prediction.modulus_extrapolated_share``), for a one-off prediction."""
+        ``full=True`` keeps the share of the friction from the master curve's extrapolation
+        (``Prediction.modulus_extrapolated_share``), for a one-off prediction."""
         if contact is not None and contact is not self.contact:
             import copy
 
@@ -163,9 +162,9 @@ class Predictor:
             raise InputError(f"model: expected a persson.Model, got {type(model).__name__}")
         from persson.solver import friction_only, reuse_solutions
 
-        # a fit's predictions read the friction alone: the contact geometry of each result would cost a fifth of a
-        # solve
-        with reuse_solutions(self._solutions), (contextlib.nullcontext() if full else friction_only()):
+        # predictions read the friction (and, in full, the share of it from the master curve's extrapolation): the
+        # contact geometry of each result would cost a fifth of a solve
+        with reuse_solutions(self._solutions), friction_only(share=full):
             return self._predict(model)
 
     def _predict(self, model) -> Prediction:

@@ -242,7 +242,7 @@ class Model:
             warnings.warn(msg, ConvergenceWarning, stacklevel=3)
         # inside solver.friction_only() (a fit's many calls) the friction alone
         outside = (modulus_extrapolated_share(self.material, v, solved.q, solved.T_q, solved.mu_cumulative)
-                   if solver.wants_contact_geometry() else None)
+                   if solver.wants_extrapolated_share() else None)
         msg = None if outside is None else _outside_modulus_note(self.material, outside)
         if msg is not None:
             notes.append(Note(msg, "extrapolated"))

@@ -200,16 +200,18 @@ def reuse_solutions(memo: OrderedDict | None = None, size: int = 8):
 
 
 @contextlib.contextmanager
-def friction_only():
+def friction_only(*, share: bool = False):
     """Inside this context, :meth:`persson.Model.friction` skips the contact geometry: the mean separation and
     the penetration depth (their own quadrature over q, about a fifth of a plain solve) are left out, and the
-    results carry None there, as they do for ``modulus_extrapolated_share`` (with its note). For callers that read
-    the friction alone many times over, such as the fits of the diagnosis; everything else in the result is
-    unchanged."""
+    results carry None there, as they do for ``modulus_extrapolated_share`` (with its note) unless ``share`` is
+    True. For callers that read the friction alone many times over, such as the fits of the diagnosis (and, with
+    ``share``, their one-off predictions); everything else in the result is unchanged."""
     token = _FRICTION_ONLY.set(True)
+    kept = _SHARE.set(bool(share))
     try:
         yield
     finally:
+        _SHARE.reset(kept)
         _FRICTION_ONLY.reset(token)
 
 
@@ -218,8 +220,14 @@ def wants_contact_geometry() -> bool:
     return not _FRICTION_ONLY.get()
 
 
+def wants_extrapolated_share() -> bool:
+    """False inside :func:`friction_only` unless it was asked to keep the share."""
+    return _SHARE.get()
+
+
 #: Set by :func:`friction_only`.
 _FRICTION_ONLY: contextvars.ContextVar = contextvars.ContextVar("persson_friction_only", default=False)
+_SHARE: contextvars.ContextVar = contextvars.ContextVar("persson_extrapolated_share", default=True)
 
 #: The store of :func:`reuse_solutions` in the current context (None: every call solves).
 _MEMO: contextvars.ContextVar = contextvars.ContextVar("persson_solver_memo", default=None)
