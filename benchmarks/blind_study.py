@@ -170,20 +170,14 @@ def draw(index: int, seed: int) -> BlindCase:
         effect_rms = min(float(np.sqrt(np.mean((mu_true - validation.predict(w, skeleton, contact_truth).mu) ** 2)))
                          for w in withouts)
         unabsorbed, known = math.nan, {}
+        baseline = persson.Model(case_surface, material, effects=base_true)   # the sets are added to this (tau_f0 refitted)
         truth_rows = validation.Measurements.from_arrays(slip=slip, speed=V, temperature=T, pressure=p, mu=mu_true,
                                                          wet=wet.astype(bool), contact=contact_case)
         if kind in ("single", "pair"):
             unabsorbed = min(_unabsorbed_rms(w, truth_rows, contact_case, names) for w, names in zip(withouts, free))
         elif kind == "outside":
             # what the best single candidate, fitted with the baseline, leaves of the outside physics
-            for n in SINGLES:
-                if (n == "patch_heating" and contact_case is None) or n in withouts[0].effect_names:
-                    continue
-                e = fx.get(n)
-                model = withouts[0].with_effect(e)
-                known[n,] = _unabsorbed_rms(model, truth_rows, contact_case, tuple(fit) + tuple(
-                    f"{n}.{q.name}" for q in e.parameters if q.fittable))
-            unabsorbed = min(known.values())
+            unabsorbed = _closest_other_set("single", (), baseline, truth_rows, contact_case, fit, known)[0]
     if kind in ("null", "wet"):
         ratio, sigma = math.nan, 10 ** rng.uniform(math.log10(0.004), math.log10(0.02))
     else:
@@ -194,10 +188,9 @@ def draw(index: int, seed: int) -> BlindCase:
     separable, closest = math.nan, ()
     if distinguishable >= 2:
         # only where the hidden physics shows at all: a fit per candidate set, the slowest part of a draw
-        base = persson.Model(case_surface, material, effects=base_true)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            rms, closest = _closest_other_set(kind, hidden_names, base, truth_rows, contact_case, fit, known)
+            rms, closest = _closest_other_set(kind, hidden_names, baseline, truth_rows, contact_case, fit, known)
         separable = rms / sigma
     mu = np.clip(mu_true + rng.normal(0.0, sigma, mu_true.size), 0.0, None)
     meas = validation.Measurements.from_arrays(slip=slip, speed=V, temperature=T, pressure=p, mu=np.round(mu, 6),

@@ -33,9 +33,11 @@ Examples
 
 from __future__ import annotations
 
+import numpy as np
+
 from .errors import AccuracyWarning, ConvergenceWarning, InputError, PhysicsWarning
 
-__all__ = ["Note", "KINDS", "kinds", "kind_of", "kind_of_warning"]
+__all__ = ["Note", "KINDS", "kinds", "kind_of", "kind_of_warning", "share_span"]
 
 #: The kinds a :class:`Note` may have.
 KINDS = ("accuracy", "convergence", "extrapolated", "assumed", "physics", "input")
@@ -93,3 +95,11 @@ def kind_of_warning(category: type) -> str:
         if isinstance(category, type) and issubclass(category, cls):
             return kind
     return "input"
+
+
+def share_span(share) -> str:
+    """A share per speed as the percentage a note quotes: one value when they agree within half a per cent
+    (``"42%"``), else their range (``"12%-42%"``)."""
+    a = np.atleast_1d(np.asarray(share, dtype=float))
+    top = float(np.max(a))
+    return f"{top:.0%}" if a.size == 1 or np.ptp(a) < 0.005 else f"{float(np.min(a)):.0%}-{top:.0%}"

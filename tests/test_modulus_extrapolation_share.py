@@ -28,11 +28,11 @@ def master(f_lo_Hz, f_hi_Hz):
     return materials.MasterCurve.from_table({"f_Hz": f, "E_storage_Pa": E.real, "E_loss_Pa": E.imag}, TRUTH.wlf)
 
 
-def friction(material, speeds, T=20.0):
+def friction(material, speeds, T=20.0, effects=(), pressure=0.3e6):
     with warnings.catch_warnings(record=True) as rec:
         warnings.simplefilter("always")
-        r = persson.Model(ROAD, material, grid=persson.GridSettings(q_per_decade=12)).friction(
-            np.asarray(speeds, dtype=float), temperature=T)
+        r = persson.Model(ROAD, material, effects=list(effects), grid=persson.GridSettings(q_per_decade=12)).friction(
+            np.asarray(speeds, dtype=float), temperature=T, pressure=pressure)
     return r, [w for w in rec if issubclass(w.category, PhysicsWarning)]
 
 
@@ -50,11 +50,20 @@ def brute_force_share(r, material, i):
     return float(np.sum(np.diff(cum) * 0.5 * (frac[1:] + frac[:-1])) / cum[-1])
 
 
-def test_share_matches_a_direct_sampling_of_the_angular_band():
-    m = master(1e-1, 1e3)
-    r, _ = friction(m, [1e-3, 1e-1, 1.0])
-    for i in range(3):
-        assert r.modulus_extrapolated_share[i] == pytest.approx(brute_force_share(r, m, i), abs=2e-4)
+@pytest.mark.parametrize("data_Hz, T, speeds, effects, pressure", [
+    ((1e-1, 1e3), 20.0, [1e-3, 1e-1, 1.0], (), 0.3e6),                                   # the middle
+    ((1e-3, 1e9), -20.0, [3.0, 30.0], (), 0.02e6),          # glassy: cold, fast, low pressure (above the data)
+    ((1e-3, 1e11), -20.0, [3.0, 30.0], (), 0.02e6),
+    ((3e-5, 1e3), 80.0, [1e-6, 1e-4], (), 0.3e6),                       # soft: hot and slow (below the data)
+    ((1e-1, 1e3), 20.0, [0.3, 3.0], (persson.effects.FlashTemperature(),), 0.3e6),  # each scale at its flash T
+])
+def test_share_matches_a_direct_sampling_of_the_angular_band(data_Hz, T, speeds, effects, pressure):
+    m = master(*data_Hz)
+    r, _ = friction(m, speeds, T=T, effects=effects, pressure=pressure)
+    share = r.modulus_extrapolated_share
+    assert 0.0 < np.max(share) < 1.0          # partly extrapolated: the corner is not just all or nothing
+    for i in range(len(speeds)):
+        assert share[i] == pytest.approx(brute_force_share(r, m, i), abs=2e-4)
 
 
 def test_a_narrow_curve_at_road_speed_warns_and_says_which_share():

@@ -17,7 +17,7 @@ import numpy as np
 
 from .errors import InputError
 from .measurements import Measurements
-from .predict import Prediction, Predictor
+from .predict import Prediction, Predictor, mostly_extrapolated
 
 __all__ = ["Comparison", "GroupStat", "compare", "breakdown", "FACTORS"]
 
@@ -168,8 +168,7 @@ class Comparison:
     def rows_mostly_extrapolated(self) -> np.ndarray:
         """Indices of the rows whose predicted hysteresis comes for more than half from reduced frequencies
         outside the measured master curve (empty when that is not known)."""
-        s = self.modulus_extrapolated_share
-        return np.empty(0, dtype=int) if s is None else np.flatnonzero(np.asarray(s) > 0.5)
+        return mostly_extrapolated(self.modulus_extrapolated_share)
 
     def table_text(self) -> str:
         """The failure tables as aligned plain text."""

@@ -36,7 +36,7 @@ from .errors import InputError
 from .fitting import CONTACT, FreeParameter, ParameterSpace, contact_parameters, free_parameters
 from .measurements import Measurements
 from .noise import NoiseEstimate, estimate_noise, lack_of_fit, remaining_pattern
-from .predict import Predictor
+from .predict import Predictor, mostly_extrapolated
 from .refit import data_range, issues_at, with_uncertainty
 from .verdict import Verdict, decide, explain
 
@@ -192,7 +192,7 @@ class Diagnosis:
                          "n_evaluations": self.n_evaluations, "seconds": self.seconds, "notes": list(b.notes),
                          "notes_detail": [{"kind": note_kind(t), "text": t} for t in b.notes],
                          "rows_mostly_extrapolated": (None if self.modulus_extrapolated_share is None else
-                                                      int(np.sum(self.modulus_extrapolated_share > 0.5)))},
+                                                      int(mostly_extrapolated(self.modulus_extrapolated_share).size))},
             "candidates": cands,
         }
         if self.selection is not None:

@@ -26,7 +26,7 @@ import numpy as np
 from .errors import InputError
 from .measurements import Measurements
 
-__all__ = ["Prediction", "predict", "Predictor", "wet_model", "dry_model"]
+__all__ = ["Prediction", "predict", "Predictor", "wet_model", "dry_model", "mostly_extrapolated", "MOSTLY_EXTRAPOLATED"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -57,6 +57,19 @@ class Prediction:
     converged: bool = True
     notes: tuple = ()
     modulus_extrapolated_share: np.ndarray | None = None
+
+
+#: A row rests mostly on the master curve's extrapolation when more than this share of its predicted hysteresis
+#: comes from reduced frequencies beyond the curve's data.
+MOSTLY_EXTRAPOLATED = 0.5
+
+
+def mostly_extrapolated(share) -> np.ndarray:
+    """Indices of the rows that rest mostly on the master curve's extrapolation (``share`` per row, as
+    :attr:`Prediction.modulus_extrapolated_share`; empty when it is None)."""
+    if share is None:
+        return np.empty(0, dtype=int)
+    return np.flatnonzero(np.asarray(share, dtype=float) > MOSTLY_EXTRAPOLATED)
 
 
 def predict(model, measurements: Measurements, contact=None) -> Prediction:

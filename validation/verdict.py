@@ -39,6 +39,7 @@ import numpy as np
 from frictioncite import doi
 
 from .candidates import KASS_RAFTERY_1995, SIGNIFICANCE_RULE
+from .predict import mostly_extrapolated
 
 __all__ = ["Verdict", "decide", "explain", "VERDICTS", "CLOSE_CALL", "PARTLY_SHARE", "misfit_share"]
 
@@ -298,10 +299,8 @@ def extrapolation_caution(m, residual, share) -> str:
     curve beyond its measured frequencies (``share`` per row, None when not known): how many, and which part of
     the baseline's misfit (sum of squared residuals) they carry. A misfit there may come from the modulus, which
     no candidate effect changes; "" when no row does."""
-    if share is None:
-        return ""
-    over = np.asarray(share, dtype=float) > 0.5
-    k = int(np.sum(over))
+    over = mostly_extrapolated(share)
+    k = int(over.size)
     if k == 0:
         return ""
     r2 = np.asarray(residual, dtype=float) ** 2

@@ -35,6 +35,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InputError, PhysicsWarning
+from ..notes import share_span
 
 __all__ = ["RULES", "TREND_FLOOR", "SHARE_WARNING", "check_rule", "rule_name", "extrapolated_factors",
            "extrapolated_share", "report", "StrainExtrapolationSpread", "strain_extrapolation_spread"]
@@ -151,7 +152,7 @@ def report(effect, result, slope):
     notes = result.notes
     top = float(np.max(share)) if share.size else 0.0
     if top >= _SHARE_NOTE:
-        rng = f"{top:.0%}" if share.size == 1 or np.ptp(share) < 0.005 else f"{np.min(share):.0%}-{top:.0%}"
+        rng = share_span(share)
         how = {"hold": "held at their values there", "log_trend": "continued along the measured trend in log strain",
                "table": "taken from the user's table"}[rule_name(effect.extrapolation)]
         msg = (f"strain softening: {rng} of mu_hysteresis comes from length scales whose local strain (up to "

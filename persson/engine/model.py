@@ -36,7 +36,7 @@ from ..effects.base import Effect
 from ..errors import AccuracyWarning, ConvergenceWarning, InputError, PhysicsWarning
 from .grid import GridSettings
 from .quadrature import separation_moments as _separation_moments
-from ..notes import Note
+from ..notes import Note, share_span
 from .results import FrictionResult
 
 __all__ = ["Model"]
@@ -425,7 +425,7 @@ def _outside_modulus_note(material, share) -> str | None:
     top = float(np.max(share)) if np.size(share) else 0.0
     if top < _MODULUS_SHARE_NOTE:
         return None
-    rng = f"{top:.0%}" if np.size(share) == 1 or np.ptp(share) < 0.005 else f"{float(np.min(share)):.0%}-{top:.0%}"
+    rng = share_span(share)
     lo, hi = material.frequency_range
     T_ref = getattr(material, "T_ref", None)
     at = f" at T_ref = {float(T_ref):g} C" if isinstance(T_ref, (int, float)) else ""
