@@ -142,3 +142,34 @@ def test_a_diagnosis_cautions_when_the_misfit_sits_where_the_modulus_is_extrapol
     assert f"Compound data: {k} of {v.size} rows rest for more than half" in dx.explanation
     assert "rather than an effect of the list" in dx.explanation
     assert dx.as_dict()["baseline"]["rows_mostly_extrapolated"] == k
+
+
+def test_rows_predicted_with_patch_heating_carry_the_share_at_their_sliding_point():
+    """A wheel on the road with patch heating: each slip row's share is the engine's at the row's sliding point
+    (s V, T0, sigma0) before the patch heats it, as for sliding rows; the heated patch lowers the rubber's reduced
+    frequencies, so the share beyond the top of the data is at most that."""
+    import validation
+    from persson import effects as fx
+    from persson.slip import Contact
+
+    m = master(1e-1, 1e3)
+    slips = np.array([0.02, 0.1, 0.3, 1.0, 0.05, 1.0])
+    V = np.array([10.0, 10.0, 10.0, 10.0, 0.1, 0.1])
+    rows = validation.Measurements.from_arrays(slip=slips, speed=V, temperature=np.full(6, 20.0),
+                                               pressure=np.full(6, 0.3e6), mu=np.full(6, 0.5))
+    grid = persson.GridSettings(q_per_decade=12)
+    heating = fx.PatchHeating(points_per_decade=2, n_pressure=3, temperature_points_per_decade=2)
+    model = persson.Model(ROAD, m, effects=[heating], grid=grid)
+    contact = Contact(length=0.05, width=0.03, stiffness=2e8)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        cmp = validation.compare(model, rows, contact)
+        direct = persson.Model(ROAD, m, grid=grid).friction(slips * V, temperature=20.0, pressure=0.3e6)
+    share = cmp.rows_table()["modulus_extrapolated_share"]
+    np.testing.assert_allclose(share, direct.modulus_extrapolated_share, rtol=1e-12)
+    assert share[3] > 0.5 > share[5]                      # 10 m/s sliding rests on the extrapolation, 0.1 m/s not
+    assert 3 in cmp.rows_mostly_extrapolated()
+    # a fit's predictions do not pay for it
+    from validation.predict import Predictor
+
+    assert Predictor(rows, contact).predict(model).modulus_extrapolated_share is None

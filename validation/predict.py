@@ -47,9 +47,10 @@ class Prediction:
     modulus_extrapolated_share : ndarray or None
         Per row, the share of the hysteresis friction at its sliding point (v_s, T0, sigma0) that comes from
         reduced frequencies outside the compound's measured master curve
-        (``persson.FrictionResult.modulus_extrapolated_share``); None when the compound has no measured range,
-        when some rows go through patch heating (whose tables do not keep it), and in a fit's predictions
-        (:meth:`Predictor.predict` without ``full``).
+        (``persson.FrictionResult.modulus_extrapolated_share``); on rows predicted with patch heating, at the
+        sliding point before the patch heats the rubber (the heated patch lowers the reduced frequencies, so the
+        share beyond the top of the data is at most this one). None when the compound has no measured range and
+        in a fit's predictions (:meth:`Predictor.predict` without ``full``).
     """
 
     mu: np.ndarray
@@ -178,9 +179,9 @@ class Predictor:
         # predictions read the friction (and, in full, the share of it from the master curve's extrapolation): the
         # contact geometry of each result would cost a fifth of a solve
         with reuse_solutions(self._solutions), friction_only(share=full):
-            return self._predict(model)
+            return self._predict(model, full)
 
-    def _predict(self, model) -> Prediction:
+    def _predict(self, model, full: bool = False) -> Prediction:
         m = self.measurements
         mu = np.empty(m.n)
         mu_loc = np.empty(m.n)
@@ -205,7 +206,11 @@ class Predictor:
                 mu_loc[g.idx] = sol.mu_local
                 notes.update(dict.fromkeys(sol.notes))
                 converged = converged and bool(sol.converged)
-                shared = False
+                at = self._patch_share(mg, g) if full and shared else None
+                if at is None:
+                    shared = False
+                else:
+                    share[g.idx] = at
                 continue
             with warnings.catch_warnings(record=True) as caught:
                 warnings.simplefilter("always")
@@ -253,6 +258,20 @@ class Predictor:
         if not np.all(np.isfinite(sol.mu)):
             raise InputError("model: non-finite friction along the contact patch")
         return sol
+
+    def _patch_share(self, model, g) -> np.ndarray | None:
+        """The extrapolated share of the rows of a patch-heating group, at their sliding points (v_s, T0, sigma0)
+        before the patch heats them (one engine call without the patch heating; None when the compound has no
+        measured range). The patch's tables keep the friction only; a heated patch takes the rubber to lower
+        reduced frequencies, so the share beyond the top of the data is at most this one."""
+        engine = model.without("patch_heating")
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # the engine's warnings are the patch solution's already
+            r = engine.friction(g.points[:, 0], temperature=g.points[:, 1], pressure=g.points[:, 2])
+        self.n_calls += 1
+        if r.modulus_extrapolated_share is None:
+            return None
+        return np.atleast_1d(np.asarray(r.modulus_extrapolated_share, dtype=float))[g.inverse]
 
     def _brush(self, sw, speeds, mu_s, slip, V):
         """mu(slip, V) of the brush model for the rows of one (T, p) slip sweep, from precomputed mu(v_s)."""
