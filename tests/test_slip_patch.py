@@ -16,6 +16,7 @@ Independent references used here:
 """
 
 import math
+import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -291,6 +292,46 @@ def test_one_table_per_call_and_reuse_while_only_the_contact_changes():
         calls = tab.calls
         fresh = ps.predict_slip(other, s2.ravel(), V2.ravel(), contact=c, cache={})
         assert np.allclose(mu, fresh, atol=1e-3)
+
+
+def test_a_kept_table_gives_the_notes_of_the_nodes_a_solution_uses_not_of_its_history():
+    """A table that a hotter patch has grown keeps its hot nodes; a cooler solution read from it must carry the
+    notes and the convergence of the nodes it interpolates only, as a fresh table would, not those the hot nodes
+    brought (a result never depends on which calls came before)."""
+
+    class Noted(ClosedForm):
+        def friction(self, speed, temperature=20.0, pressure=0.3e6):
+            from types import SimpleNamespace
+
+            r = super().friction(speed, temperature, pressure)
+            hot = bool(np.any(np.asarray(temperature, float) > 60.0))
+            if hot:
+                warnings.warn("rubber above 60 C", persson.AccuracyWarning)
+            return SimpleNamespace(mu=r.mu, notes=("rubber above 60 C",) if hot else ("a note of every call",),
+                                   converged=not hot)
+
+    model = Noted(lambda v, p, T: 0.9 * (1 - 0.003 * (T - T0)) + 0 * v)
+    c = ps.Contact(L, W, K)
+    s, V = np.full(6, 0.5), np.geomspace(0.3, 3.0, 6)
+    mild = PatchHeating(counter_effusivity=5.0e4, rubber_effusivity=E_R)
+    strong = PatchHeating(counter_effusivity=60.0, rubber_effusivity=E_R)
+    with warnings.catch_warnings(record=True) as fresh_warned:
+        warnings.simplefilter("always")
+        fresh = patch_friction(model, mild, c, s, V, T0, SIGMA0, tables={})
+    assert fresh.converged and fresh.notes == ("a note of every call",) and not fresh_warned
+    cache = {}
+    patch_friction(model, mild, c, s, V, T0, SIGMA0, tables=cache)
+    with warnings.catch_warnings(record=True) as hot_warned:
+        warnings.simplefilter("always")
+        hot = patch_friction(model, strong, c, s, V, T0, SIGMA0, tables=cache)
+    assert float(np.max(hot.max_rise)) > 60.0 - T0
+    assert not hot.converged and "rubber above 60 C" in hot.notes and hot_warned
+    with warnings.catch_warnings(record=True) as again_warned:
+        warnings.simplefilter("always")
+        again = patch_friction(model, mild, c, s, V, T0, SIGMA0, tables=cache)
+    assert again.engine_calls == 0                                      # read from the grown table
+    np.testing.assert_allclose(again.mu, fresh.mu, rtol=1e-12)
+    assert again.converged and again.notes == fresh.notes and not again_warned
 
 
 def test_one_table_serves_every_adhesive_shear_stress():

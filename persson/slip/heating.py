@@ -274,7 +274,9 @@ def patch_friction(model, heating: PatchHeating, contact, slip, speed, temperatu
         on it, so the table keeps that term apart (a fit of the baseline's adhesion with patch heating builds one
         table; a new one only when the friction at either value would pass 3 or fall below 1e-3, where the
         engine's notes depend on its level). It holds references to the model it was built with, so identities
-        stay valid while it lives.
+        stay valid while it lives. A solution's notes, warnings and convergence are those of the engine calls
+        that evaluated the table nodes it interpolates, so a table grown by a hotter patch does not pass its hot
+        nodes' notes to a cooler solution.
 
     Returns
     -------
@@ -385,8 +387,10 @@ def patch_friction(model, heating: PatchHeating, contact, slip, speed, temperatu
         if not over.any():
             break
         tab.extend(over, np.array([float(np.max(umax[sweep == c])) for c in range(keys.shape[0])]))
-    notes = list(tab.notes)
-    converged = tab.converged
+    # what the engine said at the nodes this solution interpolates (not at nodes a hotter solution added before)
+    rise_top = np.array([float(np.max(rise[sweep == c])) for c in range(keys.shape[0])])
+    fill_notes, fill_warned, converged = tab.outcome(rise_top)
+    notes = list(fill_notes)
     if over.any():
         converged = False
         notes.append(Note(f"patch_heating: the friction table did not reach the patch temperature at "
@@ -397,14 +401,14 @@ def patch_friction(model, heating: PatchHeating, contact, slip, speed, temperatu
                           f"at {len(hot)} condition(s); evaluated at the cap", "accuracy"))
     # the rubber's temperatures beyond the shift law's fitted range, over the table nodes this solution
     # interpolates (background, patch and flash temperatures): the same note whatever the table's history
-    t_lo, t_hi = tab.rubber_range(np.array([float(np.max(rise[sweep == c])) for c in range(keys.shape[0])]))
+    t_lo, t_hi = tab.rubber_range(rise_top)
     shift_note = extrapolated_shift_note(material, t_lo, t_hi) if material is not None else None
     if shift_note is not None:
         notes.append(Note(shift_note, "extrapolated"))
     mu_loc = tab.mu_at_sigma0(vs, sweep)
     # the engine's warnings, recorded while the table was filled, reach the caller as warnings (once each) as
     # well as in the notes
-    for category, message in tab.warned:
+    for category, message in fill_warned:
         warnings.warn(message, category, stacklevel=2)
     if shift_note is not None and warn_shift_range:
         warnings.warn(shift_note, PhysicsWarning, stacklevel=2)

@@ -55,11 +55,11 @@ class _Tables:
         self.cap = float(heating.max_rise)
         self.points = 0
         self.calls = 0
-        self.converged = True
-        self.notes: list[str] = []
-        # (category, message) of every warning the engine raised while filling the table, in order, once each:
-        # patch_friction issues them again to its caller (they are recorded here so that the notes keep them)
-        self.warned: dict[tuple, None] = {}
+        # What each engine call that filled nodes said: its notes, the (category, message) of the warnings it
+        # raised (patch_friction issues them again to its caller) and whether it converged. Every node keeps the
+        # index of its call (``fill_of``), and a solution reads the outcome of the calls whose nodes it interpolates
+        # (:meth:`outcome`): a table grown by a hotter patch does not lend its hot nodes' notes to a cooler one.
+        self.fills: list[tuple[tuple, tuple, bool]] = []
         # The engine's note that the rubber left the shift law's fitted range depends on the temperatures of the
         # call that raised it; a table that a hotter solution has grown keeps its nodes, so that note would follow
         # the table's history. It is left out here, and every node keeps the coldest and hottest rubber
@@ -84,12 +84,14 @@ class _Tables:
             V_.append(a.ravel())
             G_.append(b.ravel() * self.sig0[c])
         T_ = [np.full(int(voff[c + 1] - voff[c]) * ng, self.T0[c]) for c in range(nc)]
-        mu, parts, (t_lo, t_hi) = self._call(np.concatenate(V_), np.concatenate(T_), np.concatenate(G_))
+        mu, parts, (t_lo, t_hi), call = self._call(np.concatenate(V_), np.concatenate(T_), np.concatenate(G_))
         # blocks[c]: (n_v of sweep c, n_g, capacity) friction values; nus[c]: nodes filled at each speed node;
-        # t_lo[c], t_hi[c] (same shape): the coldest and hottest rubber temperature of each node's evaluation, C
+        # t_lo[c], t_hi[c] (same shape): the coldest and hottest rubber temperature of each node's evaluation, C;
+        # fill_of[c] (same shape): the index in ``fills`` of the engine call that evaluated the node
         self.blocks = [mu.reshape(-1, ng)[voff[c]:voff[c + 1], :, None].copy() for c in range(nc)]
         self.t_lo = [t_lo.reshape(-1, ng)[voff[c]:voff[c + 1], :, None].copy() for c in range(nc)]
         self.t_hi = [t_hi.reshape(-1, ng)[voff[c]:voff[c + 1], :, None].copy() for c in range(nc)]
+        self.fill_of = [np.full(b.shape, call, dtype=float) for b in self.blocks]
         self.parts = None
         if parts is not None:
             self.parts = [[a.reshape(-1, ng)[voff[c]:voff[c + 1], :, None].copy() for c in range(nc)] for a in parts]
@@ -155,6 +157,7 @@ class _Tables:
                 self.blocks[c] = _widened(blk, max(int(n_new.max()), 2 * blk.shape[2]))
                 self.t_lo[c] = _widened(self.t_lo[c], self.blocks[c].shape[2])
                 self.t_hi[c] = _widened(self.t_hi[c], self.blocks[c].shape[2])
+                self.fill_of[c] = _widened(self.fill_of[c], self.blocks[c].shape[2])
                 for part in self.parts or ():
                     part[c] = _widened(part[c], self.blocks[c].shape[2])
             for i in grow:
@@ -168,13 +171,14 @@ class _Tables:
             self.nus[c] = n_new
         if not where:
             return
-        mu, parts, (t_lo, t_hi) = self._call(np.concatenate(V_), np.concatenate(T_), np.concatenate(P_))
+        mu, parts, (t_lo, t_hi), call = self._call(np.concatenate(V_), np.concatenate(T_), np.concatenate(P_))
         k = 0
         for c, i, n0, n1 in where:
             m = ng * (n1 - n0)
             self.blocks[c][i, :, n0:n1] = mu[k:k + m].reshape(ng, n1 - n0)
             self.t_lo[c][i, :, n0:n1] = t_lo[k:k + m].reshape(ng, n1 - n0)
             self.t_hi[c][i, :, n0:n1] = t_hi[k:k + m].reshape(ng, n1 - n0)
+            self.fill_of[c][i, :, n0:n1] = call
             for part, values in zip(self.parts or (), parts or ()):
                 part[c][i, :, n0:n1] = values[k:k + m].reshape(ng, n1 - n0)
             k += m
@@ -225,26 +229,26 @@ class _Tables:
 
     def _call(self, v, T, p):
         """The engine's friction at the points (v, T, p); with an adhesion scale its (rest, unit) parts (None
-        otherwise); and the coldest and hottest rubber temperature at each point (background and flash), C."""
+        otherwise); the coldest and hottest rubber temperature at each point (background and flash), C; and the
+        index of the call's outcome in ``fills``."""
         from .._checks import UnitWarning
 
         with self._warnings.catch_warnings(record=True) as caught:
             self._warnings.simplefilter("always")
             r = self.model.friction(v, temperature=T, pressure=p)
-        r_notes = tuple(getattr(r, "notes", ()) or ())
-        for note in r_notes:
-            if note not in self.notes and SHIFT_RANGE_NOTE not in note:
-                self.notes.append(note)
+        notes = [note for note in tuple(getattr(r, "notes", ()) or ()) if SHIFT_RANGE_NOTE not in note]
+        warned: dict[tuple, None] = {}
         for w in caught:
             if issubclass(w.category, UnitWarning):
                 continue  # the table's temperatures are degrees Celsius by construction
             msg = str(w.message)
             if SHIFT_RANGE_NOTE in msg:
                 continue  # noted from the nodes a solution uses (rubber_range)
-            self.warned[(w.category, msg)] = None
-            if msg not in self.notes:  # the engine's warnings are among its notes already: once each
-                self.notes.append(Note(msg, kind_of_warning(w.category)))
-        self.converged = self.converged and bool(getattr(r, "converged", True))
+            warned[(w.category, msg)] = None
+            if msg not in notes:  # the engine's warnings are among its notes already: once each
+                notes.append(Note(msg, kind_of_warning(w.category)))
+        self.fills.append((tuple(dict.fromkeys(notes)), tuple(warned), bool(getattr(r, "converged", True))))
+        call = len(self.fills) - 1
         self.points += v.size
         self.calls += 1
         mu = np.atleast_1d(np.asarray(r.mu, dtype=float))
@@ -257,7 +261,7 @@ class _Tables:
                              f"p = {p[j]:g} Pa; expected a finite value >= 0")
         trange = _rubber_range(r, T)
         if not self.rescalable:
-            return mu, None, trange
+            return mu, None, trange, call
         terms = getattr(r, "mu_terms", None) or {}
         adh = np.atleast_1d(np.asarray(terms.get("adhesion", np.full_like(mu, np.nan)), dtype=float))
         rest, unit = mu - adh, adh / self.scale
@@ -267,22 +271,43 @@ class _Tables:
                 or not _level_note_free(mu)):
             self.rescalable = False
             self.parts = None
-            return mu, None, trange
-        return mu, (rest, unit), trange
+            return mu, None, trange, call
+        return mu, (rest, unit), trange, call
 
     def rubber_range(self, rise_top) -> tuple[float, float]:
-        """The coldest and hottest rubber temperature (C) over the nodes a solution interpolates: for each sweep c,
-        every speed and pressure node, and the temperature nodes up to the four-point stencil around the
-        hottest background temperature T0 + ``rise_top[c]`` of its rows. A function of the solution and of the
-        lattice only (the same whichever calls filled the table)."""
+        """The coldest and hottest rubber temperature (C) over the nodes a solution interpolates (:meth:`_used`).
+        A function of the solution and of the lattice only (the same whichever calls filled the table)."""
         lo, hi = math.inf, -math.inf
-        for c in range(self.B.size):
-            top = float(np.floor(self.y_of(c, self.T0[c] + max(float(rise_top[c]), 0.0)) / self.hy + 1e-9)) + 3
-            n = np.minimum(self.nus[c], int(max(top, 1)))
-            used = np.arange(self.t_lo[c].shape[2])[None, :] < n[:, None]        # (n_v, capacity)
+        for c, used in enumerate(self._used(rise_top)):
             lo = min(lo, float(np.min(self.t_lo[c].transpose(0, 2, 1)[used])))
             hi = max(hi, float(np.max(self.t_hi[c].transpose(0, 2, 1)[used])))
         return lo, hi
+
+    def outcome(self, rise_top) -> tuple[tuple, tuple, bool]:
+        """(notes, warnings as (category, message), converged) of the engine calls that evaluated the nodes a
+        solution interpolates (:meth:`_used`), in the order of the calls, each once: what a table filled for that
+        solution alone would say, whichever hotter solutions grew it before."""
+        calls = set()
+        for c, used in enumerate(self._used(rise_top)):
+            calls.update(int(k) for k in np.unique(self.fill_of[c].transpose(0, 2, 1)[used]))
+        notes: dict = {}
+        warned: dict = {}
+        converged = True
+        for k in sorted(calls):
+            f_notes, f_warned, f_converged = self.fills[k]
+            notes.update(dict.fromkeys(f_notes))
+            warned.update(dict.fromkeys(f_warned))
+            converged = converged and f_converged
+        return tuple(notes), tuple(warned), converged
+
+    def _used(self, rise_top):
+        """For each sweep c, the (n_v, capacity) mask of the temperature nodes a solution interpolates: at every
+        speed and pressure node, those up to the four-point stencil around the hottest background temperature
+        T0 + ``rise_top[c]`` of its rows."""
+        for c in range(self.B.size):
+            top = float(np.floor(self.y_of(c, self.T0[c] + max(float(rise_top[c]), 0.0)) / self.hy + 1e-9)) + 3
+            n = np.minimum(self.nus[c], int(max(top, 1)))
+            yield np.arange(self.t_lo[c].shape[2])[None, :] < n[:, None]
 
     def args(self) -> FrictionLattice:
         """The friction lattice, as the kernels take it."""
