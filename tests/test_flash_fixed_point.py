@@ -118,3 +118,39 @@ def test_the_example_tread_at_minus_40_C_converges_with_the_default_settings():
     assert float(r.max_flash_temperature[0]) > 150.0
     assert abs(float(r.mu[0]) / float(fine.mu[0]) - 1.0) < 1e-3
     assert float(r.error_estimate[0]) < 1e-3
+
+
+def test_an_unconverged_speed_reports_the_residual_of_the_profile_it_returns(monkeypatch):
+    """Stopped by its iteration limit, a speed's reported residual is max |g(T) - T| of the temperature profile T it
+    returns (not of the iterate before the last step): one application of the map g to that profile, by the solver's
+    own kernel started there with a tolerance it meets at once, gives the same number."""
+    import warnings
+
+    import materials
+    import persson
+    import surfaces
+    from persson.engine import solver
+
+    calls = []
+    flash = solver._flash
+
+    def recording(prep, *args, **kwargs):
+        out = flash(prep, *args, **kwargs)
+        calls.append((prep, args))
+        return out
+
+    monkeypatch.setattr(solver, "_flash", recording)
+    model = persson.Model(surfaces.example_road(), materials.example_tread(),
+                          effects=[persson.effects.FlashTemperature(max_iter=2)],
+                          grid=persson.GridSettings(q_per_decade=12, max_refinement=0))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        r = model.friction([0.3, 3.0], temperature=20.0, pressure=0.3e6)
+    assert not r.converged
+    prep, (q_m, a_t0, D, heat_factor, tol, max_iter) = calls[0]    # the solve itself (then its error estimate)
+    T_q = np.asarray(r.temperature_q, dtype=float)
+    assert T_q.shape == (2, prep.q.size)
+    _, g_of_T, _, res = flash(prep, q_m, a_t0, D, heat_factor, 1e300, 1, T_start=T_q)
+    np.testing.assert_allclose(res, np.max(np.abs(g_of_T - T_q), axis=1), rtol=1e-12)
+    np.testing.assert_allclose(r.residual, res, rtol=1e-9)
+    assert np.all(r.residual >= tol)

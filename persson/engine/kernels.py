@@ -912,7 +912,9 @@ def _flash_speed(iv, nodes, rule, speeds, angular, shape, law, temperature, heat
     it_out : ndarray of int64 (n_speed,)
         Element iv is filled with the iterations used.
     res_out : ndarray (n_speed,)
-        Element iv is filled with the last max |T_new - T|, K.
+        Element iv is filled with max |g(T) - T|, K: at convergence that of the last iterate (the profile
+        returned is g of it); otherwise that of the profile returned itself (one more evaluation of the map, no
+        step taken), so that the residual reported with an unconverged speed belongs to its profile.
     """
     nq = nodes.q.shape[0]
     max_iter = iteration.max_iter
@@ -961,6 +963,14 @@ def _flash_speed(iv, nodes, rule, speeds, angular, shape, law, temperature, heat
     for i in range(nq):
         T_out[iv, i] = T[i]
     integrands_at(iv, T, nodes, rule, speeds, angular, shape, temperature, factors, K, out)
+    if not res < iteration.tol:
+        # the loop's last residual belongs to the profile before its last step: the one returned gets its own
+        G = out.G[iv]
+        P_m = area(_at_G(G, nodes.x, heat.x_m), law)
+        source = speeds.v[iv] * heat.heat_factor[iv] / P_m
+        for k in range(nq - 1):
+            first[k], weights[k, 0], weights[k, 1], weights[k, 2] = interval_node_weights(G, K, k, rule, law, 1)
+        res = heated_temperature(T, T0, source, H, out.ratio[iv], first, weights, T_new)
     contact_and_friction(iv, nodes, rule, law, K, out)
     out.mu[iv] = out.cum[iv, nq - 1]
     it_out[iv] = it

@@ -87,7 +87,8 @@ class FrictionResult:
     converged : bool
         Whether every self-consistent iteration converged (always True without flash temperature).
     iterations, residual : ndarray (n_speed,)
-        Iterations and final max |Delta T| (K) of the flash-temperature iteration per speed.
+        Iterations of the flash-temperature iteration per speed, and its residual max |g(T) - T| over the scales
+        (K; g the heat balance's map): below the tolerance where it converged, else that of the profile returned.
     notes : tuple of str
         Facts a reader must know (e.g. "PSD tail extrapolated past q_r").
     citations : tuple of str
