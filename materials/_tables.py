@@ -40,6 +40,7 @@ class RawTable:
 
     @property
     def n_columns(self) -> int:
+        """Number of columns of ``data``."""
         return self.data.shape[1]
 
     def label(self, j: int) -> str:

@@ -185,6 +185,7 @@ class CausalityCheck:
 
     @property
     def ok(self) -> bool:
+        """Whether no node violates the check."""
         return not bool(self.violated.any())
 
     def message(self, source: str = "") -> str:

@@ -320,10 +320,12 @@ class TemperatureShift:
 
     @property
     def kind(self) -> str:
+        """``"wlf"`` for WLF alone, ``"wlf+arrhenius"`` with an Arrhenius branch (below T_g or above T_upper)."""
         return "wlf" if self.arrhenius is None and self.upper is None else "wlf+arrhenius"
 
     @property
     def T_ref(self) -> float:
+        """Reference temperature, deg C: ``T_ref_C``, default the WLF law's."""
         return self.wlf.T_ref if self.T_ref_C is None else float(self.T_ref_C)
 
     @property
@@ -615,14 +617,17 @@ class WLFFit:
 
     @property
     def C1(self) -> float:
+        """WLF constant C1 of the fitted law."""
         return self.wlf.C1
 
     @property
     def C2(self) -> float:
+        """WLF constant C2 of the fitted law, K."""
         return self.wlf.C2
 
     @property
     def T_ref(self) -> float:
+        """Reference temperature of the fitted law, deg C."""
         return self.wlf.T_ref
 
     def __repr__(self) -> str:

@@ -64,6 +64,7 @@ class ReducedData:
 
     @property
     def f_Hz(self) -> np.ndarray:
+        """Reduced frequency omega a_T / (2 pi), Hz."""
         return self.omega / (2.0 * np.pi)
 
     def __repr__(self) -> str:
@@ -386,6 +387,27 @@ class TabulatedModulus:
 
     @classmethod
     def from_material(cls, material, omega_min=1e-10, omega_max=1e22, per_decade=50) -> "TabulatedModulus":
+        """Tabulate the reference modulus of ``material`` on a logarithmic grid of angular frequency.
+
+        Parameters
+        ----------
+        material : object
+            Anything with ``E_reference(omega)``, ``thermal``, ``T_ref`` and ``log10_aT(T)`` (e.g. a
+            :class:`MasterCurve`).
+        omega_min, omega_max : float
+            Ends of the grid, rad/s.
+        per_decade : int
+            Grid points per decade (at least 2).
+
+        Returns
+        -------
+        TabulatedModulus
+
+        Raises
+        ------
+        InputError
+            An invalid grid, or a non-positive E' or E'' of the material on it.
+        """
         if not (0 < omega_min < omega_max and per_decade >= 2):
             raise InputError("tabulated: expected 0 < omega_min < omega_max and per_decade >= 2")
         x = np.linspace(math.log10(omega_min), math.log10(omega_max),
@@ -397,16 +419,21 @@ class TabulatedModulus:
 
     @property
     def thermal(self):
+        """Thermal properties of the tabulated material."""
         return self.source.thermal
 
     @property
     def T_ref(self):
+        """Reference temperature of the tabulated material, deg C."""
         return self.source.T_ref
 
     def log10_aT(self, T):
+        """log10 of the horizontal shift factor at ``T`` (deg C), from the tabulated material."""
         return self.source.log10_aT(T)
 
     def E_reference(self, omega):
+        """Complex modulus at T_ref, Pa: interpolated on the grid, the tabulated material's own outside it (and at
+        omega = 0); Im E is odd in omega."""
         omega = np.asarray(omega, dtype=float)
         aw = np.abs(omega)
         with np.errstate(divide="ignore"):

@@ -301,11 +301,13 @@ class SingleTemperature:
         return out if out.ndim else 0.0
 
     def with_T_ref(self, T_ref: float) -> "SingleTemperature":
+        """Itself when ``T_ref`` is its temperature (within ``tol``); :class:`InputError` at any other."""
         if abs(float(T_ref) - self.T_ref) > self.tol:
             raise InputError(f"T_ref: a master curve known at {self.T_ref:g} C only cannot be referred to {T_ref} C")
         return self
 
     def describe(self) -> str:
+        """One line: the only temperature at which the master curve is usable (no shift law)."""
         return f"single temperature: usable at T = {self.T_ref:g} C only (no shift law)"
 
 

@@ -83,6 +83,7 @@ class ShiftLawScore:
 
     @property
     def available(self) -> bool:
+        """Whether the law was fitted (``law`` set, ``misfit`` finite)."""
         return self.law is not None and math.isfinite(self.misfit)
 
     def __repr__(self) -> str:

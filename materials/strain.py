@@ -155,6 +155,7 @@ class StrainSoftened:
 
     @property
     def thermal(self):
+        """Thermal properties of the wrapped material."""
         return self.material.thermal
 
     @property
@@ -165,20 +166,24 @@ class StrainSoftened:
 
     @property
     def log10_aT(self):
+        """The wrapped material's ``log10_aT`` (AttributeError when it has none)."""
         # a property, so that hasattr() reflects the wrapped material
         return self.material.log10_aT
 
     @property
     def log10_bT(self):
+        """The wrapped material's ``log10_bT``, its vertical shift (AttributeError when it has none)."""
         # vertical shift of the wrapped material (AttributeError, i.e. none, when it has none)
         return self.material.log10_bT
 
     @property
     def T_ref(self):
+        """Reference temperature of the wrapped material, deg C."""
         return self.material.T_ref
 
     @property
     def wlf(self):
+        """The WLF law of the wrapped material (its ``wlf``)."""
         return self.material.wlf
 
 
@@ -478,6 +483,7 @@ class StrainFactors:
 
     @property
     def strain_range(self) -> tuple[float, float]:
+        """Smallest and largest strain amplitude of the grid (absolute)."""
         return float(self.strain[0]), float(self.strain[-1])
 
     @property

@@ -80,10 +80,12 @@ class StatusLine:
 
     @property
     def stream(self):
+        """The stream written to: the one given, else ``sys.stderr`` at the time of the call."""
         return self._stream if self._stream is not None else sys.stderr
 
     @property
     def tty(self) -> bool:
+        """Whether :attr:`stream` is a terminal (its ``isatty()``; False when it has none)."""
         return bool(getattr(self.stream, "isatty", lambda: False)())
 
     # ----------------------------------------------------------------------------------------------------

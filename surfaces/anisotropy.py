@@ -356,10 +356,12 @@ class Reshaped(AnisotropicPSD):
 
     @property
     def q_range(self) -> tuple[float, float]:
+        """Support (q_start, q_end), rad/m: that of ``radial``."""
         return tuple(float(x) for x in self.radial.q_range)
 
     @property
     def source(self) -> str:
+        """Origin, for messages and reports: that of ``radial``, else that of ``shape``."""
         return getattr(self.radial, "source", "") or getattr(self.shape, "source", "")
 
     q_r = property(lambda self: getattr(self.radial, "q_r", None))
@@ -371,9 +373,12 @@ class Reshaped(AnisotropicPSD):
     angular_kinks = property(lambda self: bool(getattr(self.shape, "angular_kinks", True)))
 
     def C(self, q) -> np.ndarray:
+        """Angular mean at ``q`` (rad/m), m^4: the PSD of ``radial``."""
         return np.asarray(self.radial.C(q), dtype=float)
 
     def C_polar(self, q, phi) -> np.ndarray:
+        """``C(q, phi)``, m^4: the angular mean of ``radial`` times the angular shape of ``shape`` (``phi`` in radians
+        from the x axis; the shape held at the ends of its support beyond them)."""
         q, phi = np.broadcast_arrays(np.asarray(q, dtype=float), np.asarray(phi, dtype=float))
         lo, hi = (float(x) for x in self.shape.q_range)
         qc = np.clip(q, lo, hi)
@@ -382,9 +387,11 @@ class Reshaped(AnisotropicPSD):
         return self.C(q) * w
 
     def angular_shape(self, q, phi) -> np.ndarray:
+        """The angular shape of ``shape`` at ``q`` (rad/m) and ``phi`` (radians from the x axis)."""
         return self.shape.angular_shape(q, phi)
 
     def breakpoints(self) -> np.ndarray:
+        """Wavevectors (rad/m) where the angular mean may have a kink: those of ``radial`` (none when it has none)."""
         f = getattr(self.radial, "breakpoints", None)
         return np.asarray(f() if callable(f) else (), dtype=float)
 
@@ -440,6 +447,8 @@ class Stretched(AnisotropicPSD):
 
     @property
     def source(self) -> str:
+        """Origin, for messages and reports: the base's source (or type name), the stretch ratio and the ridge
+        direction."""
         return f"{getattr(self.base, 'source', '') or type(self.base).__name__} stretched {self.ratio:g}x along " \
                f"{self.angle_deg:g} deg"
 
@@ -450,6 +459,9 @@ class Stretched(AnisotropicPSD):
 
     @property
     def q_r(self):
+        """Reliability limit, rad/m: the base's ``q_r`` (None when it has none); for a base other than
+        :class:`SelfAffine` stretched by a ratio above 1, the end of its support divided by ``ratio`` (beyond it the
+        power-law continuation of the base enters the PSD) when that is smaller or the base has no ``q_r``."""
         qr = getattr(self.base, "q_r", None)
         if self._ext.table_end is None or self.ratio == 1.0:
             return qr
@@ -458,20 +470,25 @@ class Stretched(AnisotropicPSD):
 
     @property
     def extrapolated(self) -> bool:
+        """Whether part of the PSD is an extrapolation: the base's flag, or True for a base other than
+        :class:`SelfAffine` stretched by a ratio above 1 (its power-law continuation past its support is used)."""
         return bool(getattr(self.base, "extrapolated", False)) or (self._ext.table_end is not None
                                                                    and self.ratio > 1.0)
 
     @property
     def qL(self):
+        """The base's ``qL``, rad/m (None when it has none)."""
         return getattr(self.base, "qL", None)
 
     @property
     def q_rolloff(self):
+        """Roll-off wavevector, rad/m: the base's ``q_rolloff``, else a :class:`SelfAffine` base's ``q0``, else None."""
         return getattr(self.base, "q_rolloff", None) or (self.base.q0 if isinstance(self.base, SelfAffine)
                                                          else None)
 
     @property
     def hurst(self):
+        """The base's Hurst exponent (None when it has none)."""
         return getattr(self.base, "hurst", None)
 
     @property
@@ -604,23 +621,28 @@ class Unidirectional(AnisotropicPSD):
 
     @property
     def q_range(self) -> tuple[float, float]:
+        """Support (q_start, q_end), rad/m: that of the 1-D PSD."""
         return tuple(float(x) for x in self.psd1d.q_range)
 
     @property
     def source(self) -> str:
+        """Origin, for messages and reports: the 1-D PSD's source (or type name) and the wavevectors' direction."""
         src = getattr(self.psd1d, "source", "") or type(self.psd1d).__name__
         return f"{src} (unidirectional, wavevectors along {self.angle_deg:g} deg)"
 
     @property
     def q_r(self):
+        """The 1-D PSD's reliability limit ``q_r``, rad/m (None when it has none)."""
         return getattr(self.psd1d, "q_r", None)
 
     @property
     def qL(self):
+        """The 1-D PSD's ``qL``, rad/m (None when it has none)."""
         return getattr(self.psd1d, "qL", None)
 
     @property
     def hurst(self):
+        """The 1-D PSD's Hurst exponent (None when it has none)."""
         return getattr(self.psd1d, "hurst", None)
 
     def C(self, q) -> np.ndarray:
@@ -636,13 +658,16 @@ class Unidirectional(AnisotropicPSD):
         return np.asarray(self.psd1d.C(np.asarray(q, dtype=float)), dtype=float)
 
     def C_polar(self, q, phi):
+        """Not defined in this limit (a delta along ``wave_angle_deg``): raises :class:`InputError`; use :meth:`C1D`."""
         raise InputError("a unidirectional PSD is a distribution in the angle (a delta along wave_angle_deg): it "
                          "has no pointwise C(q, phi); use C1D(q) and wave_angle_deg")
 
     def angular_shape(self, q, phi):
+        """Not defined in this limit (a delta along ``wave_angle_deg``): raises :class:`InputError`."""
         raise InputError("a unidirectional PSD has no pointwise angular shape (a delta along wave_angle_deg)")
 
     def breakpoints(self) -> np.ndarray:
+        """The wavevectors ``q`` of the 1-D PSD's table, rad/m (none when it has no ``q``)."""
         q = getattr(self.psd1d, "q", None)
         return np.empty(0) if q is None else np.asarray(q, dtype=float)
 

@@ -138,14 +138,17 @@ class PSD2D(AnisotropicPSD):
 
     @property
     def q_r(self):
+        """Reliability limit, rad/m: the ``q_r`` given, at most (and by default) the largest full circle of the grid."""
         return self.radial.q_r
 
     @property
     def qL(self):
+        """2 pi / L of the measurement, rad/m (None when not given)."""
         return self.radial.qL
 
     @property
     def q_rolloff(self):
+        """Roll-off wavevector of the angular mean, rad/m, when a plateau is seen (else None)."""
         return self.radial.q_rolloff
 
     #: The shape is smooth in angle (a Gaussian average, interpolated by cubics).

@@ -44,6 +44,14 @@ class Ambiguity:
     separations_in_range: tuple = ()
 
     def as_dict(self) -> dict:
+        """The cluster as a JSON-ready dict.
+
+        Returns
+        -------
+        dict
+            ``effects``, ``cosines``, ``separations`` and ``separations_in_measured_range`` (each a list of
+            :meth:`Separation.as_dict`).
+        """
         return {"effects": list(self.effects), "cosines": dict(self.cosines),
                 "separations": [s.as_dict() for s in self.separations],
                 "separations_in_measured_range": [s.as_dict() for s in self.separations_in_range]}
@@ -120,6 +128,8 @@ class Probe:
         self._mu: dict = {}
 
     def mu(self, model, contact):
+        """Predicted mu of ``model`` with ``contact`` on every probe row (computed once per model and contact, then
+        reused); None when the prediction fails."""
         key = (id(model), id(contact))
         if key not in self._mu:
             with warnings.catch_warnings():

@@ -225,6 +225,17 @@ class Candidate:
         return out
 
     def as_dict(self) -> dict:
+        """The candidate's entry of the ``persson diagnose --json`` ``candidates`` list.
+
+        Returns
+        -------
+        dict
+            ``effect``, ``rmse``, ``delta_bic``, ``significant``, ``parameters``, ``parameters_std``, ``intervals`` and
+            ``estimates`` (by parameter name), ``placeholders``, ``plausible``, ``issues``, ``lack_of_fit_p``,
+            ``remaining_pattern``, ``bic``, ``p_value``, ``test``, ``score_z``, ``score_p``, ``cosine``, ``explained``,
+            ``free``, ``baseline_parameters``, ``baseline_parameters_std``, ``n_params``, ``n_starts``,
+            ``n_good_starts``, ``status``, ``notes``, ``notes_detail``, ``identified`` and ``not_identified``.
+        """
         est = {e.name: e for e in self.estimates}
         return {"effect": self.effect, "rmse": self.rmse, "delta_bic": self.delta_bic,
                 "significant": bool(self.significant), "parameters": dict(self.parameters),
@@ -275,9 +286,11 @@ class FitSettings:
 
     @property
     def n(self) -> int:
+        """Number of measured rows."""
         return self.y.size
 
     def budget(self, k: int) -> int:
+        """Budget of model evaluations of a fit of ``k`` parameters: ``max_evals``, default ``40 + 25 k``."""
         return self.max_evals or 40 + 25 * k
 
 

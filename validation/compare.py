@@ -58,6 +58,13 @@ class GroupStat:
     z: float
 
     def as_dict(self) -> dict:
+        """The statistics as a JSON-ready dict.
+
+        Returns
+        -------
+        dict
+            ``factor``, ``group`` (the label), ``n``, ``measured``, ``predicted``, ``bias``, ``rmse`` and ``z``.
+        """
         return {"factor": self.factor, "group": self.label, "n": self.n, "measured": self.measured,
                 "predicted": self.predicted, "bias": self.bias, "rmse": self.rmse, "z": self.z}
 
@@ -119,10 +126,12 @@ class Comparison:
 
     @property
     def n(self) -> int:
+        """Number of measurement rows."""
         return self.measurements.n
 
     @property
     def effects(self) -> tuple[str, ...]:
+        """Names of the model's effects, in the model's order."""
         return tuple(self.model.effect_names)
 
     @property
@@ -246,6 +255,8 @@ class Comparison:
 
     @property
     def predictor(self) -> Predictor:
+        """The :class:`validation.predict.Predictor` of the measurements and the contact (built on first use, then
+        reused)."""
         p = self._predictor
         if p is None:
             p = Predictor(self.measurements, self.contact)

@@ -142,6 +142,17 @@ class Diagnosis:
         return self.candidate(self.verdict.effect) if self.verdict and self.verdict.effect else None
 
     def candidate(self, name: str) -> Candidate:
+        """The candidate of effect ``name``.
+
+        Returns
+        -------
+        Candidate
+
+        Raises
+        ------
+        InputError
+            No candidate has that name.
+        """
         for c in self.candidates:
             if c.effect == name:
                 return c
@@ -239,9 +250,18 @@ class Diagnosis:
         return txt
 
     def summary(self) -> str:
+        """The same as :meth:`text`."""
         return self.text()
 
     def figures(self) -> dict:
+        """Matplotlib figures (Agg) of the diagnosis.
+
+        Returns
+        -------
+        dict
+            ``"signatures"``: the baseline residual and the refitted changes of the top candidates; ``"residual_slip"``
+            (when slip rows exist): the residual against the slip ratio. Each value a ``matplotlib.figure.Figure``.
+        """
         from . import plots
 
         figs = {"signatures": plots.plot_signatures(self)}
@@ -345,9 +365,22 @@ class FitContext:
     s2: float
 
     def lack_of_fit(self, residual, k):
+        """The lack-of-fit test of ``residual`` (measured - predicted, per row), with ``k`` fitted parameters, against
+        the noise.
+
+        Returns
+        -------
+        validation.noise.LackOfFit
+        """
         return lack_of_fit(residual, k, self.noise)
 
     def pattern(self, residual):
+        """Systematic structure left in ``residual`` (measured - predicted, per row) beyond the noise.
+
+        Returns
+        -------
+        validation.noise.Pattern
+        """
         return remaining_pattern(residual, self.measurements, self.noise)
 
     def parameters(self, model, names) -> list[FreeParameter]:

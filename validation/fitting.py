@@ -64,12 +64,14 @@ class FreeParameter:
         return f"{self.effect}.{self.name}" if self.effect else self.name
 
     def to_u(self, x: float) -> float:
+        """The coordinate u in [0, 1] of the value ``x`` (clipped to the bounds; linear in log10 when ``log``)."""
         x = min(max(float(x), self.lo), self.hi)
         if self.log:
             return (math.log10(x) - math.log10(self.lo)) / (math.log10(self.hi) - math.log10(self.lo))
         return (x - self.lo) / (self.hi - self.lo)
 
     def from_u(self, u: float) -> float:
+        """The value at the coordinate ``u`` (clipped to [0, 1]; linear in log10 when ``log``), within the bounds."""
         u = min(max(float(u), 0.0), 1.0)
         if self.log:
             x = 10.0 ** (math.log10(self.lo) + u * (math.log10(self.hi) - math.log10(self.lo)))
@@ -92,6 +94,7 @@ class FreeParameter:
         return float(lo), float(hi)
 
     def is_physical_limit(self, x: float) -> bool:
+        """Whether ``x`` sits on one of the ``physical_limits`` (within 1e-9, relative for limits beyond 1 in size)."""
         return any(abs(float(x) - float(b)) <= 1e-9 * max(1.0, abs(float(b))) for b in self.physical_limits)
 
 
@@ -112,9 +115,11 @@ class ParameterSpace:
 
     @property
     def keys(self) -> tuple[str, ...]:
+        """Keys of the parameters (``"effect.name"``, ``"gamma"``, ``"contact.<name>"``), in order."""
         return tuple(p.key for p in self.params)
 
     def values_from_u(self, u) -> dict[str, float]:
+        """``key -> value`` of every parameter at the point ``u`` of the unit box (one coordinate per parameter)."""
         return {p.key: p.from_u(x) for p, x in zip(self.params, np.atleast_1d(u))}
 
     def apply(self, model, u):

@@ -121,6 +121,15 @@ class Step:
         return f"+ {self.added}"
 
     def as_dict(self) -> dict:
+        """The step as a JSON-ready dict.
+
+        Returns
+        -------
+        dict
+            ``step`` (the index), ``action``, ``added``, ``removed``, ``alternatives``, ``effects``, ``parameters``,
+            ``fitted``, ``rmse``, ``bic``, ``delta_bic``, ``lack_of_fit_p``, ``parameters_std`` and ``intervals`` (68 %,
+            by parameter key).
+        """
         return {"step": self.index, "action": self.action, "added": self.added, "removed": self.removed,
                 "alternatives": list(self.alternatives), "effects": list(self.effects),
                 "parameters": self.parameters, "fitted": list(self.fitted), "rmse": self.rmse, "bic": self.bic,
@@ -183,6 +192,7 @@ class Improvement:
 
     @property
     def diagnoses(self) -> tuple:
+        """The diagnosis of each step, in order (None for a step that was not diagnosed)."""
         return tuple(s.diagnosis for s in self.steps)
 
     @property
@@ -200,6 +210,8 @@ class Improvement:
                                covariance=s.covariance, band_note=band_note(s.covariance, s.fitted))
 
     def table_text(self) -> str:
+        """The verdict line, then one line per step (change, RMSE, delta BIC, lack-of-fit p, effects and fitted
+        parameters), why the loop stopped and, with a selection, its text."""
         noise = f"{self.noise:.3g} from {self.noise_source}" if math.isfinite(self.noise) else "unknown"
         lines = [f"verdict: {self.verdict} (noise {noise})"]
         if self.final is not None:
@@ -216,6 +228,16 @@ class Improvement:
         return "\n".join(lines)
 
     def as_dict(self) -> dict:
+        """The record as a JSON-ready dict (what :meth:`to_json` writes).
+
+        Returns
+        -------
+        dict
+            ``name``, ``verdict``, ``noise`` (None when unknown), ``noise_source``, ``added``, ``steps`` (each
+            :meth:`Step.as_dict`), ``stopped``, ``seconds`` and ``n_evaluations``; with a final verdict also
+            ``verdict_reason`` and ``verdict_detail`` (:meth:`validation.verdict.Verdict.as_dict`); with a selection the
+            keys of :meth:`validation.select.Selection.as_dict`.
+        """
         out = {"name": self.name, "verdict": self.verdict,
                "noise": self.noise if math.isfinite(self.noise) else None, "noise_source": self.noise_source,
                "added": list(self.added), "steps": [s.as_dict() for s in self.steps], "stopped": self.stopped,
@@ -237,6 +259,13 @@ class Improvement:
         return json_text(self.as_dict(), path, overwrite=overwrite)
 
     def figures(self) -> dict:
+        """Matplotlib figures (Agg) of the loop.
+
+        Returns
+        -------
+        dict
+            ``"steps"``: the RMSE after each step (a ``matplotlib.figure.Figure``).
+        """
         from . import plots
 
         return {"steps": plots.plot_steps(self)}

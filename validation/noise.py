@@ -102,6 +102,13 @@ class NoiseEstimate:
         return self.source != "none"
 
     def as_dict(self) -> dict:
+        """The estimate as a JSON-ready dict.
+
+        Returns
+        -------
+        dict
+            ``source``, ``sigma``, ``dof`` and ``description``.
+        """
         return {"source": self.source, "sigma": self.sigma, "dof": self.dof, "description": self.description}
 
 
@@ -132,6 +139,7 @@ class LackOfFit:
     consistent: bool
 
     def describe(self) -> str:
+        """One line: the statistic, its degrees of freedom, the p-value and residual / noise (or: no test made)."""
         if self.test == "none":
             return "no lack-of-fit test (no independent noise estimate)"
         stat = (f"chi2 = {self.statistic:.1f} on {self.dof[0]:g} dof" if self.test == "chi2"
@@ -139,6 +147,13 @@ class LackOfFit:
         return f"{stat}, p = {self.p_value:.2g}; residual / noise = {self.ratio:.2f}"
 
     def as_dict(self) -> dict:
+        """The test as a JSON-ready dict.
+
+        Returns
+        -------
+        dict
+            ``test``, ``statistic``, ``dof`` (a list of two), ``p_value``, ``ratio`` and ``consistent``.
+        """
         return {"test": self.test, "statistic": self.statistic, "dof": list(self.dof), "p_value": self.p_value,
                 "ratio": self.ratio, "consistent": self.consistent}
 

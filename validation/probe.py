@@ -77,6 +77,8 @@ class Separation:
     distance: float = math.nan
 
     def describe(self) -> str:
+        """One sentence: the condition (sliding speed, with slip and rolling speed when slip < 1, temperature, pressure,
+        wet or dry), whether it lies inside the measured conditions, and the two predictions with their difference."""
         vs = self.speed * self.slip
         where = (f"sliding speed {vs:.3g} m/s" + (f" (slip {self.slip:g} at V = {self.speed:.3g} m/s)"
                                                   if self.slip < 1 else "")
@@ -87,6 +89,14 @@ class Separation:
                 f"{self.mu[1]:.3f} (difference {self.difference:+.3f})")
 
     def as_dict(self) -> dict:
+        """The separation as a JSON-ready dict.
+
+        Returns
+        -------
+        dict
+            ``effects``, ``speed_m_s``, ``slip``, ``sliding_speed_m_s``, ``T_C`` (deg C), ``pressure_Pa``, ``wet``,
+            ``mu`` (the two predictions), ``difference``, ``in_measured_range`` and ``distance_to_measured``.
+        """
         return {"effects": list(self.effects), "speed_m_s": self.speed, "slip": self.slip,
                 "sliding_speed_m_s": self.speed * self.slip, "T_C": self.temperature,
                 "pressure_Pa": self.pressure, "wet": self.wet, "mu": list(self.mu), "difference": self.difference,

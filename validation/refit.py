@@ -131,6 +131,7 @@ class Estimate:
 
     @property
     def name(self) -> str:
+        """The parameter's name: ``key`` after its last ``"."`` (``"gamma"`` for ``gamma``)."""
         return self.key.rpartition(".")[2]
 
     @property
@@ -170,6 +171,14 @@ class Estimate:
         return txt
 
     def as_dict(self) -> dict:
+        """The estimate as a JSON-ready dict.
+
+        Returns
+        -------
+        dict
+            ``value``, ``std``, ``interval``, ``method``, ``unit``, ``bound``, ``plausible``, ``issue``, ``search``,
+            ``identified``, ``one_sided`` and ``interval95`` (the pairs as lists).
+        """
         return {"value": self.value, "std": self.std, "interval": list(self.interval), "method": self.method,
                 "unit": self.unit, "bound": self.bound, "plausible": list(self.plausible), "issue": self.issue,
                 "search": list(self.search), "identified": self.identified, "one_sided": self.one_sided,
@@ -203,6 +212,7 @@ class ParameterCovariance:
 
     @property
     def keys(self) -> tuple:
+        """Keys of the fitted parameters, in the order of ``u`` and ``matrix``."""
         return self.space.keys
 
     def in_parameters(self) -> np.ndarray:
@@ -271,6 +281,7 @@ class GlobalFit:
 
     @property
     def values(self) -> dict:
+        """``key -> value`` of every fitted parameter (empty until :func:`with_uncertainty` has added the estimates)."""
         return {e.key: e.value for e in self.estimates}
 
     @property

@@ -124,6 +124,7 @@ class EffectSet:
 
     @property
     def key(self) -> frozenset:
+        """The effects as a frozenset: the identity of the set, whatever the order of addition."""
         return frozenset(self.effects)
 
     @property
@@ -138,6 +139,7 @@ class EffectSet:
 
     @property
     def plausible(self) -> bool:
+        """Whether every fitted parameter is credible (no :attr:`issues`)."""
         return not self.issues
 
     @property
@@ -156,6 +158,20 @@ class EffectSet:
         return {e.key: e.value for e in self.estimates}
 
     def as_dict(self, best_bic: float | None = None) -> dict:
+        """The set as a JSON-ready dict.
+
+        Parameters
+        ----------
+        best_bic : float, optional
+            BIC of the best set, for ``delta_bic`` (None without).
+
+        Returns
+        -------
+        dict
+            ``effects``, ``label``, ``bic``, ``delta_bic``, ``rmse``, ``n_params``, ``parameters``, ``parameters_std``,
+            ``intervals``, ``estimates`` (by parameter key), ``plausible``, ``issues``, ``not_identified``,
+            ``lack_of_fit_p``, ``remaining_pattern``, ``source`` and ``notes``.
+        """
         return {"effects": list(self.effects), "label": self.label, "bic": self.bic,
                 "delta_bic": None if best_bic is None else self.bic - best_bic, "rmse": self.rmse,
                 "n_params": self.n_params, "parameters": self.parameters(),
@@ -169,6 +185,7 @@ class EffectSet:
                 "source": self.source, "notes": list(self.notes)}
 
     def describe(self) -> str:
+        """One line: the label, BIC, RMSE and every fitted parameter with its uncertainty."""
         par = ", ".join(e.describe() for e in self.estimates) or "no fitted parameters"
         return f"{self.label}: BIC {self.bic:.1f}, RMSE {self.rmse:.4g}; {par}"
 
@@ -212,6 +229,7 @@ class Selection:
 
     @property
     def equally_supported(self) -> bool:
+        """Whether another set is within :data:`EQUAL` BIC units of the best."""
         return bool(self.supported)
 
     @property
@@ -222,6 +240,17 @@ class Selection:
         return tuple(s for s in self.visited if s.bic < self.best.bic - 1e-9 and not s.plausible)
 
     def as_dict(self) -> dict:
+        """The selection's part of the ``--json`` layout.
+
+        Returns
+        -------
+        dict
+            ``best_set`` and ``equally_supported`` (:meth:`EffectSet.as_dict` with ``delta_bic`` to the best),
+            ``drop_costs``, ``set_separations`` and ``set_separations_in_measured_range``
+            (:meth:`validation.probe.Separation.as_dict`), ``sets`` (every set fitted: ``effects``, ``bic``,
+            ``delta_bic``, ``rmse``, ``plausible``, ``source``), ``set_aside`` (``effects``, ``delta_bic``, ``issues``),
+            ``removed``, ``explored`` and ``resumed``.
+        """
         b = self.best.bic
         return {"best_set": self.best.as_dict(b), "equally_supported": [s.as_dict(b) for s in self.supported],
                 "drop_costs": dict(self.drop_costs),
@@ -234,6 +263,9 @@ class Selection:
                 "removed": list(self.removed), "explored": list(self.explored), "resumed": list(self.resumed)}
 
     def text(self) -> str:
+        """Plain text: the best set and the cost of dropping each of its effects, the equally supported sets and where
+        to measure to tell them apart, then what the exploration and the continued fits found, the effects removed,
+        the sets set aside and up to six other sets fitted (delta BIC)."""
         if self.drop_costs:
             lines = [f"Best set of effects: {self.best.label} (BIC {self.best.bic:.1f}); dropping "
                      + ", ".join(f"{k} would cost {v:.1f}" for k, v in self.drop_costs.items())

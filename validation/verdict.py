@@ -115,6 +115,14 @@ class Verdict:
         return f"Verdict: {_WORDS[self.verdict]}" + (f" by {named}" if named else "") + ind + alt + f". {self.reason}"
 
     def as_dict(self) -> dict:
+        """The verdict as a JSON-ready dict.
+
+        Returns
+        -------
+        dict
+            ``verdict``, ``effect``, ``effects``, ``lack_of_fit_p``, ``remaining_pattern``, ``reason``,
+            ``alternatives``, ``indicated``, ``not_identified``, ``share`` and ``closest``.
+        """
         return {"verdict": self.verdict, "effect": self.effect, "effects": list(self.effects),
                 "lack_of_fit_p": self.lack_of_fit_p, "remaining_pattern": self.remaining_pattern,
                 "reason": self.reason, "alternatives": list(self.alternatives), "indicated": list(self.indicated),

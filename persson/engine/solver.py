@@ -132,6 +132,7 @@ class Prepared:
 
     @property
     def n_speed(self) -> int:
+        """Number of speeds (for an anisotropic PSD, of problems: a sliding direction at a speed)."""
         return self.v.size
 
     @functools.cached_property

@@ -71,6 +71,8 @@ class SlipFit(NamedParameters):
         return self.chi2 / max(self.dof, 1)
 
     def summary(self) -> str:
+        """Plain text: one line per fitted parameter (value +- standard uncertainty), then the rms, chi2 and dof (with
+        the lack-of-fit p when ``sigma`` was given), then the notes."""
         lines = [f"{n} = {v:.6g} +- {e:.3g}" for n, v, e in zip(self.names, self.values, self.stderr)]
         lines.append(f"rms {self.rms:.4g}, chi2 {self.chi2:.4g} on {self.dof} dof"
                      + (f", lack-of-fit p = {self.lack_of_fit_p:.3g}" if self.lack_of_fit_p is not None else ""))

@@ -139,10 +139,12 @@ class SpeedLawFit:
 
     @property
     def notes(self) -> tuple:
+        """Notes of the fit (``fit.notes``)."""
         return self.fit.notes
 
     @property
     def citations(self) -> tuple:
+        """References of the law (``fit.citations``)."""
         return self.fit.citations
 
     def __call__(self, speed, *args, **kwargs):

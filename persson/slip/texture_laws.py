@@ -84,10 +84,12 @@ class Relation:
 
     @property
     def params(self) -> dict[str, float]:
+        """The constants p0, p1 by name."""
         return {k: float(v) for k, v in zip(self.names, self.values)}
 
     @property
     def std(self) -> dict[str, float]:
+        """Standard uncertainties of the constants by name (0 for published constants used as they are)."""
         return {k: float(math.sqrt(max(c, 0.0))) for k, c in zip(self.names, np.diag(self.covariance))}
 
     def design(self, x) -> np.ndarray:
