@@ -513,3 +513,47 @@ def test_a_credible_fit_is_not_traded_for_a_continuation_outside_the_plausible_r
     monkeypatch.setattr(search, "_continue", lambda s: effect_set(("b",), -120.0))
     assert search.resume(("a",)) == ("b",) and search.sets[frozenset({"b"})].bic == -120.0
     assert search.resumed == ["b (BIC -95.0 where its fit stopped, -120.0 continued)"]
+
+
+def test_a_better_subset_of_a_larger_set_within_reach_replaces_an_answer_that_misses_the_noise(effects):
+    """Backward elimination acts on the path's own set; a larger set fitted on the way may contain a better one that
+    no step fitted. With texture + heat data and the mimic as the answer (it misses the noise: no curvature), the set
+    mimic + texture + heat lies within reach; its subsets are refitted, and texture + heat -- the truth, never fitted
+    before -- fits at the noise (its chi2 that of numpy's least squares) and replaces the mimic. An answer at the
+    noise is left alone."""
+    from validation.diagnose import diagnose_single
+    from validation.improve import Step
+    from validation.report import _selection_html
+    from validation.select import STAY, SetSearch
+
+    base = persson.Model(SURFACE, TREAD)
+    texture, heat, mimic = effects["texture"](), effects["heat"](), effects["mimic"]()
+    m = _data(base.with_effect(effects["texture"](a=0.05)).with_effect(effects["heat"](h=0.15)), 1)
+    dx = diagnose_single(base, m, [texture, heat, mimic])
+    search = SetSearch(base, (), dx.context)
+    search.record(dx, (), 0)
+    for c in dx.candidates:
+        search.instances.setdefault(c.effect, c.instance)
+        search.free.setdefault(c.effect, tuple(c.free))
+    truth = frozenset({"test_texture", "test_heat"})
+    answer = search.get(("test_mimic",))
+    larger = search.get(("test_mimic", "test_texture", "test_heat"), warm=(answer,))
+    assert truth not in search.sets and larger.bic < answer.bic + validation.select.EQUAL
+    n0 = search.n_evals
+    better = search.reduce(("test_mimic",))
+    assert search.n_evals > n0 and set(better) == set(truth)
+    x = np.log10(m.sliding_speed / 1e-3) / 3.0
+    chi2_pair, _ = _linear_chi2(m, base, [np.ones(m.n), x * x])
+    found = search.sets[truth]
+    assert found.rss == pytest.approx(chi2_pair, rel=1e-4) and found.bic < answer.bic - STAY
+    assert len(search.reduced) == 1 and search.reduced[0].startswith("test_texture + test_heat (")
+    sel = search.finish(better)
+    assert set(sel.best.effects) == set(truth) and sel.reduced == tuple(search.reduced)
+    said = "Subsets of the sets within reach"
+    assert said in sel.text() and said in _selection_html(sel)
+    assert sel.as_dict()["reduced"] == list(search.reduced)
+    # at the noise: nothing to do
+    assert search.reduce(better) is None and len(search.reduced) == 1
+    common = dict(index=3, effects=("a", "b"), parameters={}, fitted=(), rmse=0.1, bic=1.0, delta_bic=-20.0,
+                  model=None, diagnosis=None)
+    assert Step(added="b", removed="c", action="reduced", **common).describe() == "c -> b (reduced)"

@@ -13,7 +13,8 @@ that ends short of the noise explores the pairs it could not reach; one that end
 it never fitted and fits those that may tie with it (:mod:`validation.select`, items 4 and 5). Fits that stopped
 at their budget of model evaluations within 10 BIC units of an answer that misses the noise are then continued,
 and one that fits better by more than 10 units replaces it (item 6; only when effects were added and the noise is
-known). A final
+known); so, under the same conditions, does a subset of a larger set fitted within 10 BIC units of it (item 7). A
+final
 pass keeps an effect only if dropping it from the final joint model costs more than 10 BIC units, and names every
 other set within 10 BIC units (equally supported) with the measurement that would separate it. Every step keeps
 the alternatives its diagnosis named ("or as well by").
@@ -76,7 +77,9 @@ class Step:
         pair the stepwise path did not reach, fitted when that path ended short of the noise, that fits better:
         ``added`` and ``removed`` then name the effects it brings in and takes out, joined by " + "), or
         ``"resumed"`` (a set whose fit had stopped at its budget of model evaluations and, continued, fits better
-        than the path's by more than 10 BIC units; ``added`` and ``removed`` as for ``"explored"``).
+        than the path's by more than 10 BIC units; ``added`` and ``removed`` as for ``"explored"``), or
+        ``"reduced"`` (a subset of a set within reach of the path's that fits better by more than 10 BIC units;
+        ``added`` and ``removed`` as for ``"explored"``).
     removed : str or None
         The effect removed (or swapped out) at this step.
     alternatives : tuple of str
@@ -114,7 +117,7 @@ class Step:
             return f"- {self.removed}"
         if self.action == "swapped":
             return f"{self.removed} -> {self.added}"
-        if self.action in ("explored", "resumed"):
+        if self.action in ("explored", "resumed", "reduced"):
             if self.removed and self.added:
                 return f"{self.removed} -> {self.added} ({self.action})"
             return f"+ {self.added} ({self.action})" if self.added else f"- {self.removed} ({self.action})"
@@ -487,6 +490,17 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
                         _sub(progress, "checking the effects of the continued set"))
         stopped = (f"{stopped}; then {search.get(current).label}, whose fit had stopped at its budget of model "
                    "evaluations, fits better by more than 10 BIC units once continued")
+    # a larger set within reach of an answer that misses the noise may contain a better one, which no step fitted
+    # (the backward elimination acts on the path's set only): its subsets are fitted, under the same conditions
+    better = None
+    if current and noise.known:
+        better = search.reduce(current, budget=(n_evals + search.n_evals) // 2,
+                               progress=_sub(progress, "refitting the subsets of the sets within reach"))
+    if better is not None:
+        current = _take("reduced", current, better, steps, base_fit, search,
+                        _sub(progress, "checking the effects of the subset"))
+        stopped = (f"{stopped}; then {search.get(current).label}, a subset of a set within reach of the answer, fits "
+                   "better by more than 10 BIC units")
     probe = None
     if diagnose_options.get("probe", True):
         from .ambiguity import Probe

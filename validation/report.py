@@ -324,6 +324,8 @@ def _selection_html(sel) -> str:
     if getattr(sel, "resumed", ()):
         out.append("<p class='note'>Fits continued past their budget of model evaluations: "
                    + _e("; ".join(sel.resumed)) + ".</p>")
+    if getattr(sel, "reduced", ()):
+        out.append("<p class='note'>Subsets of the sets within reach: " + _e("; ".join(sel.reduced)) + ".</p>")
     if sel.removed:
         out.append("<p class='note'>Removed on the way: " + _e("; ".join(sel.removed)) + ".</p>")
     return "\n".join(out)

@@ -47,6 +47,17 @@ the free parameters of every effect in :math:`S` -- are refitted jointly from gl
    more than :data:`STAY` replaces it (a step ``"resumed"``). This is done when the path added effects and the
    noise is known (a baseline left alone is the first diagnosis' judgement, made with its significance tests); an
    answer at the noise is left to the pair screen (item 5).
+7. **subsets of the sets within reach**: backward elimination acts on the path's own set only, and a larger set
+   fitted on the way (a candidate on top of the path's set, a pair the exploration fitted) may tie with the answer
+   because it contains a better set: the path's set plus the true partner of an effect the path took a look-alike
+   for, whose subset without the look-alike is the truth (a flash temperature + microtexture pair hidden behind an
+   adhesion: the adhesion is fitted first, the microtexture next, and the flash temperature on top of both only
+   ties; the pair without the adhesion was never fitted). When the search ends with an answer that misses the
+   noise, every set fitted with two or more effects within :data:`EQUAL` BIC units of it (credible or not) has
+   each of its effects dropped in turn; the subsets not fitted yet are refitted jointly from its values, the
+   subsets of the better sets first, within half the model evaluations the search took. A credible subset that
+   fits better than the answer by more than :data:`STAY` replaces it (a step ``"reduced"``); the others count for
+   the equally supported sets. Done under the conditions of item 6.
 
 The search stops when the verdict on the current set says stop, and a final pass applies the rule to every effect:
 **an effect stays only if dropping it from the final joint model costs more than** :data:`STAY` **BIC units**
@@ -215,6 +226,9 @@ class Selection:
     resumed : tuple of str
         The fits that had stopped at their budget of model evaluations within reach of the best set and were
         continued (:meth:`SetSearch.resume`), in words, with their BIC before and after.
+    reduced : tuple of str
+        What refitting the subsets of the sets within reach of the best (:meth:`SetSearch.reduce`) found, in words:
+        a subset that fits better than the path's set, or that it stopped at its budget (empty when neither).
     """
 
     best: EffectSet
@@ -226,6 +240,7 @@ class Selection:
     removed: tuple = ()
     explored: tuple = ()
     resumed: tuple = ()
+    reduced: tuple = ()
 
     @property
     def equally_supported(self) -> bool:
@@ -249,7 +264,7 @@ class Selection:
             ``drop_costs``, ``set_separations`` and ``set_separations_in_measured_range``
             (:meth:`validation.probe.Separation.as_dict`), ``sets`` (every set fitted: ``effects``, ``bic``,
             ``delta_bic``, ``rmse``, ``plausible``, ``source``), ``set_aside`` (``effects``, ``delta_bic``, ``issues``),
-            ``removed``, ``explored`` and ``resumed``.
+            ``removed``, ``explored``, ``resumed`` and ``reduced``.
         """
         b = self.best.bic
         return {"best_set": self.best.as_dict(b), "equally_supported": [s.as_dict(b) for s in self.supported],
@@ -260,7 +275,8 @@ class Selection:
                           "plausible": s.plausible, "source": s.source} for s in self.visited],
                 "set_aside": [{"effects": list(s.effects), "delta_bic": s.bic - b, "issues": list(s.issues)}
                               for s in self.set_aside],
-                "removed": list(self.removed), "explored": list(self.explored), "resumed": list(self.resumed)}
+                "removed": list(self.removed), "explored": list(self.explored), "resumed": list(self.resumed),
+                "reduced": list(self.reduced)}
 
     def text(self) -> str:
         """Plain text: the best set and the cost of dropping each of its effects, the equally supported sets and where
@@ -285,6 +301,8 @@ class Selection:
             lines.append("Exploring pairs beyond the stepwise path: " + "; ".join(self.explored) + ".")
         if self.resumed:
             lines.append("Fits continued past their budget of model evaluations: " + "; ".join(self.resumed) + ".")
+        if self.reduced:
+            lines.append("Subsets of the sets within reach: " + "; ".join(self.reduced) + ".")
         if self.removed:
             lines.append("Removed on the way: " + "; ".join(self.removed) + ".")
         aside = self.set_aside
@@ -326,6 +344,7 @@ class SetSearch:
         self.removed: list[str] = []
         self.explored: list[str] = []
         self.resumed: list[str] = []
+        self.reduced: list[str] = []
         self._continued: dict[frozenset, int] = {}    # set -> times its fit was continued
         self._jacobians: dict[str, np.ndarray] = {}   # effect -> weighted Jacobian of its single fit
 
@@ -649,6 +668,41 @@ class SetSearch:
         better = [self.sets[k] for k in continued if self.sets[k].plausible and self.sets[k].bic < now.bic - STAY]
         return min(better, key=lambda s: s.bic).effects if better else None
 
+    def reduce(self, current: tuple, budget: int | None = None, progress=None) -> tuple | None:
+        """The subsets of the sets within reach of the answer (module docstring, item 7).
+
+        When ``current`` misses the noise, every fitted set of two or more effects within :data:`EQUAL` BIC units of
+        it (credible or not, ``current`` itself left to the backward elimination) has each effect dropped in turn;
+        each subset not fitted yet is refitted jointly from that set's values (:meth:`get`), the subsets of the
+        better sets first, until ``budget`` model evaluations are spent. Returns the effects of the best credible
+        subset fitted here when it fits better than ``current`` by more than :data:`STAY` BIC units, else None.
+        """
+        current = tuple(current)
+        now = self.get(current)
+        if fits_at_noise(now):
+            return None
+        start = self.n_evals
+        within = sorted((t for t in self.sets.values() if len(t.effects) >= 2 and t.key != now.key
+                         and t.bic < now.bic + EQUAL), key=lambda t: t.bic)
+        fitted = []
+        todo = [(t, tuple(e for e in t.effects if e != f)) for t in within for f in t.effects]
+        for t, sub in todo:
+            if frozenset(sub) in self.sets:
+                continue
+            if budget is not None and self.n_evals - start >= budget:
+                self.reduced.append(f"the subsets of the sets within reach stopped at their budget of {budget} model "
+                                    f"evaluations ({len(fitted)} fitted)")
+                break
+            if progress is not None:
+                progress(f"refitting {' + '.join(sub)}, a subset of {t.label}")
+            fitted.append(self.get(sub, warm=(t,)))
+        best = min((t for t in fitted if t.plausible), key=lambda t: t.bic, default=None)
+        if best is None or not best.bic < now.bic - STAY:
+            return None
+        self.reduced.append(f"{best.label} ({now.bic - best.bic:.1f} BIC units better than {now.label}; a subset of "
+                            "a set within reach of it)")
+        return tuple(best.effects)
+
     def _continue(self, s: EffectSet) -> EffectSet:
         """The refit of ``s`` from its fitted values with a budget of model evaluations of its own: a global search
         over all its parameters (Halton design and local fits, :func:`validation.refit.global_fit`)."""
@@ -689,7 +743,7 @@ class SetSearch:
                         seps_in.append(pair[1])
         return Selection(best=best, supported=tuple(supported), drop_costs=costs, separations=tuple(seps),
                          separations_in_range=tuple(seps_in), visited=tuple(visited), removed=tuple(self.removed),
-                         explored=tuple(self.explored), resumed=tuple(self.resumed))
+                         explored=tuple(self.explored), resumed=tuple(self.resumed), reduced=tuple(self.reduced))
 
 
 def fits_at_noise(s: EffectSet) -> bool:
