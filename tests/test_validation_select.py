@@ -425,6 +425,23 @@ def test_a_pair_better_than_a_path_ending_at_the_noise_replaces_it(better_at_noi
 
 
 # ---------------------------------------------------------------------------------------------- fits stopped early
+def _recorded_search(effects):
+    """A set search on texture + heat data (a = 0.05, h = 0.15) holding the baseline's diagnosis over the texture,
+    the heat and the mimic: (baseline, measurements, search)."""
+    from validation.diagnose import diagnose_single
+    from validation.select import SetSearch
+
+    base = persson.Model(SURFACE, TREAD)
+    m = _data(base.with_effect(effects["texture"](a=0.05)).with_effect(effects["heat"](h=0.15)), 1)
+    dx = diagnose_single(base, m, [effects["texture"](), effects["heat"](), effects["mimic"]()])
+    search = SetSearch(base, (), dx.context)
+    search.record(dx, (), 0)
+    for c in dx.candidates:
+        search.instances.setdefault(c.effect, c.instance)
+        search.free.setdefault(c.effect, tuple(c.free))
+    return base, m, search
+
+
 def test_a_fit_stopped_at_its_budget_within_reach_is_continued_and_can_change_the_answer(effects):
     """A fit that runs out of model evaluations reports the best point it reached: an upper bound on its BIC. Such a
     set within 10 BIC units of the answer is fitted again from that point with a budget of its own, and replaces
@@ -433,20 +450,11 @@ def test_a_fit_stopped_at_its_budget_within_reach_is_continued_and_can_change_th
     least-squares optimum (both effects are linear); the mimic, recorded as stopped 15 units behind, is not."""
     from dataclasses import replace
 
-    from validation.diagnose import diagnose_single
     from validation.refit import BUDGET_NOTE
     from validation.report import _selection_html
-    from validation.select import SetSearch
 
-    base = persson.Model(SURFACE, TREAD)
+    base, m, search = _recorded_search(effects)
     texture, heat, mimic = effects["texture"](), effects["heat"](), effects["mimic"]()
-    m = _data(base.with_effect(effects["texture"](a=0.05)).with_effect(effects["heat"](h=0.15)), 1)
-    dx = diagnose_single(base, m, [texture, heat, mimic])
-    search = SetSearch(base, (), dx.context)
-    search.record(dx, (), 0)
-    for c in dx.candidates:
-        search.instances.setdefault(c.effect, c.instance)
-        search.free.setdefault(c.effect, tuple(c.free))
     alone = search.sets[frozenset({"test_texture"})]
     assert not alone.budget_stopped
 
@@ -521,20 +529,11 @@ def test_a_better_subset_of_a_larger_set_within_reach_replaces_an_answer_that_mi
     mimic + texture + heat lies within reach; its subsets are refitted, and texture + heat -- the truth, never fitted
     before -- fits at the noise (its chi2 that of numpy's least squares) and replaces the mimic. An answer at the
     noise is left alone."""
-    from validation.diagnose import diagnose_single
     from validation.improve import Step
     from validation.report import _selection_html
-    from validation.select import STAY, SetSearch
+    from validation.select import STAY
 
-    base = persson.Model(SURFACE, TREAD)
-    texture, heat, mimic = effects["texture"](), effects["heat"](), effects["mimic"]()
-    m = _data(base.with_effect(effects["texture"](a=0.05)).with_effect(effects["heat"](h=0.15)), 1)
-    dx = diagnose_single(base, m, [texture, heat, mimic])
-    search = SetSearch(base, (), dx.context)
-    search.record(dx, (), 0)
-    for c in dx.candidates:
-        search.instances.setdefault(c.effect, c.instance)
-        search.free.setdefault(c.effect, tuple(c.free))
+    base, m, search = _recorded_search(effects)
     truth = frozenset({"test_texture", "test_heat"})
     answer = search.get(("test_mimic",))
     larger = search.get(("test_mimic", "test_texture", "test_heat"), warm=(answer,))

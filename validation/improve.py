@@ -477,30 +477,26 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
                             _sub(progress, "checking the effects of the pair"))
             stopped = (f"{' + '.join(previous)} reached the noise level; {search.get(current).label}, found by "
                        "exploring pairs, fits better by more than 10 BIC units")
-    # fits that stopped at their budget of model evaluations give upper bounds on their BIC: those within reach of
-    # the answer are continued, and a set that then fits better by more than STAY takes the place of the path's
-    # (when the path added effects: a baseline left alone is the first diagnosis' judgement, with its tests)
-    better = None
-    if current and noise.known:
-        # at most half the model evaluations the search took
-        better = search.resume(current, budget=(n_evals + search.n_evals) // 2,
-                               progress=_sub(progress, "continuing fits stopped at their budget"))
-    if better is not None:
-        current = _take("resumed", current, better, steps, base_fit, search,
-                        _sub(progress, "checking the effects of the continued set"))
-        stopped = (f"{stopped}; then {search.get(current).label}, whose fit had stopped at its budget of model "
-                   "evaluations, fits better by more than 10 BIC units once continued")
-    # a larger set within reach of an answer that misses the noise may contain a better one, which no step fitted
-    # (the backward elimination acts on the path's set only): its subsets are fitted, under the same conditions
-    better = None
-    if current and noise.known:
-        better = search.reduce(current, budget=(n_evals + search.n_evals) // 2,
-                               progress=_sub(progress, "refitting the subsets of the sets within reach"))
-    if better is not None:
-        current = _take("reduced", current, better, steps, base_fit, search,
-                        _sub(progress, "checking the effects of the subset"))
-        stopped = (f"{stopped}; then {search.get(current).label}, a subset of a set within reach of the answer, fits "
-                   "better by more than 10 BIC units")
+    # when the path added effects and the answer misses the noise (a baseline left alone is the first diagnosis'
+    # judgement, with its tests), two more looks, each within half the model evaluations the search took: fits
+    # that stopped at their budget give upper bounds on their BIC, and those within reach of the answer are
+    # continued; a larger set within reach may contain a better one that no step fitted (the backward elimination
+    # acts on the path's set only), and its subsets are fitted. A set that then fits better by more than STAY takes
+    # the place of the path's.
+    for look, action, doing, checking, why in (
+            (search.resume, "resumed", "continuing fits stopped at their budget",
+             "checking the effects of the continued set",
+             "whose fit had stopped at its budget of model evaluations, fits better by more than 10 BIC units once "
+             "continued"),
+            (search.reduce, "reduced", "refitting the subsets of the sets within reach",
+             "checking the effects of the subset",
+             "a subset of a set within reach of the answer, fits better by more than 10 BIC units")):
+        if not (current and noise.known):
+            break
+        better = look(current, budget=(n_evals + search.n_evals) // 2, progress=_sub(progress, doing))
+        if better is not None:
+            current = _take(action, current, better, steps, base_fit, search, _sub(progress, checking))
+            stopped = f"{stopped}; then {search.get(current).label}, {why}"
     probe = None
     if diagnose_options.get("probe", True):
         from .ambiguity import Probe

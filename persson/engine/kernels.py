@@ -942,12 +942,7 @@ def _flash_speed(iv, nodes, rule, speeds, angular, shape, law, temperature, heat
                 T[i] = T0
             relax = 1.0 if it == max_iter + 1 else _MANN_RELAX
         integrands_at(iv, T, nodes, rule, speeds, angular, shape, temperature, factors, K, out)
-        G = out.G[iv]
-        P_m = area(_at_G(G, nodes.x, heat.x_m), law)
-        source = speeds.v[iv] * heat.heat_factor[iv] / P_m
-        for k in range(nq - 1):
-            first[k], weights[k, 0], weights[k, 1], weights[k, 2] = interval_node_weights(G, K, k, rule, law, 1)
-        res = heated_temperature(T, T0, source, H, out.ratio[iv], first, weights, T_new)
+        res = _heat_balance(iv, T, T0, K, nodes, rule, law, speeds, heat, H, out, first, weights, T_new)
         if res < iteration.tol:
             for i in range(nq):
                 T[i] = T_new[i]
@@ -965,16 +960,31 @@ def _flash_speed(iv, nodes, rule, speeds, angular, shape, law, temperature, heat
     integrands_at(iv, T, nodes, rule, speeds, angular, shape, temperature, factors, K, out)
     if not res < iteration.tol:
         # the loop's last residual belongs to the profile before its last step: the one returned gets its own
-        G = out.G[iv]
-        P_m = area(_at_G(G, nodes.x, heat.x_m), law)
-        source = speeds.v[iv] * heat.heat_factor[iv] / P_m
-        for k in range(nq - 1):
-            first[k], weights[k, 0], weights[k, 1], weights[k, 2] = interval_node_weights(G, K, k, rule, law, 1)
-        res = heated_temperature(T, T0, source, H, out.ratio[iv], first, weights, T_new)
+        res = _heat_balance(iv, T, T0, K, nodes, rule, law, speeds, heat, H, out, first, weights, T_new)
     contact_and_friction(iv, nodes, rule, law, K, out)
     out.mu[iv] = out.cum[iv, nq - 1]
     it_out[iv] = it
     res_out[iv] = res
+
+
+@njit(cache=True)
+def _heat_balance(iv, T, T0, K, nodes, rule, law, speeds, heat, H, out, first, weights, T_new):
+    """One application of the flash temperature's map: T_new = g(T) from the integrands of speed ``iv`` at the
+    profile ``T`` (:func:`integrands_at`, already in ``out`` and ``K``): the heat source normalised by the contact
+    area of the macro-asperity regions, the node weights of P dG on every interval
+    (:func:`interval_node_weights`, kind 1) into ``first`` and ``weights``, and :func:`heated_temperature`.
+
+    Returns
+    -------
+    float
+        max |g(T) - T| over the nodes, K.
+    """
+    G = out.G[iv]
+    P_m = area(_at_G(G, nodes.x, heat.x_m), law)
+    source = speeds.v[iv] * heat.heat_factor[iv] / P_m
+    for k in range(G.shape[0] - 1):
+        first[k], weights[k, 0], weights[k, 1], weights[k, 2] = interval_node_weights(G, K, k, rule, law, 1)
+    return heated_temperature(T, T0, source, H, out.ratio[iv], first, weights, T_new)
 
 
 @njit(cache=True)
