@@ -974,6 +974,37 @@ def _heat_balance(iv, T, T0, K, nodes, rule, law, speeds, heat, H, out, first, w
     area of the macro-asperity regions, the node weights of P dG on every interval
     (:func:`interval_node_weights`, kind 1) into ``first`` and ``weights``, and :func:`heated_temperature`.
 
+    Parameters
+    ----------
+    iv : int
+        The speed.
+    T : ndarray (n_q,)
+        The temperature profile, deg C.
+    T0 : float
+        The background temperature, deg C.
+    K : ndarray (n_q,)
+        The angular factor at the nodes (from :func:`integrands_at` at ``T``).
+    nodes : Nodes
+        The wavevector nodes.
+    rule : QuadratureRule
+        The quadrature on the nodes.
+    law : ContactLaw
+        The contact law.
+    speeds : FlashSpeeds
+        Speeds, stress scales, background temperatures and starting profiles.
+    heat : HeatSource
+        The heat kernel and source.
+    H : ndarray (n_q, n_q)
+        The heat matrix (:func:`heat_matrix`).
+    out : Outputs
+        Row ``iv`` holds G and the friction ratio at ``T``.
+    first : ndarray of int64 (n_q,)
+        Filled with the first stencil node of each interval.
+    weights : ndarray (n_q, 3)
+        Filled with the node weights of each interval.
+    T_new : ndarray (n_q,)
+        Filled with g(T), deg C.
+
     Returns
     -------
     float
