@@ -532,20 +532,16 @@ class SetSearch:
                     pairs[key] = ((a.effect, b.effect), reached)
                     screened.append(((a.effect, b.effect), reached))
         order += sorted(screened, key=lambda t: t[1])
-        fitted = []
-        for (a, b), _ in order:
-            if budget is not None and self.n_evals - start >= budget:
-                what = "the pairs that may tie" if at_noise else "the exploration"
-                self.explored.append(f"{what} stopped at its budget of {budget} model evaluations "
-                                     f"({len(fitted)} of {len(pairs)} pairs fitted)")
-                break
-            if progress is not None:
-                progress(f"exploring: {a} with {b}")
-            warm = tuple(self.sets[k] for k in (frozenset({a}), frozenset({b})) if k in self.sets)
-            fitted.append(self.get((a, b), warm=warm))
+        todo = [((a, b), tuple(self.sets[k] for k in (frozenset({a}), frozenset({b})) if k in self.sets),
+                 f"exploring: {a} with {b}") for (a, b), _ in order]
+        fitted, stopped = self._fit_in_turn(todo, budget, start, progress)
+        if stopped:
+            what = "the pairs that may tie" if at_noise else "the exploration"
+            self.explored.append(f"{what} stopped at its budget of {budget} model evaluations "
+                                 f"({len(fitted)} of {len(pairs)} pairs fitted)")
         now = self.get(current)
-        best = min((t for t in fitted if t.plausible), key=lambda t: t.bic, default=None)
-        if best is None or not best.bic < now.bic - STAY:
+        best = _better(fitted, now)
+        if best is None:
             return None
         self.explored.append(f"{best.label} ({now.bic - best.bic:.1f} BIC units better than {now.label}, which the "
                              "stepwise path reached)")
@@ -684,24 +680,33 @@ class SetSearch:
         start = self.n_evals
         within = sorted((t for t in self.sets.values() if len(t.effects) >= 2 and t.key != now.key
                          and t.bic < now.bic + EQUAL), key=lambda t: t.bic)
-        fitted = []
-        todo = [(t, tuple(e for e in t.effects if e != f)) for t in within for f in t.effects]
-        for t, sub in todo:
-            if frozenset(sub) in self.sets:
-                continue
-            if budget is not None and self.n_evals - start >= budget:
-                self.reduced.append(f"the subsets of the sets within reach stopped at their budget of {budget} model "
-                                    f"evaluations ({len(fitted)} fitted)")
-                break
-            if progress is not None:
-                progress(f"refitting {' + '.join(sub)}, a subset of {t.label}")
-            fitted.append(self.get(sub, warm=(t,)))
-        best = min((t for t in fitted if t.plausible), key=lambda t: t.bic, default=None)
-        if best is None or not best.bic < now.bic - STAY:
+        todo = [(sub, (t,), f"refitting {' + '.join(sub)}, a subset of {t.label}")
+                for t in within for sub in (tuple(e for e in t.effects if e != f) for f in t.effects)]
+        fitted, stopped = self._fit_in_turn(todo, budget, start, progress)
+        if stopped:
+            self.reduced.append(f"the subsets of the sets within reach stopped at their budget of {budget} model "
+                                f"evaluations ({len(fitted)} fitted)")
+        best = _better(fitted, now)
+        if best is None:
             return None
         self.reduced.append(f"{best.label} ({now.bic - best.bic:.1f} BIC units better than {now.label}; a subset of "
                             "a set within reach of it)")
         return tuple(best.effects)
+
+    def _fit_in_turn(self, todo, budget: int | None, start: int, progress=None) -> tuple[list, bool]:
+        """Fit the sets ``todo`` (``(effects, warm, message)`` each; :meth:`get`) not fitted yet, in turn, until
+        ``budget`` model evaluations counted from ``start`` (:attr:`n_evals` then) are spent; returns the sets
+        fitted and whether the budget stopped them."""
+        fitted = []
+        for effects, warm, message in todo:
+            if frozenset(effects) in self.sets:
+                continue
+            if budget is not None and self.n_evals - start >= budget:
+                return fitted, True
+            if progress is not None:
+                progress(message)
+            fitted.append(self.get(effects, warm=warm))
+        return fitted, False
 
     def _continue(self, s: EffectSet) -> EffectSet:
         """The refit of ``s`` from its fitted values with a budget of model evaluations of its own: a global search
@@ -749,6 +754,13 @@ class SetSearch:
 def fits_at_noise(s: EffectSet) -> bool:
     """Whether the set fits at the noise level: lack of fit consistent with the noise, no pattern left."""
     return bool(s.lack is not None and s.lack.consistent and not (s.pattern is not None and s.pattern.found))
+
+
+def _better(fitted, now: EffectSet) -> EffectSet | None:
+    """The best credible set of ``fitted`` when it fits better than ``now`` by more than :data:`STAY` BIC units (the
+    evidence an effect needs to stay), else None."""
+    best = min((t for t in fitted if t.plausible), key=lambda t: t.bic, default=None)
+    return best if best is not None and best.bic < now.bic - STAY else None
 
 
 def _covariance_of(baseline):
