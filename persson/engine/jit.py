@@ -22,7 +22,7 @@ import concurrent.futures
 import os
 import threading
 
-__all__ = ["threaded"]
+__all__ = ["threaded", "before_first_call"]
 
 
 def threaded(kernel, n: int, *, min_items: int = 2, **arguments) -> None:
@@ -40,6 +40,8 @@ def threaded(kernel, n: int, *, min_items: int = 2, **arguments) -> None:
     **arguments
         The kernel's other arguments, by keyword.
     """
+    if _BEFORE:
+        _run_before(kernel)
     threads = min(_numba_threads(), int(n))
     if threads <= 1 or n < min_items:
         kernel(**arguments, first=0, stride=1)
@@ -51,6 +53,26 @@ def threaded(kernel, n: int, *, min_items: int = 2, **arguments) -> None:
     finally:
         for f in futures:
             f.result()
+
+
+def before_first_call(kernel, wait) -> None:
+    """Run ``wait()`` before :func:`threaded` next runs ``kernel`` in this process, once (e.g. to wait for another
+    process that is compiling it into numba's cache: :mod:`persson.warmup`).
+
+    Parameters
+    ----------
+    kernel : numba dispatcher
+    wait : callable
+        Called without arguments; it must return (it may raise, which then reaches the kernel's caller).
+    """
+    _BEFORE[kernel] = wait
+
+
+def _run_before(kernel) -> None:
+    wait = _BEFORE.get(kernel)
+    if wait is not None:
+        wait()          # several threads may wait together: the callable must allow that
+        _BEFORE.pop(kernel, None)
 
 
 def _numba_threads() -> int:
@@ -70,6 +92,8 @@ def _pool(workers: int) -> concurrent.futures.ThreadPoolExecutor:
 
 
 _POOLS: dict[int, concurrent.futures.ThreadPoolExecutor] = {}
+#: What to run before a kernel's next call (:func:`before_first_call`).
+_BEFORE: dict = {}
 _POOL_LOCK = threading.Lock()
 
 
@@ -78,6 +102,7 @@ def _forget_pools_in_child() -> None:
     # would never run, so the child starts its own
     global _POOL_LOCK
     _POOLS.clear()
+    _BEFORE.clear()     # waits for the parent's own warm-up process: not this child's
     _POOL_LOCK = threading.Lock()
 
 

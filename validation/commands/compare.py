@@ -7,6 +7,8 @@ from pathlib import Path
 from persson.commands._common import (CASE_HELP, add_effects, add_force, add_quiet, effect_scripts, print_notes,
                                       status_line)
 
+from . import warm_patch_kernel
+
 NAME = "compare"
 HELP = ("compare a case's model with its measurements: RMSE, bias, where it fails (by speed, temperature, "
         "pressure, slip, wet/dry); writes a per-row CSV, a JSON summary and PNG plots")
@@ -39,6 +41,7 @@ def run(args) -> int:
                              patterns=() if args.no_plots else (f"{name}_*.png",), what="-o")
         with status.phase(f"reading {parsed.path.name}"):
             case = validation.load_case(parsed.path, progress=status)
+        warm_patch_kernel(case, ())
         print_notes(case.spec.notes)
         with status.phase(f"predicting {case.measurements.n} measured rows"):
             cmp = validation.compare(case.model, case.measurements, case.contact, name=case.name)

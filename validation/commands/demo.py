@@ -11,6 +11,8 @@ from pathlib import Path
 
 from persson.commands._common import add_force, add_quiet, print_notes, status_line
 
+from . import warm_patch_kernel
+
 NAME = "demo"
 HELP = ("run the whole loop on the shipped example case: compare the model with (synthetic) measured friction, "
         "diagnose the missing effect, add it and watch the error fall; writes an HTML report (plots embedded), "
@@ -60,6 +62,7 @@ def run(args) -> int:
         folder = outs.folder(out, names=_FILES, what="-o")
         with status.phase("reading the example case"):
             case = validation.load_case(path, progress=status)
+        warm_patch_kernel(case)
         print_notes(case.spec.notes)
         print(f"example case {case.path} (synthetic data, see validation/cases/README.md)")
         print(f"  {case.measurements.describe()}")

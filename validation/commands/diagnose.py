@@ -9,6 +9,8 @@ from pathlib import Path
 from persson.commands._common import (CASE_HELP, add_effects, add_force, add_quiet, effect_scripts, print_notes,
                                       status_line)
 
+from . import warm_patch_kernel
+
 NAME = "diagnose"
 HELP = ("rank the effects that could be missing from a case's model (signature, score test, bounded refit, BIC); "
         "prints the ranking and a plain-language explanation; --json writes the result")
@@ -49,6 +51,7 @@ def run(args) -> int:
         js = outs.file(args.json, "--json") if args.json and not to_stdout else None
         with status.phase(f"reading {parsed.path.name}"):
             case = validation.load_case(parsed.path, progress=status)
+        warm_patch_kernel(case, cands)
         print_notes(case.spec.notes)
         t0 = time.perf_counter()
         with status.phase("diagnosing (screening every candidate effect, refitting the best)"):
