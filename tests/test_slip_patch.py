@@ -409,6 +409,55 @@ def test_one_table_serves_every_adhesive_shear_stress():
     np.testing.assert_allclose(again.mu, patch_friction(other, heat, c, s, V, T0, SIGMA0).mu, rtol=1e-9)
 
 
+@pytest.mark.filterwarnings("ignore::persson.PhysicsWarning")   # the example road's rms slope
+def test_one_table_serves_every_adhesion_with_the_answers_of_a_fresh_table():
+    """The adhesive term is tau_f(v, T_q1) A/A0 / sigma0 with tau_f = tau_f0 exp(-c log10(v a_T(T_q1) / v_ref)^2):
+    A/A0 / sigma0 and the rubber temperature T_q1 at q1 (the flash temperature when that effect is on) do not
+    depend on the adhesion's parameters. A table that keeps them serves a joint fit of tau_f0, c, v_ref (and
+    v_ref_temperature) with patch heating without engine calls, with the answers of a fresh table; on a wet road,
+    where the term is off, only tau_f0 is kept apart."""
+    from persson.effects import Adhesion, FlashTemperature, Wet
+
+    c = ps.Contact(L, W, K)
+    s, V = np.broadcast_arrays(np.geomspace(0.01, 1.0, 8)[:, None], np.array([0.3, 3.0])[None, :])
+    s, V = s.ravel(), V.ravel()
+    heat = PatchHeating()
+    road, tread = surfaces.example_road(), materials.example_tread()
+    grid = persson.GridSettings(q_per_decade=8, n_phi=16, omega_per_decade=16, tolerance=1e-2)
+
+    def model_of(*effects):
+        return persson.Model(road, tread, effects=list(effects), grid=grid)
+
+    shapes = (dict(tau_f0=1.3e6, c=0.25, v_ref=3e-3), dict(tau_f0=0.7e6, c=0.05, v_ref=0.3),
+              dict(tau_f0=1.0e6, c=0.1, v_ref=1e-2, v_ref_temperature=40.0), dict(tau_f0=1.0e6, c=0.1, v_ref=1e-2))
+    for extra in ((), (FlashTemperature(),)):
+        cache = {}
+        patch_friction(model_of(heat, Adhesion(tau_f0=1.0e6, c=0.1, v_ref=1e-2), *extra), heat, c, s, V, T0, SIGMA0,
+                       tables=cache)
+        tab = cache["value"]
+        assert tab.separable
+        for shape in shapes:
+            other = model_of(heat, Adhesion(**shape), *extra)
+            kept = patch_friction(other, heat, c, s, V, T0, SIGMA0, tables=cache)
+            fresh = patch_friction(other, heat, c, s, V, T0, SIGMA0, tables={})
+            assert cache["value"] is tab
+            assert kept.engine_calls == 0 or float(np.max(kept.max_rise)) > float(np.max(fresh.max_rise)) - 1e-9
+            # the T0 slice comes from one engine call of the same speeds in both tables: equal to rounding; the
+            # heated nodes of a table grown by other patches came in other calls, and the flash temperature's
+            # graded nodes depend on the speeds that share a call (about 1e-8 in mu)
+            np.testing.assert_allclose(kept.mu_local, fresh.mu_local, rtol=1e-12, atol=1e-14)
+            np.testing.assert_allclose(kept.mu, fresh.mu, rtol=1e-7 if extra else 1e-9, atol=1e-12)
+            assert kept.notes == fresh.notes
+    # wet: the adhesive term is off, its factors cannot be checked; another c or v_ref makes a new table
+    cache = {}
+    patch_friction(model_of(heat, Adhesion(tau_f0=1.0e6, c=0.1), Wet()), heat, c, s, V, T0, SIGMA0, tables=cache)
+    tab = cache["value"]
+    assert tab.rescalable and not tab.separable
+    again = patch_friction(model_of(heat, Adhesion(tau_f0=1.0e6, c=0.3), Wet()), heat, c, s, V, T0, SIGMA0,
+                           tables=cache)
+    assert cache["value"] is not tab and again.engine_calls > 0
+
+
 def test_the_speed_contracted_table_interpolates_as_the_full_lattice():
     """The march sums a row's table over its speed stencil once and interpolates in (p, T) alone where the
     temperature stencil is the same on every speed node: the value of the tensor-product interpolation to rounding,

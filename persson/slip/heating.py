@@ -268,12 +268,14 @@ def patch_friction(model, heating: PatchHeating, contact, slip, speed, temperatu
         A cache (a dict the caller keeps) of friction tables: reused when the engine (:func:`engine_key`), the
         table settings (``max_rise``, ``n_pressure``, ``temperature_points_per_decade``), the contact's pressure
         shape and the rows' (T0, sigma0, v_s) are the same, whatever the heating strength, contact length or
-        stiffness (e.g. in a fit of the counter-surface effusivity or the stiffness), and whatever the peak shear
-        stress ``tau_f0`` of the model's :class:`persson.effects.Adhesion`: the adhesive term
-        :math:`\tau_{f0} e^{-c x^2} A/A_0 / \sigma_0` is proportional to it and nothing else in the engine depends
-        on it, so the table keeps that term apart (a fit of the baseline's adhesion with patch heating builds one
-        table; a new one only when the friction at either value would pass 3 or fall below 1e-3, where the
-        engine's notes depend on its level). It holds references to the model it was built with, so identities
+        stiffness (e.g. in a fit of the counter-surface effusivity or the stiffness), and whatever the parameters
+        of the model's :class:`persson.effects.Adhesion`: the adhesive term
+        :math:`\tau_f(v, T_{q_1}) A/A_0 / \sigma_0` enters nothing else in the engine, and its factors
+        :math:`A/A_0 / \sigma_0` and :math:`T_{q_1}` (the rubber temperature at q1) do not depend on ``tau_f0``,
+        ``c``, ``v_ref`` or ``v_ref_temperature``, so the table keeps them apart (a fit of the adhesion with patch
+        heating builds one table; a new one only when the friction at either value would pass 3 or fall below
+        1e-3, where the engine's notes depend on its level; where the split cannot be checked, on a wet road or
+        with ``c = 0``, for another ``tau_f0`` alone). It holds references to the model it was built with, so identities
         stay valid while it lives. A solution's notes, warnings and convergence are those of the engine calls
         that evaluated the table nodes it interpolates, so a table grown by a hotter patch does not pass its hot
         nodes' notes to a cooler solution.
@@ -350,17 +352,23 @@ def patch_friction(model, heating: PatchHeating, contact, slip, speed, temperatu
     cache_key = (heating.max_rise, n_g, heating.temperature_points_per_decade,
                  contact._g.tobytes(), keys.tobytes(), vnodes.tobytes(), voff.tobytes(), V_lo.tobytes())
     # a model whose adhesion is the built-in one keys its table without tau_f0: the table keeps the adhesive term
-    # apart and serves any tau_f0 (a fit of the baseline's adhesion with patch heating, one table)
+    # apart and serves any tau_f0 (a fit of the baseline's adhesion with patch heating, one table); a table that
+    # keeps the term's factors as well (``separable``) serves any adhesion, and is keyed without it
     scale = _adhesion_scale(model)
+    adhesion = None if scale is None else model.effect("adhesion")
     ekey = engine_key(model) if scale is None else ("adhesion scaled", engine_key(_with_tau_f0(model, 1.0)))
+    skey = None if scale is None else ("adhesion separable", engine_key(_with_adhesion(model, _ANY_ADHESION)))
     engine = model.without("patch_heating") if "patch_heating" in getattr(model, "effect_names", ()) else model
-    kept = tables is not None and tables.get("engine") == ekey and tables.get("key") == cache_key
-    if kept and (scale is None or tables["value"].rescale(scale, engine)):
+    kept = tables is not None and tables.get("key") == cache_key and (
+        tables.get("engine") == ekey or (skey is not None and tables.get("separable") == skey
+                                         and tables["value"].separable))
+    if kept and (scale is None or tables["value"].rescale(adhesion, engine)):
         tab = tables["value"]
+        tables["engine"] = ekey  # what the table's tau_f0-only split now holds
         calls0, points0 = tab.calls, tab.points
     else:
         calls0, points0 = 0, 0
-        tab = _Tables(engine, keys, vnodes, voff, gnodes, V_lo, heating, adhesion_scale=scale)
+        tab = _Tables(engine, keys, vnodes, voff, gnodes, V_lo, heating, adhesion_scale=scale, adhesion=adhesion)
         if tables is not None:
             if heated and tables.get("key") == cache_key and tables["value"].has_heated():
                 # the same rows with another engine (e.g. a fitted adhesion): the temperature range the previous
@@ -368,7 +376,7 @@ def patch_friction(model, heating: PatchHeating, contact, slip, speed, temperatu
                 tab.B[:] = tables["value"].B
                 tab._grow(np.ones(keys.shape[0], dtype=bool))
             tables.clear()
-            tables.update(engine=ekey, key=cache_key, value=tab, model=model)
+            tables.update(engine=ekey, separable=skey, key=cache_key, value=tab, model=model)
     xi = np.ascontiguousarray(contact._xi)
     gg = np.ascontiguousarray(contact._g)
     rows = PatchRows(sweep=sweep.astype(np.int64), log_speed=np.log(vs), stick_slope=a, heat_factor=lam)
@@ -436,9 +444,18 @@ def _adhesion_scale(model) -> float | None:
 
 def _with_tau_f0(model, tau: float):
     """``model`` with its adhesion's tau_f0 replaced (see :func:`_adhesion_scale`)."""
+    return _with_adhesion(model, {"tau_f0": tau})
+
+
+#: The adhesion's parameters in the key of a table that serves any adhesion (:func:`patch_friction`).
+_ANY_ADHESION = {"tau_f0": 1.0, "c": 0.0, "v_ref": 1.0, "v_ref_temperature": None}
+
+
+def _with_adhesion(model, values: dict):
+    """``model`` with its adhesion's parameters ``values`` replaced (see :func:`_adhesion_scale`)."""
     import dataclasses
 
-    return model.replace(effects=tuple(dataclasses.replace(e, tau_f0=tau) if getattr(e, "name", "") == "adhesion"
+    return model.replace(effects=tuple(dataclasses.replace(e, **values) if getattr(e, "name", "") == "adhesion"
                                        else e for e in model.effects))
 
 

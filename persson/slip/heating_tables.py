@@ -34,16 +34,22 @@ class _Tables:
     block of shape (n_g, nu[i]) at ``vtoff[i]`` in ``values``, holding the nodes k = 0 .. nu[i] - 1.
     """
 
-    def __init__(self, model, keys, vnodes, voff, gnodes, V_lo, heating, adhesion_scale=None):
+    def __init__(self, model, keys, vnodes, voff, gnodes, V_lo, heating, adhesion_scale=None, adhesion=None):
         import warnings
 
         self.model = model
         # With ``adhesion_scale`` (the model's adhesion tau_f0, > 0) every value is kept as rest + tau_f0 * unit as
         # well (the adhesive term is proportional to tau_f0 and nothing else in the engine depends on it): the
         # table then serves another tau_f0 (:meth:`rescale`) without engine calls. ``rest``/``unit`` blocks
-        # parallel ``blocks``; None when the model is not split so.
+        # parallel ``blocks``; None when the model is not split so. With ``adhesion`` (the model's
+        # persson.effects.Adhesion) as well, the factors of the adhesive term tau_f(v, T_q1) A/A0 / sigma0 that do
+        # not depend on the adhesion's parameters are kept too: A/A0 / sigma0 and the rubber temperature T_q1 at q1
+        # of every node (``area``/``t_q1`` blocks after ``rest``/``unit``); the table then serves any tau_f0, c,
+        # v_ref and v_ref_temperature (``separable``), e.g. a joint fit of the adhesion with patch heating.
         self.scale = adhesion_scale
         self.rescalable = adhesion_scale is not None
+        self.adhesion = adhesion if self.rescalable else None
+        self.separable = self.adhesion is not None and float(getattr(self.adhesion, "c", 0.0)) > 0.0
         self.T0 = np.ascontiguousarray(keys[:, 0])
         self.sig0 = np.ascontiguousarray(keys[:, 1])
         self.vnodes = vnodes
@@ -66,6 +72,7 @@ class _Tables:
         # temperature of its evaluation instead (background and flash), from which patch_friction notes the range
         # of the nodes its own solution interpolates (:meth:`rubber_range`).
         self._warnings = warnings
+        self.parts = None
         nc = keys.shape[0]
         ng = gnodes.size
         self._capped = np.zeros(nc, dtype=bool)
@@ -204,28 +211,65 @@ class _Tables:
             self.B[c] *= 1.25 * float(umax[c])
         self._grow(over)
 
-    def rescale(self, adhesion_scale: float, model) -> bool:
-        """Serve ``model``, the table's model with the adhesion's tau_f0 = ``adhesion_scale`` instead: the values
-        become rest + tau_f0 * unit, no engine call (the nodes a hotter patch needs later come from ``model``).
-        Refused (False; the caller builds a new table) when the table is not split, or when the values at either
-        tau_f0 would carry notes that depend on the friction's level (friction above 3, below 1e-3: the notes the
-        engine recorded would then not be those of the new values)."""
+    def rescale(self, adhesion, model) -> bool:
+        """Serve ``model``, the table's model with another ``adhesion`` (its persson.effects.Adhesion), no engine
+        call (the nodes a hotter patch needs later come from ``model``): the values become rest + tau_f(v, T_q1)
+        A/A0 / sigma0 with the new adhesion's shear stress where the table is :attr:`separable` (any tau_f0, c,
+        v_ref), else rest + tau_f0 * unit (the caller makes sure that only tau_f0 differs). Refused (False; the
+        caller builds a new table) when the table is not split, or when the values at either adhesion would carry
+        notes that depend on the friction's level (friction above 3, below 1e-3: the notes the engine recorded
+        would then not be those of the new values)."""
         if not self.rescalable:
             return False
-        if adhesion_scale == self.scale:
-            self.model = model
-            return True
-        blocks = [rest + adhesion_scale * unit for rest, unit in zip(*self.parts)]
+        tau_f0 = float(adhesion.tau_f0)
+        if self.separable:
+            if adhesion == self.adhesion:
+                self.model = model
+                return True
+            units = self._separable_units(adhesion, model)
+            if units is None:
+                return False
+        else:
+            if tau_f0 == self.scale:
+                self.model = model
+                return True
+            units = self.parts[1]
+        blocks = [rest + tau_f0 * unit for rest, unit in zip(self.parts[0], units)]
         for c, blk in enumerate(blocks):
-            filled = np.arange(blk.shape[2])[None, :] < self.nus[c][:, None]
-            if not _level_note_free(blk.transpose(0, 2, 1)[filled]):
+            if not _level_note_free(blk.transpose(0, 2, 1)[self._filled(c)]):
                 return False
         self.blocks = blocks
-        self.scale = float(adhesion_scale)
+        self.parts[1] = units
+        self.scale = tau_f0
+        if self.separable:
+            self.adhesion = adhesion
         self.model = model
         self.mu_max = np.array([float(np.max(b)) for b in self.blocks])
         self._layout()
         return True
+
+    def _separable_units(self, adhesion, model):
+        """tau_f(v, T_q1) / tau_f0 * A/A0 / sigma0 of ``adhesion`` at every filled node (zeros elsewhere), per sweep;
+        None where it is not finite."""
+        import warnings
+
+        units = []
+        for c, area in enumerate(self.parts[2]):
+            filled = np.broadcast_to(self._filled(c)[:, None, :], area.shape)
+            v = np.broadcast_to(self.vnodes[self.voff[c]:self.voff[c + 1]][:, None, None], area.shape)
+            unit = np.zeros(area.shape)
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")  # the shift law at the nodes' temperatures: the fills noted it
+                tau = adhesion.shear_stress(v[filled], self.parts[3][c][filled], model.material)
+            unit[filled] = np.asarray(tau, dtype=float) / float(adhesion.tau_f0) * area[filled]
+            if not np.all(np.isfinite(unit)):
+                return None
+            units.append(unit)
+        return units
+
+    def _filled(self, c) -> np.ndarray:
+        """The (n_v, capacity) mask of the filled temperature nodes of sweep c."""
+        return np.arange(self.blocks[c].shape[2])[None, :] < self.nus[c][:, None]
 
     def _call(self, v, T, p):
         """The engine's friction at the points (v, T, p); with an adhesion scale its (rest, unit) parts (None
@@ -269,10 +313,39 @@ class _Tables:
         # result without its adhesive term (not a persson.Model's) is not split
         if (adh.shape != mu.shape or not np.all(np.abs(rest + self.scale * unit - mu) <= 1e-12 * (1.0 + mu))
                 or not _level_note_free(mu)):
-            self.rescalable = False
+            self.rescalable = self.separable = False
             self.parts = None
             return mu, None, trange, call
+        if self.separable:
+            factors = self._adhesion_factors(r, v, p, adh, mu)
+            if factors is not None:
+                return mu, (rest, unit) + factors, trange, call
+            self.separable = False  # e.g. a wet road, where the adhesive term is off: tau_f0 alone is kept apart
+            if self.parts is not None:
+                del self.parts[2:]
         return mu, (rest, unit), trange, call
+
+    def _adhesion_factors(self, r, v, p, adh, mu):
+        """(A/A0 / sigma0, T_q1) at the points of an engine result, when the model's adhesion times them gives the
+        engine's adhesive term back (to rounding) at every point and that term is not zero everywhere (so that the
+        check means something); else None."""
+        import warnings
+
+        area = getattr(r, "contact_area", None)
+        tq = getattr(r, "temperature_q", None)
+        if area is None or tq is None:
+            return None
+        a = np.atleast_1d(np.asarray(area, dtype=float)) / p
+        tq1 = np.asarray(tq, dtype=float).reshape(v.size, -1)[:, -1].copy()
+        if a.shape != v.shape:
+            return None
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            term = np.asarray(self.adhesion.shear_stress(v, tq1, self.model.material), dtype=float) * a
+        if not (np.all(np.isfinite(term)) and np.any(term > 0)
+                and np.all(np.abs(term - adh) <= 1e-12 * (1.0 + mu))):
+            return None
+        return a, tq1
 
     def rubber_range(self, rise_top) -> tuple[float, float]:
         """The coldest and hottest rubber temperature (C) over the nodes a solution interpolates (:meth:`_used`).
