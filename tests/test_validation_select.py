@@ -128,7 +128,22 @@ def effects():
         def friction_term(self, state):
             return self.b + self.k * _x(state)
 
-    yield {"texture": Texture, "heat": Heat, "slope": Slope, "line": Line, "bend": Bend, "mimic": Mimic}
+    @dataclass(frozen=True)
+    class Marker(Effect):
+        """m (T - 25 C) / 15 (no mean over the temperatures); marks the surface as textured."""
+
+        name = "test_marker"
+        parameters = (Parameter("m", 0.02, (0.0, 0.3), "1", "rise over the temperatures", physical_limits=(0.0,)),)
+        m: float = 0.02
+
+        def transform_conditions(self, conditions):
+            return conditions.replace(extra={**conditions.extra, "texture": self.m})
+
+        def friction_term(self, state):
+            return self.m * (np.broadcast_to(state.conditions.temperature, state.conditions.speed.shape) - 25.0) / 15.0
+
+    yield {"texture": Texture, "heat": Heat, "slope": Slope, "line": Line, "bend": Bend, "mimic": Mimic,
+           "marker": Marker}
     base._REGISTRY = saved
 
 
@@ -324,6 +339,34 @@ def test_a_candidate_not_credible_alone_is_tried_as_a_swap_once_a_partner_is_in(
     assert changes == [("swapped", "micro", "strain", pytest.approx(11.0), ("strain", "adhesion"))]
     # a swap to a set that is still not credible is not made
     assert search_with("outside the plausible range").prune(("micro", "adhesion")) == []
+
+
+def test_a_pair_of_two_candidates_that_showed_nothing_alone_is_screened_and_found(effects):
+    """The marker (m (T - 25)/15, m = 0.002) shows nothing alone, and the heat has no signature without it (a
+    flash temperature on a PSD that stops short, beside a microtexture whose own change is within the noise). The
+    slope k x takes the heat's rise and the path stops there; the pair of the two quiet candidates, which no step
+    fits, is screened (a linearized joint fit from the marker's, exact for these linear effects) and fitted: it
+    fits better than the slope by more than 10 BIC units (least squares) and replaces it."""
+    base = persson.Model(SURFACE, TREAD)
+    truth = base.with_effect(effects["marker"](m=0.002)).with_effect(effects["heat"](h=0.03))
+    m = _data(truth, 5)
+    imp = validation.improve(base, m, candidates=[effects["slope"](), effects["marker"](), effects["heat"]()])
+    dx0 = imp.steps[0].diagnosis
+    assert dx0.candidate("test_heat").status == "no signature"
+    assert not dx0.candidate("test_marker").significant and dx0.verdict.effect == "test_slope", dx0.text()
+    assert imp.steps[1].added == "test_slope", imp.table_text()
+    explored = [s for s in imp.steps if s.action == "explored"]
+    assert len(explored) == 1 and set(explored[0].effects) == {"test_marker", "test_heat"}, imp.table_text()
+    assert set(imp.selection.best.effects) == {"test_marker", "test_heat"}, imp.selection.text()
+    # the gain is the least-squares one: the slope k x against m t + h x^2 (one and two parameters)
+    x = np.log10(m.sliding_speed / 1e-3) / 3.0
+    t = (m.temperature - 25.0) / 15.0
+    chi2_slope, _ = _linear_chi2(m, base, [x])
+    chi2_pair, (mm, h) = _linear_chi2(m, base, [t, x * x])
+    assert mm > 0 and h > 0
+    gain = chi2_slope - chi2_pair - np.log(m.n)
+    assert gain > validation.select.STAY
+    assert explored[0].delta_bic == pytest.approx(-gain, abs=0.05)
 
 
 # ---------------------------------------------------------------------------------------------- pairs that tie

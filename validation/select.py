@@ -28,7 +28,9 @@ the free parameters of every effect in :math:`S` -- are refitted jointly from gl
    same rows): the pair fits as well, and the data cannot tell them apart, but no step ever fitted it. Each pair
    of a credible significant candidate (the three best) with a candidate that showed nothing alone (no
    signature, or parameters the data do not identify; one that acted alone only where its own gain could make the
-   pair tie) is screened: a bound from a linearized joint fit from the significant one's fit (its Jacobian, and
+   pair tie), and each pair of a credible candidate that showed nothing alone with one that changed no prediction
+   at all alone (no signature, or no effect on the rows: a flash temperature on a PSD that stops short, beside a
+   microtexture whose own change is within the noise: neither member is ever significant alone), is screened: a bound from a linearized joint fit from the significant one's fit (its Jacobian, and
    the change the quiet one makes at a few points of its range: one Gauss-Newton step, the quiet one's amplitude
    kept positive), about ten model evaluations; where the bound comes within :data:`EQUAL` of the path's set (a
    pair that contains the path's set: better by more than :data:`STAY`), two bounded Gauss-Newton steps of the
@@ -507,11 +509,17 @@ class SetSearch:
                         pairs[key] = ((a.effect, b.effect), min(a.bic, b.bic if b.status == "ok" else math.inf))
         start = self.n_evals
         order = sorted(pairs.values(), key=lambda t: t[1])
-        # superadditive pairs the gain rule cannot see: screened by a linearized joint fit
+        # superadditive pairs the gain rule cannot see: screened by a linearized joint fit; a candidate that changed
+        # no prediction at all alone (a flash temperature on a PSD that stops short of the scales it heats) is
+        # screened with every credible candidate that showed nothing either (the microtexture that makes it act)
         now_bic = self.get(current).bic
+        invisible = [c for c in quiet if _changes_nothing(c)]
+        partners = [(a, quiet) for a in significant] + [
+            (a, invisible) for a in quiet
+            if a.status == "ok" and not _changes_nothing(a) and self.sets[frozenset({a.effect})].plausible]
         screened = []
-        for a in significant:
-            for b in quiet:
+        for a, others in partners:
+            for b in others:
                 key = frozenset({a.effect, b.effect})
                 if key in self.sets or key in pairs or a.effect == b.effect:
                     continue
@@ -754,6 +762,15 @@ class SetSearch:
 def fits_at_noise(s: EffectSet) -> bool:
     """Whether the set fits at the noise level: lack of fit consistent with the noise, no pattern left."""
     return bool(s.lack is not None and s.lack.consistent and not (s.pattern is not None and s.pattern.found))
+
+
+def _changes_nothing(c) -> bool:
+    """Whether a candidate of a diagnosis changed no prediction alone: no signature, or a fit whose every parameter
+    has no effect on the rows."""
+    if c.status == "no signature":
+        return True
+    est = getattr(c, "estimates", ()) or ()
+    return bool(est) and all(e.method == "no effect on these rows" for e in est)
 
 
 def _better(fitted, now: EffectSet) -> EffectSet | None:
