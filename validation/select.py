@@ -30,9 +30,10 @@ the free parameters of every effect in :math:`S` -- are refitted jointly from gl
    signature, or parameters the data do not identify; one that acted alone only where its own gain could make the
    pair tie), and each pair of a credible candidate that showed nothing alone with one that changed no prediction
    at all alone (no signature, or no effect on the rows: a flash temperature on a PSD that stops short, beside a
-   microtexture whose own change is within the noise: neither member is ever significant alone), is screened: a bound from a linearized joint fit from the significant one's fit (its Jacobian, and
-   the change the quiet one makes at a few points of its range: one Gauss-Newton step, the quiet one's amplitude
-   kept positive), about ten model evaluations; where the bound comes within :data:`EQUAL` of the path's set (a
+   microtexture whose own change is within the noise: neither member is ever significant alone), is screened: a
+   bound from a linearized joint fit from the first one's fit (its Jacobian, and the change the quiet one makes
+   at a few points of its range: one Gauss-Newton step, the quiet one's amplitude kept positive), about ten model
+   evaluations; where the bound comes within :data:`EQUAL` of the path's set (a
    pair that contains the path's set: better by more than :data:`STAY`), two bounded Gauss-Newton steps of the
    pair itself give a value it reaches, and the pairs that reach within :data:`EQUAL` of that limit are refitted
    jointly, the most promising first, within as many model evaluations as the path took. A pair
