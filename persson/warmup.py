@@ -45,13 +45,16 @@ def start() -> bool:
     -------
     bool
         Whether a second process was started (False when the cache already holds the kernel, a warm-up has
-        already started in this process, ``PERSSON_WARMUP=0``, or numba does not compile).
+        already started in this process, ``PERSSON_WARMUP=0``, numba does not compile, or the interpreter is a
+        frozen application's).
     """
     from .engine import jit
     from .slip import heating_kernels
 
     kernel = heating_kernels._march_kernel
-    if os.environ.get(ENV, "1") == "0" or kernel in jit._BEFORE or _cached(kernel):
+    # a frozen application's executable is the application, not a Python that runs -m
+    if (os.environ.get(ENV, "1") == "0" or getattr(sys, "frozen", False) or kernel in jit._BEFORE
+            or _cached(kernel)):
         return False
     env = dict(os.environ, **{ENV: "0"})
     # the second process must import this very package (and so share its numba cache), whatever sys.path the

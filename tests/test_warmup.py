@@ -85,6 +85,9 @@ def test_nothing_is_started_when_the_cache_holds_the_kernel_or_the_user_switched
     monkeypatch.setattr(warmup, "_cached", lambda kernel: False)
     monkeypatch.setenv(warmup.ENV, "0")
     assert warmup.start() is False
+    monkeypatch.delenv(warmup.ENV)
+    monkeypatch.setattr(sys, "frozen", True, raising=False)   # a frozen application cannot run python -m
+    assert warmup.start() is False
     assert heating_kernels._march_kernel not in jit._BEFORE
 
 
