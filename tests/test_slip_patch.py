@@ -15,6 +15,7 @@ Independent references used here:
 * the real engine: a slow Picard iteration written here (whole profile re-evaluated with the engine each pass).
 """
 
+import itertools
 import math
 import warnings
 from dataclasses import dataclass, field
@@ -430,16 +431,19 @@ def test_one_table_serves_every_adhesion_with_the_answers_of_a_fresh_table():
 
     shapes = (dict(tau_f0=1.3e6, c=0.25, v_ref=3e-3), dict(tau_f0=0.7e6, c=0.05, v_ref=0.3),
               dict(tau_f0=1.0e6, c=0.1, v_ref=1e-2, v_ref_temperature=40.0), dict(tau_f0=1.0e6, c=0.1, v_ref=1e-2))
-    for extra in ((), (FlashTemperature(),)):
+    # the middle (20 C, 0.3 MPa) and the corners: cold and light (the rubber near its glassy side: the flash
+    # temperature's T_q1 far above T0) and hot and heavy (rubbery)
+    corners = ((T0, SIGMA0), (-20.0, 0.05e6), (70.0, 0.8e6))
+    for (t0, p0), extra in itertools.product(corners, ((), (FlashTemperature(),))):
         cache = {}
-        patch_friction(model_of(heat, Adhesion(tau_f0=1.0e6, c=0.1, v_ref=1e-2), *extra), heat, c, s, V, T0, SIGMA0,
+        patch_friction(model_of(heat, Adhesion(tau_f0=1.0e6, c=0.1, v_ref=1e-2), *extra), heat, c, s, V, t0, p0,
                        tables=cache)
         tab = cache["value"]
         assert tab.separable
         for shape in shapes:
             other = model_of(heat, Adhesion(**shape), *extra)
-            kept = patch_friction(other, heat, c, s, V, T0, SIGMA0, tables=cache)
-            fresh = patch_friction(other, heat, c, s, V, T0, SIGMA0, tables={})
+            kept = patch_friction(other, heat, c, s, V, t0, p0, tables=cache)
+            fresh = patch_friction(other, heat, c, s, V, t0, p0, tables={})
             assert cache["value"] is tab
             assert kept.engine_calls == 0 or float(np.max(kept.max_rise)) > float(np.max(fresh.max_rise)) - 1e-9
             # the T0 slice comes from one engine call of the same speeds in both tables: equal to rounding; the
