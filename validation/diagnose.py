@@ -29,6 +29,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .ambiguity import COSINE_THRESHOLD, Ambiguity, Separation, clusters as find_clusters, separate
+from .calibration import check_calibration
 from .candidates import (DELTA_BIC_THRESHOLD, P_THRESHOLD, SIGNIFICANCE_RULE, Baseline, BaselineFit, Candidate,
                          FitSettings, bic, finish_candidate, fit_baseline, fit_candidate, note_kind)
 from .compare import json_text
@@ -38,7 +39,7 @@ from .measurements import Measurements
 from .noise import NoiseEstimate, estimate_noise, lack_of_fit, remaining_pattern
 from .predict import Predictor, mostly_extrapolated
 from .refit import data_range, issues_at, with_uncertainty
-from .verdict import Verdict, decide, explain
+from .verdict import Verdict, decide, explain, with_calibration
 
 __all__ = ["Diagnosis", "Baseline", "Candidate", "Ambiguity", "Separation", "diagnose_single", "SIGNIFICANCE_RULE",
            "DELTA_BIC_THRESHOLD", "P_THRESHOLD", "COSINE_THRESHOLD"]
@@ -77,6 +78,9 @@ class Diagnosis:
         Per row, the share of the refitted baseline's hysteresis that rests on the master curve's extrapolation
         beyond its measured frequencies (the explanation cautions where rows rest on it for more than half; JSON
         ``baseline.rows_mostly_extrapolated``); None when not known.
+    calibration : validation.calibration.CalibrationCheck or None
+        A gain and a zero offset of the measured mu fitted on the baseline and compared with the verdict's
+        candidate (a rival is named in the verdict; JSON ``calibration``); with the set search, the selection's.
     """
 
     measurements: Measurements
@@ -96,6 +100,7 @@ class Diagnosis:
     selection: object = None
     context: object = field(default=None, repr=False)
     modulus_extrapolated_share: np.ndarray | None = field(default=None, repr=False)
+    calibration: object = field(default=None, repr=False)
 
     @property
     def noise_known(self) -> bool:
@@ -166,7 +171,8 @@ class Diagnosis:
         ``effects``, the BIC, the refitted parameters with ``parameters_std`` and ``intervals``, its lack of fit,
         the significance rule, the explanation, the cost) and ``candidates``, best first: ``effect``, ``rmse``,
         ``delta_bic``, ``significant``, ``parameters``, ``parameters_std``, ``intervals``, ``plausible``,
-        ``issues``, the test statistics and, for members of an ambiguity cluster, ``ambiguity``.
+        ``issues``, the test statistics and, for members of an ambiguity cluster, ``ambiguity``; ``calibration``
+        (:meth:`validation.calibration.CalibrationCheck.as_dict`; with the set search, the selection's).
         """
         b = self.baseline
         v = self.verdict
@@ -205,6 +211,7 @@ class Diagnosis:
                          "rows_mostly_extrapolated": (None if self.modulus_extrapolated_share is None else
                                                       int(mostly_extrapolated(self.modulus_extrapolated_share).size))},
             "candidates": cands,
+            "calibration": None if self.calibration is None else self.calibration.as_dict(),
         }
         if self.selection is not None:
             out.update(self.selection.as_dict())
@@ -331,6 +338,8 @@ def diagnose_single(model, measurements: Measurements | None = None, candidates=
         clusters, used = separate(clusters, results, m, contact)
         n_eval += used
     verdict = decide(baseline, results, noise)
+    calibration = _calibration_check(verdict, baseline, results, ctx)
+    verdict = with_calibration(verdict, calibration)
     # the baseline at its optimum again, in full: its solutions are kept by the predictor, so this costs no solve
     extrapolated = predictor.predict(baseline.model, full=True).modulus_extrapolated_share
     explanation = explain(verdict, m, baseline, results, clusters, noise, extrapolated_share=extrapolated)
@@ -340,7 +349,15 @@ def diagnose_single(model, measurements: Measurements | None = None, candidates=
                      clusters=tuple(clusters), explanation=explanation, rule=SIGNIFICANCE_RULE,
                      sigma_known=sigma_known, noise=_noise_level(noise), n_evaluations=n_eval,
                      seconds=time.perf_counter() - t_start, name=name, verdict=verdict, noise_estimate=noise,
-                     context=ctx, modulus_extrapolated_share=extrapolated)
+                     context=ctx, modulus_extrapolated_share=extrapolated, calibration=calibration)
+
+
+def _calibration_check(verdict, baseline, results, ctx):
+    """A gain and a zero offset of the measured mu on the baseline, against the candidate the verdict names (the
+    baseline itself when it names none): :func:`validation.calibration.check_calibration`."""
+    named = next((c for c in results if c.effect == verdict.effect), None) if verdict.effect else None
+    answer = ("(baseline)", (), baseline.bic) if named is None else (named.effect, (named.effect,), named.bic)
+    return check_calibration([("(baseline)", (), baseline.predicted, baseline.n_params, baseline.bic)], answer, ctx)
 
 
 @dataclass(frozen=True, eq=False)

@@ -34,7 +34,7 @@ from .diagnose import Diagnosis, _unpack, diagnose_single
 from .errors import InputError
 from .predict import Prediction, Predictor
 from .select import Selection, SetSearch, fits_at_noise
-from .verdict import Verdict, judge, misfit_share
+from .verdict import Verdict, judge, misfit_share, with_calibration
 
 __all__ = ["Improvement", "Step", "improve", "diagnose"]
 
@@ -281,7 +281,8 @@ class Improvement:
         explanation = v.headline + "\n\n" + self.selection.text() + "\n\n" + "The single-effect diagnosis:\n\n" + \
             dx.explanation
         return replace(dx, verdict=v, selection=self.selection, explanation=explanation,
-                       seconds=self.seconds, n_evaluations=self.n_evaluations)
+                       seconds=self.seconds, n_evaluations=self.n_evaluations,
+                       calibration=self.selection.calibration if self.selection is not None else dx.calibration)
 
 
 def diagnose(model, measurements=None, candidates=None, contact=None, *, search: str = "single",
@@ -567,20 +568,23 @@ def _fit_names(base_fit, effects, search) -> list:
 def _final_verdict(dx0: Diagnosis, selection: Selection, noise) -> Verdict:
     """The verdict on the best set: the first diagnosis' when nothing was added, else :func:`judge` on the set
     (its lack of fit, pattern, identification and share of the misfit removed), naming the equally supported
-    sets as alternatives."""
+    sets as alternatives; a calibration error of the rig that rivals the set is named in its reason
+    (:mod:`validation.calibration`)."""
     best = selection.best
     if not best.effects:
-        return dx0.verdict
-    if not noise.known:
         v = dx0.verdict
-        return replace(v, reason=v.reason + f" The set search ended with {best.label}.")
-    b = dx0.baseline
-    share = misfit_share(b.rss, b.n_params, best.rss, best.n_params, b.residual.size, noise,
-                         noise.source == "mu_std")
-    noise_txt = f"noise {noise.sigma:.3g} from {noise.source}"
-    alts = tuple(s.label for s in selection.supported)
-    return judge(best.effects[0], best.effects, best.lack, best.pattern, best.not_identified, share,
-                 best.bic - b.bic, noise_txt, (), alts)
+    elif not noise.known:
+        v = dx0.verdict
+        v = replace(v, reason=v.reason + f" The set search ended with {best.label}.")
+    else:
+        b = dx0.baseline
+        share = misfit_share(b.rss, b.n_params, best.rss, best.n_params, b.residual.size, noise,
+                             noise.source == "mu_std")
+        noise_txt = f"noise {noise.sigma:.3g} from {noise.source}"
+        alts = tuple(s.label for s in selection.supported)
+        v = judge(best.effects[0], best.effects, best.lack, best.pattern, best.not_identified, share,
+                  best.bic - b.bic, noise_txt, (), alts)
+    return with_calibration(v, selection.calibration)
 
 
 def _sub(progress, prefix):

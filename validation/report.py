@@ -315,6 +315,9 @@ def _selection_html(sel) -> str:
     if sel.supported:
         out.append("<p><b>The data support these sets equally</b>; the measurement that would separate them:</p>")
         out.append(_probe_table(tuple(sel.separations) + tuple(sel.separations_in_range)))
+    cal = getattr(sel, "calibration", None)
+    if cal is not None and cal.rivals:
+        out.append(f"<p><b>Calibration of the rig.</b> {_e(cal.text())}</p>")
     if sel.set_aside:
         out.append("<p class='note'>Set aside although they fit better (not credible): " + _e("; ".join(
             f"{s.label} ({s.bic - sel.best.bic:+.1f} BIC units: {'; '.join(s.issues)})" for s in sel.set_aside))
@@ -355,7 +358,7 @@ def _verdict_banner(items) -> str:
         text = (f"Verdict: {imp.verdict.replace('_', ' ').upper()} -- effects added: {added}; RMSE "
                 f"{imp.rmse[0]:.4g} -> {imp.rmse[-1]:.4g} {noise}. {imp.stopped}.")
         if imp.final is not None:
-            text += " " + imp.final.reason
+            text += " " + imp.final.reason + (" " + imp.final.calibration if imp.final.calibration else "")
         sel = imp.selection
         if sel is not None and sel.supported:
             text += (" Equally supported (within 10 BIC units): " + ", ".join(s.label for s in sel.supported)

@@ -68,7 +68,9 @@ The search stops when the verdict on the current set says stop, and a final pass
 every set within :data:`EQUAL` BIC units of it among the sets fitted on the way (equally supported models;
 supersets of another listed set are left out unless their extra effects earn more than :data:`STAY` BIC units),
 each with its parameters and intervals, and the measurement that would separate each from the best
-(:mod:`validation.probe`).
+(:mod:`validation.probe`). Last, a calibration error of the rig (a gain or a zero offset of the measured mu) is
+fitted on top of every subset of the best set that was fitted: one that fits as well as the effects it replaces is
+named as their rival (:mod:`validation.calibration`).
 """
 
 from __future__ import annotations
@@ -82,6 +84,7 @@ from scipy.optimize import lsq_linear
 from frictioncite import doi
 
 from .band import SEBER_WILD_1989
+from .calibration import check_calibration
 from .candidates import KASS_RAFTERY_1995, SCHWARZ_1978, bic, fit_baseline
 from .fitting import BudgetExhausted, Fitter, ParameterSpace, halton
 from .refit import BUDGET_NOTE
@@ -232,6 +235,10 @@ class Selection:
     reduced : tuple of str
         What refitting the subsets of the sets within reach of the best (:meth:`SetSearch.reduce`) found, in words:
         a subset that fits better than the path's set, or that it stopped at its budget (empty when neither).
+    calibration : validation.calibration.CalibrationCheck or None
+        A gain and a zero offset of the measured mu fitted on top of each subset of the best set: a calibration
+        error of the rig that fits as well as the best set's extra effects is a rival of them
+        (:func:`validation.calibration.check_calibration`).
     """
 
     best: EffectSet
@@ -244,6 +251,7 @@ class Selection:
     explored: tuple = ()
     resumed: tuple = ()
     reduced: tuple = ()
+    calibration: object = None
 
     @property
     def equally_supported(self) -> bool:
@@ -267,7 +275,8 @@ class Selection:
             ``drop_costs``, ``set_separations`` and ``set_separations_in_measured_range``
             (:meth:`validation.probe.Separation.as_dict`), ``sets`` (every set fitted: ``effects``, ``bic``,
             ``delta_bic``, ``rmse``, ``plausible``, ``source``), ``set_aside`` (``effects``, ``delta_bic``, ``issues``),
-            ``removed``, ``explored``, ``resumed`` and ``reduced``.
+            ``removed``, ``explored``, ``resumed``, ``reduced`` and ``calibration``
+            (:meth:`validation.calibration.CalibrationCheck.as_dict`, None when not checked).
         """
         b = self.best.bic
         return {"best_set": self.best.as_dict(b), "equally_supported": [s.as_dict(b) for s in self.supported],
@@ -279,7 +288,8 @@ class Selection:
                 "set_aside": [{"effects": list(s.effects), "delta_bic": s.bic - b, "issues": list(s.issues)}
                               for s in self.set_aside],
                 "removed": list(self.removed), "explored": list(self.explored), "resumed": list(self.resumed),
-                "reduced": list(self.reduced)}
+                "reduced": list(self.reduced),
+                "calibration": None if self.calibration is None else self.calibration.as_dict()}
 
     def text(self) -> str:
         """Plain text: the best set and the cost of dropping each of its effects, the equally supported sets and where
@@ -300,6 +310,8 @@ class Selection:
                 lines.append(f"  to tell them apart, measure at {sep.describe()}")
             for sep in self.separations_in_range:
                 lines.append(f"  inside the measured conditions the largest difference is at {sep.describe()}")
+        if self.calibration is not None and self.calibration.rivals:
+            lines.append(self.calibration.text())
         if self.explored:
             lines.append("Exploring pairs beyond the stepwise path: " + "; ".join(self.explored) + ".")
         if self.resumed:
@@ -755,9 +767,12 @@ class SetSearch:
                     seps.append(pair[0])
                     if pair[1] is not None:
                         seps_in.append(pair[1])
+        calibration = check_calibration([(s.label, s.effects, s.predicted, s.n_params, s.bic) for s in visited],
+                                        (best.label, best.effects, best.bic), self.ctx)
         return Selection(best=best, supported=tuple(supported), drop_costs=costs, separations=tuple(seps),
                          separations_in_range=tuple(seps_in), visited=tuple(visited), removed=tuple(self.removed),
-                         explored=tuple(self.explored), resumed=tuple(self.resumed), reduced=tuple(self.reduced))
+                         explored=tuple(self.explored), resumed=tuple(self.resumed), reduced=tuple(self.reduced),
+                         calibration=calibration)
 
 
 def fits_at_noise(s: EffectSet) -> bool:

@@ -32,7 +32,7 @@ from __future__ import annotations
 
 import math
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -41,7 +41,8 @@ from frictioncite import doi
 from .candidates import KASS_RAFTERY_1995, SIGNIFICANCE_RULE
 from .predict import mostly_extrapolated
 
-__all__ = ["Verdict", "decide", "explain", "VERDICTS", "CLOSE_CALL", "PARTLY_SHARE", "misfit_share"]
+__all__ = ["Verdict", "decide", "explain", "VERDICTS", "CLOSE_CALL", "PARTLY_SHARE", "misfit_share",
+           "with_calibration"]
 
 VERDICTS = ("nothing_missing", "explained", "partly_explained", "unexplained", "undetermined")
 #: Delta BIC below which the top two candidates are a close call.
@@ -90,6 +91,9 @@ class Verdict:
     effects : tuple of str
         The explaining set of effects (one effect for a single candidate; several for the set search of
         :func:`validation.improve`).
+    calibration : str
+        A calibration error of the rig that fits the rows as well as the named effects (or alone, where the
+        verdict names none), in words; empty when none does (:mod:`validation.calibration`).
     """
 
     verdict: str
@@ -104,15 +108,19 @@ class Verdict:
     share: float = math.nan
     closest: str | None = None
     effects: tuple = ()
+    calibration: str = ""
 
     @property
     def headline(self) -> str:
-        """The verdict in words, for the first line of texts and reports."""
+        """The verdict in words, for the first line of texts and reports (with the rival calibration error, if
+        any)."""
         named = " + ".join(self.effects) if len(self.effects) > 1 else self.effect
         alt = (f" -- or as well by {', '.join(self.alternatives)} (within {CLOSE_CALL:g} BIC units: the data "
                "cannot tell them apart)" if self.alternatives else "")
         ind = f" ({', '.join(self.indicated)} indicated)" if self.indicated else ""
-        return f"Verdict: {_WORDS[self.verdict]}" + (f" by {named}" if named else "") + ind + alt + f". {self.reason}"
+        cal = f" {self.calibration}" if self.calibration else ""
+        return (f"Verdict: {_WORDS[self.verdict]}" + (f" by {named}" if named else "") + ind + alt
+                + f". {self.reason}{cal}")
 
     def as_dict(self) -> dict:
         """The verdict as a JSON-ready dict.
@@ -121,12 +129,22 @@ class Verdict:
         -------
         dict
             ``verdict``, ``effect``, ``effects``, ``lack_of_fit_p``, ``remaining_pattern``, ``reason``,
-            ``alternatives``, ``indicated``, ``not_identified``, ``share`` and ``closest``.
+            ``alternatives``, ``indicated``, ``not_identified``, ``share``, ``closest`` and ``calibration``
+            (the rival calibration error in words, empty when none).
         """
         return {"verdict": self.verdict, "effect": self.effect, "effects": list(self.effects),
                 "lack_of_fit_p": self.lack_of_fit_p, "remaining_pattern": self.remaining_pattern,
                 "reason": self.reason, "alternatives": list(self.alternatives), "indicated": list(self.indicated),
-                "not_identified": list(self.not_identified), "share": self.share, "closest": self.closest}
+                "not_identified": list(self.not_identified), "share": self.share, "closest": self.closest,
+                "calibration": self.calibration}
+
+
+def with_calibration(verdict: Verdict, check) -> Verdict:
+    """``verdict`` naming the calibration error of ``check`` (a :class:`validation.calibration.CalibrationCheck`,
+    or None) that rivals its answer; unchanged when none does."""
+    if check is None or not check.rivals:
+        return replace(verdict, calibration="")
+    return replace(verdict, calibration=check.text())
 
 
 def misfit_share(rss0: float, k0: int, rss1: float, k1: int, n: int, noise, sigma_known: bool) -> float:

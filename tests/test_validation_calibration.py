@@ -1,0 +1,153 @@
+"""validation: a calibration error of the rig named where it fits as well as the effects a diagnosis adds.
+
+mu is the ratio of two measured forces: a gain error of a load cell scales every measured mu, a zero offset of the
+friction force adds Delta F_x / F_z (as 1/p). A loss modulus a few per cent higher (strain softening with a loss
+factor above 1) raises the hysteresis friction almost uniformly, as a gain does, so a diagnosis of data from a
+badly calibrated rig can name strain softening. The check fits both errors on top of every subset of the answer
+(closed-form weighted least squares, checked here against numpy's) and names one that fits as well.
+
+60 sliding rows: 3 temperatures x 10 speeds x 2 pressures, known noise ``mu_std`` = 0.005.
+"""
+
+import dataclasses
+import math
+
+import numpy as np
+import pytest
+
+import materials
+import persson
+import surfaces
+import validation
+from validation.calibration import GAIN_RANGE, OFFSET_LIMIT, check_calibration
+from validation.report import render_report
+
+SURFACE = surfaces.SelfAffine(hurst=0.8, q0=1e3, q1=1e6, hrms=3e-4)
+TREAD = materials.example_tread()
+SIGMA = 0.005
+PRESSURES = (2e5, 4e5)
+
+
+def _rows():
+    v = np.geomspace(1e-3, 1.0, 10)
+    speed = np.tile(v, 6)
+    temperature = np.tile(np.repeat([10.0, 25.0, 40.0], 10), 2)
+    pressure = np.repeat(PRESSURES, 30)
+    return validation.Measurements.from_arrays(slip=1.0, speed=speed, temperature=temperature, pressure=pressure,
+                                               mu=0.5, mu_std=SIGMA)
+
+
+def _with_noise(rows, mu, seed):
+    mu = mu + np.random.default_rng(seed).normal(0.0, SIGMA, rows.n)
+    return rows.with_mu(mu, mu_std=np.full(rows.n, SIGMA))
+
+
+@pytest.fixture(scope="module")
+def baseline():
+    base = persson.Model(SURFACE, TREAD)
+    rows = _rows()
+    return base, rows, validation.predict(base, rows).mu
+
+
+@pytest.fixture(scope="module")
+def gain_error(baseline):
+    """Data from a rig whose mu reads 6 % high; strain softening is the only candidate."""
+    base, rows, f = baseline
+    m = _with_noise(rows, 1.06 * f, 11)
+    return validation.improve(base, m, candidates=["strain_softening"])
+
+
+def test_a_gain_error_absorbed_by_strain_softening_is_named_as_its_rival(gain_error):
+    imp = gain_error
+    assert imp.added == ("strain_softening",), imp.table_text()
+    cal = imp.selection.calibration
+    (first, *_) = cal.rivals
+    assert first.kind == "gain" and first.effects == () and first.on == "(baseline)"
+    # the baseline is exact here (no fitted parameter), so the gain is unbiased: within 4 standard errors of 1.06
+    assert abs(first.value - 1.06) < 4 * first.std and 0 < first.std < 0.01
+    assert first.at_noise and first.delta_bic < validation.select.EQUAL and first.gain_over_set > 10
+    # named in the verdict, its text, the JSON and the report
+    assert "strain_softening" in imp.final.calibration and "calibration" in imp.final.headline
+    assert "check the rig's calibration" in imp.table_text()
+    data = imp.as_dict()
+    assert data["calibration"]["rivals"] and data["calibration"]["fits"][0]["kind"] == "gain"
+    assert data["verdict_detail"]["calibration"] == imp.final.calibration
+    html = render_report([imp])
+    assert "Calibration of the rig" in html
+
+
+def test_the_single_effect_diagnosis_names_the_rival_too(baseline, gain_error):
+    base, rows, f = baseline
+    dx = validation.diagnose(base, gain_error.measurements, candidates=["strain_softening"])
+    assert dx.verdict.effect == "strain_softening"
+    assert dx.calibration.rivals and dx.calibration.rivals[0].kind == "gain"
+    assert dx.verdict.calibration and dx.explanation.startswith(dx.verdict.headline)
+    assert dx.as_dict()["calibration"]["answer"] == "strain_softening"
+
+
+def test_the_gain_and_the_offset_are_the_weighted_least_squares_fits(baseline, gain_error):
+    base, rows, f = baseline
+    ctx = gain_error.steps[0].diagnosis.context
+    y, w = ctx.settings.y, ctx.settings.w
+    n, k = y.size, 0
+    bic0 = validation.candidates.bic(float(np.sum((w * (y - f)) ** 2)), n, k, True)
+    check = check_calibration([("(baseline)", (), f, k, bic0)], ("(baseline)", (), bic0), ctx)
+    by_kind = {c.kind: c for c in check.fits}
+    p = rows.pressure
+    p_ref = math.sqrt(PRESSURES[0] * PRESSURES[1])
+    for kind, basis, target in (("gain", f, y), ("offset", p_ref / p, y - f)):
+        A = (w * basis)[:, None]
+        (value,), (rss,), _, _ = np.linalg.lstsq(A, w * target, rcond=None)
+        c = by_kind[kind]
+        assert c.value == pytest.approx(value, rel=1e-10)
+        assert c.bic == pytest.approx(rss + (k + 1) * math.log(n), rel=1e-10)
+        assert c.delta_bic == pytest.approx(c.bic - bic0, abs=1e-9)
+        # variance unit 1 with mu_std, scaled by the Birge ratio where the fit misses the noise
+        birge = max(1.0, rss / (n - k - 1))
+        assert c.std == pytest.approx(math.sqrt(birge / float(A[:, 0] @ A[:, 0])), rel=1e-10)
+    assert by_kind["offset"].p_ref == pytest.approx(p_ref, rel=1e-12)
+    # lowest BIC first
+    assert [c.bic for c in check.fits] == sorted(c.bic for c in check.fits)
+
+
+def test_an_offset_of_the_friction_force_falls_with_pressure_and_is_found(baseline, gain_error):
+    base, rows, f = baseline
+    p_ref = math.sqrt(PRESSURES[0] * PRESSURES[1])
+    m = _with_noise(rows, f + 0.03 * p_ref / rows.pressure, 12)
+    ctx = gain_error.steps[0].diagnosis.context
+    ctx = dataclasses.replace(ctx, settings=dataclasses.replace(ctx.settings, y=m.mu), measurements=m)
+    bic0 = validation.candidates.bic(float(np.sum(((m.mu - f) / SIGMA) ** 2)), m.n, 0, True)
+    check = check_calibration([("(baseline)", (), f, 0, bic0)], ("(baseline)", (), bic0), ctx)
+    (first, *_) = check.rivals
+    assert first.kind == "offset" and abs(first.value - 0.03) < 4 * first.std and first.at_noise
+    assert "zero offset of the friction force" in check.text() and "Check the rig's calibration" in check.text()
+
+
+def test_errors_beyond_a_plausible_calibration_or_that_earn_nothing_are_no_rivals(baseline, gain_error):
+    base, rows, f = baseline
+    ctx0 = gain_error.steps[0].diagnosis.context
+    for mu, why in ((1.5 * f, "a gain of 1.5 is a faulty rig"), (f + 0.2, "an offset of 0.2 too"),
+                    (f, "no error: the gain earns nothing")):
+        m = _with_noise(rows, mu, 13)
+        ctx = dataclasses.replace(ctx0, settings=dataclasses.replace(ctx0.settings, y=m.mu), measurements=m)
+        bic0 = validation.candidates.bic(float(np.sum(((m.mu - f) / SIGMA) ** 2)), m.n, 0, True)
+        check = check_calibration([("(baseline)", (), f, 0, bic0)], ("(baseline)", (), bic0), ctx)
+        assert not check.rivals, why
+        assert check.text() == ""
+    assert GAIN_RANGE[0] < 1 < GAIN_RANGE[1] and OFFSET_LIMIT > 0
+    # the bands are the set search's: equally supported within EQUAL, an extra parameter earning more than STAY
+    assert (validation.calibration.BAND, validation.calibration.EARN) == (validation.select.EQUAL,
+                                                                          validation.select.STAY)
+
+
+def test_an_effect_unlike_a_calibration_error_has_no_rival(baseline):
+    """An adhesive peak over the speeds is nothing like a gain or an offset: the answer stands alone."""
+    base, rows, f = baseline
+    truth = base.with_effect(persson.effects.Adhesion(tau_f0=2e5, c=0.5, v_ref=0.03))
+    m = _with_noise(rows, validation.predict(truth, rows).mu, 14)
+    imp = validation.improve(base, m, candidates=["adhesion"])
+    assert imp.added == ("adhesion",), imp.table_text()
+    cal = imp.selection.calibration
+    assert not cal.rivals and imp.final.calibration == ""
+    assert all(c.delta_bic > validation.select.EQUAL for c in cal.fits)
+    assert "calibration" not in imp.final.headline
