@@ -30,6 +30,15 @@ def test_t_with_one_degree_of_freedom_is_cauchy(t):
     assert d.t_sf(t, 1) == pytest.approx(0.5 - math.atan(t) / math.pi, rel=1e-13)
 
 
+@pytest.mark.parametrize("p", [1e-7, 0.01, 0.3, 0.5, 0.9])
+def test_the_t_quantile_inverts_the_cauchy_tail_and_with_infinite_dof_the_normal_one(p):
+    # one degree of freedom: P(T > t) = 1/2 - atan(t) / pi, so t = tan(pi (1/2 - p))
+    assert d.t_isf(p, 1) == pytest.approx(math.tan(math.pi * (0.5 - p)), rel=1e-10, abs=1e-14)
+    z = d.t_isf(p, math.inf)
+    assert 0.5 * math.erfc(z / math.sqrt(2)) == pytest.approx(p, rel=1e-10)
+    assert d.t_sf(d.t_isf(p, 7.5), 7.5) == pytest.approx(p, rel=1e-10)
+
+
 @pytest.mark.parametrize("z", [-2.0, 0.0, 1.3, 8.0])
 def test_normal_tails_are_erfc(z):
     assert d.norm_sf(z) == pytest.approx(0.5 * math.erfc(z / math.sqrt(2)), rel=1e-13)

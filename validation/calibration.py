@@ -20,9 +20,10 @@ each in closed form (weighted linear least squares in one parameter, weights :ma
 with :math:`p_{ref}` the geometric mean of the rows' pressures (with one pressure the offset is a constant) and
 :math:`s^2` the variance unit of the fits (1 with ``mu_std``, else the noise variance), scaled by the Birge
 ratio where the calibrated model misses the noise (R. T. Birge, Phys. Rev. 40, 207 (1932); weighted least
-squares: N. R. Draper, H. Smith, Applied Regression Analysis, 3rd ed., Wiley (1998)). Each is scored by the BIC of the set with one more parameter
-(:func:`validation.candidates.bic`); the set's other parameters stay at their fitted values, so the BIC is an
-upper bound of that of a joint fit, and a calibration error named here fits at least as well as said.
+squares: N. R. Draper, H. Smith, Applied Regression Analysis, 3rd ed., Wiley (1998)). Each is scored by the BIC
+of the set with one more parameter (:func:`validation.candidates.bic`); the set's other parameters stay at their
+fitted values, so the BIC is an upper bound of that of a joint fit, and a calibration error named here fits at
+least as well as said.
 
 A calibration error is a **rival** of the answer when it is plausible (a gain within :data:`GAIN_RANGE`, an offset
 of at most :data:`OFFSET_LIMIT` in mu at :math:`p_{ref}`: a rig further out has a fault that shows without a

@@ -37,9 +37,10 @@ from .errors import InputError
 from .fitting import CONTACT, FreeParameter, ParameterSpace, contact_parameters, free_parameters
 from .measurements import Measurements
 from .noise import NoiseEstimate, estimate_noise, lack_of_fit, remaining_pattern
+from .outliers import outlying_rows
 from .predict import Predictor, mostly_extrapolated
 from .refit import data_range, issues_at, with_uncertainty
-from .verdict import Verdict, decide, explain, with_calibration
+from .verdict import Verdict, decide, explain, with_calibration, with_outliers
 
 __all__ = ["Diagnosis", "Baseline", "Candidate", "Ambiguity", "Separation", "diagnose_single", "SIGNIFICANCE_RULE",
            "DELTA_BIC_THRESHOLD", "P_THRESHOLD", "COSINE_THRESHOLD"]
@@ -81,6 +82,9 @@ class Diagnosis:
     calibration : validation.calibration.CalibrationCheck or None
         A gain and a zero offset of the measured mu fitted on the baseline and compared with the verdict's
         candidate (a rival is named in the verdict; JSON ``calibration``); with the set search, the selection's.
+    outliers : validation.outliers.Outliers or None
+        Rows farther from the verdict's model than noise would put any row (named in the verdict; JSON
+        ``outliers``); None when there are none.
     """
 
     measurements: Measurements
@@ -101,6 +105,7 @@ class Diagnosis:
     context: object = field(default=None, repr=False)
     modulus_extrapolated_share: np.ndarray | None = field(default=None, repr=False)
     calibration: object = field(default=None, repr=False)
+    outliers: object = None
 
     @property
     def noise_known(self) -> bool:
@@ -172,7 +177,8 @@ class Diagnosis:
         the significance rule, the explanation, the cost) and ``candidates``, best first: ``effect``, ``rmse``,
         ``delta_bic``, ``significant``, ``parameters``, ``parameters_std``, ``intervals``, ``plausible``,
         ``issues``, the test statistics and, for members of an ambiguity cluster, ``ambiguity``; ``calibration``
-        (:meth:`validation.calibration.CalibrationCheck.as_dict`; with the set search, the selection's).
+        (:meth:`validation.calibration.CalibrationCheck.as_dict`; with the set search, the selection's) and
+        ``outliers`` (:meth:`validation.outliers.Outliers.as_dict`, None when there are none).
         """
         b = self.baseline
         v = self.verdict
@@ -212,6 +218,7 @@ class Diagnosis:
                                                       int(mostly_extrapolated(self.modulus_extrapolated_share).size))},
             "candidates": cands,
             "calibration": None if self.calibration is None else self.calibration.as_dict(),
+            "outliers": None if self.outliers is None else self.outliers.as_dict(),
         }
         if self.selection is not None:
             out.update(self.selection.as_dict())
@@ -340,6 +347,8 @@ def diagnose_single(model, measurements: Measurements | None = None, candidates=
     verdict = decide(baseline, results, noise)
     calibration = _calibration_check(verdict, baseline, results, ctx)
     verdict = with_calibration(verdict, calibration)
+    outliers = _outliers(verdict, baseline, results, m, noise)
+    verdict = with_outliers(verdict, outliers)
     # the baseline at its optimum again, in full: its solutions are kept by the predictor, so this costs no solve
     extrapolated = predictor.predict(baseline.model, full=True).modulus_extrapolated_share
     explanation = explain(verdict, m, baseline, results, clusters, noise, extrapolated_share=extrapolated)
@@ -349,7 +358,18 @@ def diagnose_single(model, measurements: Measurements | None = None, candidates=
                      clusters=tuple(clusters), explanation=explanation, rule=SIGNIFICANCE_RULE,
                      sigma_known=sigma_known, noise=_noise_level(noise), n_evaluations=n_eval,
                      seconds=time.perf_counter() - t_start, name=name, verdict=verdict, noise_estimate=noise,
-                     context=ctx, modulus_extrapolated_share=extrapolated, calibration=calibration)
+                     context=ctx, modulus_extrapolated_share=extrapolated, calibration=calibration,
+                     outliers=outliers)
+
+
+def _outliers(verdict, baseline, results, measurements, noise):
+    """The rows far from the verdict's model (the named candidate's, else the baseline):
+    :func:`validation.outliers.outlying_rows`."""
+    named = next((c for c in results if c.effect == verdict.effect), None) if verdict.effect else None
+    if named is not None and named.predicted is not None:
+        return outlying_rows(measurements.mu - named.predicted, noise, measurements,
+                             f"the baseline + {named.effect}")
+    return outlying_rows(measurements.mu - baseline.predicted, noise, measurements, "the baseline")
 
 
 def _calibration_check(verdict, baseline, results, ctx):

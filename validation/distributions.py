@@ -1,4 +1,5 @@
-r"""Tail probabilities of the normal, Student t, chi-square and F distributions, and a randomized Halton design.
+r"""Tail probabilities of the normal, Student t, chi-square and F distributions (and the t's quantile), and a
+randomized Halton design.
 
 The tail probabilities are the same special functions ``scipy.stats`` evaluates (``scipy.special.ndtr``, ``stdtr``,
 ``chdtrc``, ``fdtrc``: Cephes, Moshier 1989), called directly: importing ``scipy.stats`` costs about half a second,
@@ -17,7 +18,7 @@ import math
 import numpy as np
 from scipy import special
 
-__all__ = ["norm_sf", "norm_cdf", "t_sf", "chi2_sf", "f_sf", "halton"]
+__all__ = ["norm_sf", "norm_cdf", "t_sf", "t_isf", "chi2_sf", "f_sf", "halton"]
 
 
 def norm_sf(z: float) -> float:
@@ -33,6 +34,13 @@ def norm_cdf(z: float) -> float:
 def t_sf(t: float, dof: float) -> float:
     r"""Student t survival function :math:`P(T_\nu > t)`, ``dof`` = :math:`\nu` > 0 (may be infinite: the normal)."""
     return float(special.stdtr(float(dof), -float(t)))
+
+
+def t_isf(p: float, dof: float) -> float:
+    r"""Student t upper quantile: the t with :math:`P(T_\nu > t) = p`, ``dof`` = :math:`\nu` > 0 (infinite: the
+    normal's), 0 < p < 1 (``scipy.special.stdtrit``, ``ndtri``)."""
+    p, dof = float(p), float(dof)
+    return float(-special.ndtri(p) if not math.isfinite(dof) else -special.stdtrit(dof, p))
 
 
 def chi2_sf(x: float, dof: float) -> float:

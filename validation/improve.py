@@ -32,9 +32,10 @@ from .band import band_note
 from .compare import Comparison, comparison_from, json_text
 from .diagnose import Diagnosis, _unpack, diagnose_single
 from .errors import InputError
+from .outliers import outlying_rows
 from .predict import Prediction, Predictor
 from .select import Selection, SetSearch, fits_at_noise
-from .verdict import Verdict, judge, misfit_share, with_calibration
+from .verdict import Verdict, judge, misfit_share, with_calibration, with_outliers
 
 __all__ = ["Improvement", "Step", "improve", "diagnose"]
 
@@ -169,6 +170,9 @@ class Improvement:
         The best set, the equally supported sets, the cost of dropping each effect.
     final : validation.verdict.Verdict or None
         The verdict on the best set, with its reason.
+    outliers : validation.outliers.Outliers or None
+        Rows farther from the best set's model than noise would put any row (named in the verdict); None when
+        there are none.
     """
 
     steps: tuple
@@ -184,6 +188,7 @@ class Improvement:
     selection: Selection | None = None
     final: Verdict | None = None
     n_evaluations: int = 0
+    outliers: object = None
 
     @property
     def added(self) -> tuple:
@@ -238,13 +243,15 @@ class Improvement:
         dict
             ``name``, ``verdict``, ``noise`` (None when unknown), ``noise_source``, ``added``, ``steps`` (each
             :meth:`Step.as_dict`), ``stopped``, ``seconds`` and ``n_evaluations``; with a final verdict also
-            ``verdict_reason`` and ``verdict_detail`` (:meth:`validation.verdict.Verdict.as_dict`); with a selection the
-            keys of :meth:`validation.select.Selection.as_dict`.
+            ``verdict_reason`` and ``verdict_detail`` (:meth:`validation.verdict.Verdict.as_dict`); ``outliers``
+            (:meth:`validation.outliers.Outliers.as_dict`, None when there are none); with a selection the keys of
+            :meth:`validation.select.Selection.as_dict`.
         """
         out = {"name": self.name, "verdict": self.verdict,
                "noise": self.noise if math.isfinite(self.noise) else None, "noise_source": self.noise_source,
                "added": list(self.added), "steps": [s.as_dict() for s in self.steps], "stopped": self.stopped,
-               "seconds": self.seconds, "n_evaluations": self.n_evaluations}
+               "seconds": self.seconds, "n_evaluations": self.n_evaluations,
+               "outliers": None if self.outliers is None else self.outliers.as_dict()}
         if self.final is not None:
             out["verdict_reason"] = self.final.reason
             out["verdict_detail"] = self.final.as_dict()
@@ -282,7 +289,8 @@ class Improvement:
             dx.explanation
         return replace(dx, verdict=v, selection=self.selection, explanation=explanation,
                        seconds=self.seconds, n_evaluations=self.n_evaluations,
-                       calibration=self.selection.calibration if self.selection is not None else dx.calibration)
+                       calibration=self.selection.calibration if self.selection is not None else dx.calibration,
+                       outliers=self.outliers)
 
 
 def diagnose(model, measurements=None, candidates=None, contact=None, *, search: str = "single",
@@ -510,10 +518,15 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
             current = tuple(e for e in current if e != f)
             steps.append(_step(len(steps), "removed", None, f, search.get(current), steps[-1], base_fit, search))
     final = _final_verdict(dx0=steps[0].diagnosis, selection=selection, noise=noise)
+    best = selection.best
+    outliers = outlying_rows(measurements.mu - best.predicted, noise, measurements,
+                             "the baseline" + "".join(f" + {e}" for e in best.effects))
+    final = with_outliers(final, outliers)
     return Improvement(steps=tuple(steps), model=selection.best.model, measurements=measurements, contact=contact,
                        noise=float(noise.sigma) if noise.known else math.nan, stopped=stopped,
                        seconds=time.perf_counter() - t0, name=name, verdict=final.verdict,
-                       noise_source=noise.source, selection=selection, final=final, n_evaluations=n_evals)
+                       noise_source=noise.source, selection=selection, final=final, n_evaluations=n_evals,
+                       outliers=outliers)
 
 
 # ==========================================================================================================

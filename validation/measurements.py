@@ -222,7 +222,7 @@ class Measurements:
         return Measurements(slip=self.slip, speed=self.speed, temperature=self.temperature,
                             pressure=self.pressure, mu=np.asarray(mu, dtype=float), mu_std=mu_std, wet=self.wet,
                             series=self.series, source=self.source if source is None else source,
-                            contact=self.contact, position=self.position,
+                            lines=self.lines, contact=self.contact, position=self.position,
                             **{a: getattr(self, a) for a in ROAD_COLUMNS.values()}, device=self.device)
 
     def as_table(self) -> dict[str, np.ndarray]:

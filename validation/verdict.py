@@ -42,7 +42,7 @@ from .candidates import KASS_RAFTERY_1995, SIGNIFICANCE_RULE
 from .predict import mostly_extrapolated
 
 __all__ = ["Verdict", "decide", "explain", "VERDICTS", "CLOSE_CALL", "PARTLY_SHARE", "misfit_share",
-           "with_calibration"]
+           "with_calibration", "with_outliers"]
 
 VERDICTS = ("nothing_missing", "explained", "partly_explained", "unexplained", "undetermined")
 #: Delta BIC below which the top two candidates are a close call.
@@ -94,6 +94,9 @@ class Verdict:
     calibration : str
         A calibration error of the rig that fits the rows as well as the named effects (or alone, where the
         verdict names none), in words; empty when none does (:mod:`validation.calibration`).
+    outliers : str
+        Rows farther from the verdict's model than noise would put any row, in words; empty when there are none
+        (:mod:`validation.outliers`).
     """
 
     verdict: str
@@ -109,16 +112,17 @@ class Verdict:
     closest: str | None = None
     effects: tuple = ()
     calibration: str = ""
+    outliers: str = ""
 
     @property
     def headline(self) -> str:
-        """The verdict in words, for the first line of texts and reports (with the rival calibration error, if
-        any)."""
+        """The verdict in words, for the first line of texts and reports (with the rival calibration error and the
+        outlying rows, if any)."""
         named = " + ".join(self.effects) if len(self.effects) > 1 else self.effect
         alt = (f" -- or as well by {', '.join(self.alternatives)} (within {CLOSE_CALL:g} BIC units: the data "
                "cannot tell them apart)" if self.alternatives else "")
         ind = f" ({', '.join(self.indicated)} indicated)" if self.indicated else ""
-        cal = f" {self.calibration}" if self.calibration else ""
+        cal = "".join(f" {t}" for t in (self.calibration, self.outliers) if t)
         return (f"Verdict: {_WORDS[self.verdict]}" + (f" by {named}" if named else "") + ind + alt
                 + f". {self.reason}{cal}")
 
@@ -129,14 +133,15 @@ class Verdict:
         -------
         dict
             ``verdict``, ``effect``, ``effects``, ``lack_of_fit_p``, ``remaining_pattern``, ``reason``,
-            ``alternatives``, ``indicated``, ``not_identified``, ``share``, ``closest`` and ``calibration``
-            (the rival calibration error in words, empty when none).
+            ``alternatives``, ``indicated``, ``not_identified``, ``share``, ``closest``, ``calibration`` (the rival
+            calibration error in words, empty when none) and ``outliers`` (the outlying rows in words, empty when
+            none).
         """
         return {"verdict": self.verdict, "effect": self.effect, "effects": list(self.effects),
                 "lack_of_fit_p": self.lack_of_fit_p, "remaining_pattern": self.remaining_pattern,
                 "reason": self.reason, "alternatives": list(self.alternatives), "indicated": list(self.indicated),
                 "not_identified": list(self.not_identified), "share": self.share, "closest": self.closest,
-                "calibration": self.calibration}
+                "calibration": self.calibration, "outliers": self.outliers}
 
 
 def with_calibration(verdict: Verdict, check) -> Verdict:
@@ -145,6 +150,11 @@ def with_calibration(verdict: Verdict, check) -> Verdict:
     if check is None or not check.rivals:
         return replace(verdict, calibration="")
     return replace(verdict, calibration=check.text())
+
+
+def with_outliers(verdict: Verdict, outliers) -> Verdict:
+    """``verdict`` naming the rows of ``outliers`` (a :class:`validation.outliers.Outliers`, or None)."""
+    return replace(verdict, outliers="" if outliers is None else outliers.text())
 
 
 def misfit_share(rss0: float, k0: int, rss1: float, k1: int, n: int, noise, sigma_known: bool) -> float:

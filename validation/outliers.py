@@ -1,0 +1,129 @@
+r"""Rows that lie too far from the model to be noise: a fault of a single measurement, not missing physics.
+
+A bad run (a wheel that bounced, a wet patch on a dry disk, a mistyped value) puts a row several noise levels away
+from every smooth model. Such rows inflate the misfit, and a local-difference noise estimate with it, and can
+shift fitted parameters; the pattern tests, made for trends, do not single them out.
+
+Each row's residual from the verdict's model is scaled by that row's noise level,
+:math:`z_i = r_i / \sigma_i`, and compared with the two-sided Bonferroni threshold for ``n`` rows at level
+:data:`ALPHA`,
+
+.. math:: t = F^{-1}\!\left(1 - \frac{\alpha}{2n}\right),
+
+F Student's t distribution with the noise estimate's degrees of freedom (the normal one with ``mu_std``): with
+pure Gaussian noise, a data set has a row beyond t with probability at most :math:`\alpha` (the Bonferroni outlier
+test, R. D. Cook, S. Weisberg, Residuals and Influence in Regression, Chapman and Hall (1982), sec. 2.2; the
+residual of a fitted model varies a little less than the noise, so the rate is lower still). Rows beyond t are
+named, by their line in the measurement file where it is known, when they are few -- at most
+:data:`MAX_SHARE` of the rows, and never more than :data:`MAX_ROWS`: many rows far off are a model that misses the
+data, which the lack-of-fit and pattern tests describe, not faults of single rows. Nothing is removed: the user
+decides whether a row is a fault.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from frictioncite import doi
+
+from .distributions import t_isf
+
+__all__ = ["Outliers", "outlying_rows", "ALPHA", "MAX_SHARE", "MAX_ROWS"]
+
+#: Probability that a data set of pure Gaussian noise has any row named.
+ALPHA = 0.01
+#: Largest share of the rows that can be named as single faults.
+MAX_SHARE = 0.05
+#: Largest number of rows named.
+MAX_ROWS = 5
+#: R. D. Cook, S. Weisberg, Residuals and Influence in Regression, Chapman and Hall, New York (1982).
+COOK_WEISBERG_1982 = "cook-weisberg:residuals-1982"
+
+
+@dataclass(frozen=True)
+class Outliers:
+    """Rows beyond the Bonferroni threshold of the verdict's model.
+
+    Attributes
+    ----------
+    rows : tuple of int
+        Their indices (0-based), farthest first.
+    lines : tuple of int
+        Their lines in the measurement file (0 where not known).
+    z : tuple of float
+        Their residuals over their noise levels (measured - predicted).
+    threshold : float
+        The threshold on |z|.
+    model : str
+        The model the residuals are of.
+    source : str
+        The measurement file (or ``"<arrays>"``).
+    """
+
+    rows: tuple
+    lines: tuple
+    z: tuple
+    threshold: float
+    model: str
+    source: str = ""
+
+    def text(self) -> str:
+        """One sentence naming the rows and how far each lies, and what to do."""
+        where = [f"line {ln}" if ln > 0 else f"row {i}" for i, ln in zip(self.rows, self.lines)]
+        far = ", ".join(f"{w} ({z:+.1f})" for w, z in zip(where, self.z))
+        what = "row lies" if len(self.rows) == 1 else f"{len(self.rows)} rows lie"
+        src = f" of {self.source}" if self.source and not self.source.startswith("<") else ""
+        return (f"{what[0].upper()}{what[1:]} farther from {self.model} than noise would put any row "
+                f"(residual / noise beyond {self.threshold:.2f}, which pure noise exceeds anywhere in 1 of "
+                f"{round(1 / ALPHA)} data sets): {far}{src}. Check them for faults of the measurement (the "
+                "verdict uses every row).")
+
+    def as_dict(self) -> dict:
+        """``rows``, ``lines``, ``z``, ``threshold``, ``alpha``, ``model`` and ``source``."""
+        return {"rows": list(self.rows), "lines": list(self.lines), "z": list(self.z), "threshold": self.threshold,
+                "alpha": ALPHA, "model": self.model, "source": self.source}
+
+
+# ==========================================================================================================
+@doi(COOK_WEISBERG_1982)
+def outlying_rows(residual, noise, measurements, model: str) -> Outliers | None:
+    """The rows whose residual from ``model`` lies beyond the Bonferroni threshold (module docstring).
+
+    Parameters
+    ----------
+    residual : array_like (n,)
+        Measured - predicted mu.
+    noise : validation.noise.NoiseEstimate
+        Per-row noise levels (``row_sigma``) and their degrees of freedom.
+    measurements : validation.Measurements
+        For the rows' lines in the file.
+    model : str
+        What the residual is of, for the text (e.g. ``"the baseline + flash_temperature"``).
+
+    Returns
+    -------
+    Outliers or None
+        None without a noise estimate, when no row is beyond the threshold, or when too many are to be single
+        faults.
+    """
+    if not noise.known:
+        return None
+    r = np.asarray(residual, dtype=float)
+    n = r.size
+    sigma = np.asarray(noise.row_sigma, dtype=float)
+    if n == 0 or sigma.shape != r.shape or not np.all(np.isfinite(sigma) & (sigma > 0)):
+        return None
+    tail = ALPHA / (2.0 * n)
+    t = t_isf(tail, noise.dof if not math.isfinite(noise.dof) else max(noise.dof, 1.0))
+    z = r / sigma
+    far = np.flatnonzero(np.abs(z) > t)
+    if far.size == 0 or far.size > min(MAX_ROWS, max(1, math.floor(MAX_SHARE * n))):
+        return None
+    far = far[np.argsort(-np.abs(z[far]))]
+    lines = measurements.lines
+    return Outliers(rows=tuple(int(i) for i in far),
+                    lines=tuple(int(lines[i]) if lines is not None else 0 for i in far),
+                    z=tuple(float(z[i]) for i in far), threshold=t, model=model,
+                    source=str(getattr(measurements, "source", "") or ""))
