@@ -142,8 +142,55 @@ def effects():
         def friction_term(self, state):
             return self.m * (np.broadcast_to(state.conditions.temperature, state.conditions.speed.shape) - 25.0) / 15.0
 
+    @dataclass(frozen=True)
+    class Swing(Effect):
+        """h x^2 on a textured surface, -h x^2 / 2 on a plain one: alone it can only lower the rise it makes with
+        the texture."""
+
+        name = "test_swing"
+        parameters = (Parameter("h", 0.05, (0.0, 1.0), "1", "rise over the speeds", physical_limits=(0.0,)),)
+        h: float = 0.05
+
+        def friction_term(self, state):
+            textured = state.conditions.extra.get("texture", 0.0) > 0.0
+            return self.h * _x(state) ** 2 * (1.0 if textured else -0.5)
+
+    @dataclass(frozen=True)
+    class Floor(Effect):
+        """A constant a, plausible from 0.03 up (searched from 0)."""
+
+        name = "test_floor"
+        parameters = (Parameter("a", 0.05, (0.0, 0.3), "1", "constant", physical_limits=(0.0,),
+                                plausible=(0.03, 0.3)),)
+        a: float = 0.05
+
+        def friction_term(self, state):
+            return np.full_like(state.conditions.speed, self.a)
+
+    @dataclass(frozen=True)
+    class Ramp(Effect):
+        """k x, plausible from 0.05 up (searched from 0)."""
+
+        name = "test_ramp"
+        parameters = (Parameter("k", 0.1, (0.0, 1.0), "1", "slope", physical_limits=(0.0,), plausible=(0.05, 1.0)),)
+        k: float = 0.1
+
+        def friction_term(self, state):
+            return self.k * _x(state)
+
+    @dataclass(frozen=True)
+    class Lean(Effect):
+        """m (0.3 + x): a look-alike of floor + ramp that fits better than either alone."""
+
+        name = "test_lean"
+        parameters = (Parameter("m", 0.1, (0.0, 1.0), "1", "slope", physical_limits=(0.0,)),)
+        m: float = 0.1
+
+        def friction_term(self, state):
+            return self.m * (0.3 + _x(state))
+
     yield {"texture": Texture, "heat": Heat, "slope": Slope, "line": Line, "bend": Bend, "mimic": Mimic,
-           "marker": Marker}
+           "marker": Marker, "swing": Swing, "floor": Floor, "ramp": Ramp, "lean": Lean}
     base._REGISTRY = saved
 
 
@@ -367,6 +414,54 @@ def test_a_pair_of_two_candidates_that_showed_nothing_alone_is_screened_and_foun
     gain = chi2_slope - chi2_pair - np.log(m.n)
     assert gain > validation.select.STAY
     assert explored[0].delta_bic == pytest.approx(-gain, abs=0.05)
+
+
+def test_two_candidates_each_too_weak_alone_are_screened_together_when_nothing_was_significant(effects):
+    """Nothing is significant alone: the marker (m = 0.002) is within the noise, and the swing, which lowers the
+    friction as h x^2 / 2 on a plain surface, can only fit h = 0 to a rise. Together (the marker makes the surface
+    textured and the swing then raises it as h x^2) they are the truth. With no significant candidate the path
+    adds nothing; every pair of credible quiet candidates is screened, and this one is found."""
+    base = persson.Model(SURFACE, TREAD)
+    truth = base.with_effect(effects["marker"](m=0.002)).with_effect(effects["swing"](h=0.05))
+    m = _data(truth, 6)
+    imp = validation.improve(base, m, candidates=[effects["marker"](), effects["swing"]()])
+    dx0 = imp.steps[0].diagnosis
+    assert not any(c.significant for c in dx0.candidates) and dx0.verdict.verdict == "unexplained", dx0.text()
+    assert all(c.status == "ok" for c in dx0.candidates)
+    explored = [s for s in imp.steps if s.action == "explored"]
+    assert len(explored) == 1 and set(explored[0].effects) == {"test_marker", "test_swing"}, imp.table_text()
+    assert imp.verdict == "explained" and set(imp.added) == {"test_marker", "test_swing"}
+    # the gain over the baseline is the non-negative least-squares one of m t + h x^2 (two parameters; m -> 0+
+    # still marks the surface textured)
+    from scipy.optimize import nnls
+
+    x = np.log10(m.sliding_speed / 1e-3) / 3.0
+    t = (m.temperature - 25.0) / 15.0
+    y = m.mu - validation.predict(base, m).mu
+    (mm, h), norm = nnls(np.column_stack([t, x * x]) / SIGMA, y / SIGMA)
+    assert h > 0
+    chi2_base = float(np.sum((y / SIGMA) ** 2))
+    assert explored[0].delta_bic == pytest.approx(norm ** 2 - chi2_base + 2 * np.log(m.n), abs=0.05)
+
+
+def test_a_pair_of_two_significant_candidates_behind_a_look_alike_of_both_is_found(effects):
+    """floor (a) + ramp (k x) is the truth; the lean m (0.3 + x) fits better than either alone and takes the path.
+    On top of it neither partner is credible (the floor's a falls below its plausible 0.03, the ramp's k to 0), and
+    swaps replace one effect at a time, so no step fits the pair. When the path ends short of the noise, the pairs
+    of the significant candidates are fitted too: floor + ramp fits at the noise and replaces the lean."""
+    base = persson.Model(SURFACE, TREAD)
+    truth = base.with_effect(effects["floor"](a=0.05)).with_effect(effects["ramp"](k=0.1))
+    m = _data(truth, 7)
+    imp = validation.improve(base, m, candidates=[effects["lean"](), effects["floor"](), effects["ramp"]()])
+    dx0 = imp.steps[0].diagnosis
+    assert dx0.verdict.effect == "test_lean" and all(c.significant for c in dx0.candidates), dx0.text()
+    assert imp.steps[1].added == "test_lean", imp.table_text()
+    explored = [s for s in imp.steps if s.action == "explored"]
+    assert len(explored) == 1 and set(explored[0].effects) == {"test_floor", "test_ramp"}, imp.table_text()
+    assert imp.verdict == "explained" and set(imp.selection.best.effects) == {"test_floor", "test_ramp"}
+    x = np.log10(m.sliding_speed / 1e-3) / 3.0
+    chi2_pair, (a, k) = _linear_chi2(m, base, [np.ones_like(x), x])
+    assert imp.selection.best.rss == pytest.approx(chi2_pair, rel=1e-3)
 
 
 # ---------------------------------------------------------------------------------------------- pairs that tie

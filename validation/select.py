@@ -18,9 +18,12 @@ the free parameters of every effect in :math:`S` -- are refitted jointly from gl
 4. **exploring pairs**: when the path ends short of the noise (no credible candidate helps, yet the model misses
    the data), the pairs it could not reach are fitted jointly: each of the (at most three best) credible
    significant candidates of the baseline's diagnosis with every candidate that showed nothing alone (an effect
-   invisible until its partner is in, while a look-alike of the partner took the path) -- where the two single
-   fits together gain at least half of what the path gained (BIC) over the baseline --, the pairs of the better
-   single fits first, within as many model evaluations as the path took. The best credible pair continues the
+   invisible until its partner is in, while a look-alike of the partner took the path) and with each of the
+   other two (a look-alike of both members took the path, on top of which neither partner is credible) --
+   where the two single fits together gain at least half of what the path gained (BIC) over the baseline --, the
+   pairs of the better single fits first, within as many model evaluations as the path took. When no candidate
+   was significant alone, every pair of credible candidates that changed the predictions alone is screened as in
+   item 5 (two effects that each fit too little alone may fit together). The best credible pair continues the
    search when it fits better than the path's set by more than :data:`STAY` BIC units (a step ``"explored"``),
    at most once.
 5. **pairs that tie**: a path that ends at the noise may have taken a look-alike of a pair whose second member
@@ -490,8 +493,9 @@ class SetSearch:
         ``first`` is the diagnosis of the baseline: each of its credible significant candidates (the ``top`` best
         by BIC) is paired with every candidate that fitted but showed nothing alone, or had no signature at all (an
         effect invisible until another is in: the pairs a stepwise path cannot reach once a look-alike of the
-        partner is in), where the two single fits together gain at least half of what the path gained over the
-        baseline. Each pair not fitted yet is refitted jointly, from the values of its single fits, the pairs of the
+        partner is in), and with the other credible significant ones, where the two single fits together gain at
+        least half of what the path gained over the baseline; with no significant candidate, the pairs of credible
+        quiet ones are screened (:meth:`screen_pair`). Each pair not fitted yet is refitted jointly, from the values of its single fits, the pairs of the
         better single fits first, until ``budget`` model evaluations are spent. Returns the effects of the best
         credible pair fitted here when it fits better than ``current`` by more than :data:`STAY` BIC units (the
         evidence an effect needs to stay), else None.
@@ -515,8 +519,11 @@ class SetSearch:
 
         pairs = {}
         if not at_noise:
-            for a in significant:
-                for b in quiet:
+            # with every quiet candidate, and with each other: the path may have taken a look-alike of both members
+            # of a pair (a strain softening fitting as well as an adhesion or a microtexture alone), on top of which
+            # neither partner is credible, and swaps replace one effect at a time
+            for i, a in enumerate(significant):
+                for b in quiet + significant[i + 1:]:
                     key = frozenset({a.effect, b.effect})
                     if key not in self.sets and key not in pairs and gain(a) + gain(b) >= need:
                         pairs[key] = ((a.effect, b.effect), min(a.bic, b.bic if b.status == "ok" else math.inf))
@@ -527,15 +534,23 @@ class SetSearch:
         # screened with every credible candidate that showed nothing either (the microtexture that makes it act)
         now_bic = self.get(current).bic
         invisible = [c for c in quiet if _changes_nothing(c)]
-        partners = [(a, quiet) for a in significant] + [
-            (a, invisible) for a in quiet
-            if a.status == "ok" and not _changes_nothing(a) and self.sets[frozenset({a.effect})].plausible]
+        credible_quiet = [c for c in quiet if c.status == "ok" and not _changes_nothing(c)
+                          and self.sets[frozenset({c.effect})].plausible]
+        partners = [(a, quiet) for a in significant] + [(a, invisible) for a in credible_quiet]
+        if not at_noise and not significant:
+            # nothing was significant alone, so the path added nothing: two effects may each move the friction too
+            # little alone and still fit together (a microtexture and a flash temperature, each fitted alone to a
+            # road whose PSD stops short, push the same rows in opposite directions); every pair of credible quiet
+            # candidates is screened
+            partners += [(a, credible_quiet) for a in credible_quiet]
         screened = []
+        seen = set()
         for a, others in partners:
             for b in others:
                 key = frozenset({a.effect, b.effect})
-                if key in self.sets or key in pairs or a.effect == b.effect:
+                if key in self.sets or key in pairs or a.effect == b.effect or (a.effect, b.effect) in seen:
                     continue
+                seen.add((a.effect, b.effect))
                 # a candidate that acted alone adds about its own gain: the pair can tie only when that is enough;
                 # one that showed nothing (no signature, or parameters the data do not identify) may be invisible
                 # until its partner is in, whatever the partner's own fit
