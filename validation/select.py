@@ -495,8 +495,9 @@ class SetSearch:
         effect invisible until another is in: the pairs a stepwise path cannot reach once a look-alike of the
         partner is in), and with the other credible significant ones, where the two single fits together gain at
         least half of what the path gained over the baseline; with no significant candidate, the pairs of credible
-        quiet ones are screened (:meth:`screen_pair`). Each pair not fitted yet is refitted jointly, from the values of its single fits, the pairs of the
-        better single fits first, until ``budget`` model evaluations are spent. Returns the effects of the best
+        quiet ones are screened (:meth:`screen_pair`). Each pair not fitted yet is refitted jointly, from the
+        values of its single fits, the pairs of the better single fits first, until ``budget`` model evaluations
+        are spent. Returns the effects of the best
         credible pair fitted here when it fits better than ``current`` by more than :data:`STAY` BIC units (the
         evidence an effect needs to stay), else None.
         """
