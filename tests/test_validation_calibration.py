@@ -151,3 +151,15 @@ def test_an_effect_unlike_a_calibration_error_has_no_rival(baseline):
     assert not cal.rivals and imp.final.calibration == ""
     assert all(c.delta_bic > validation.select.EQUAL for c in cal.fits)
     assert "calibration" not in imp.final.headline
+
+
+def test_without_a_noise_estimate_a_rival_is_never_said_to_be_at_the_noise(baseline, gain_error):
+    """Six rows, no mu_std, no replicates: the BIC still compares the fits, but nothing is at the noise level."""
+    base, rows, f = baseline
+    six = rows.subset(np.arange(0, 60, 10))
+    m = validation.Measurements.from_arrays(slip=1.0, speed=six.speed, temperature=six.temperature,
+                                            pressure=six.pressure, mu=1.2 * f[::10])
+    dx = validation.diagnose(base, m, candidates=["strain_softening"])
+    assert dx.verdict.verdict == "undetermined"
+    assert all(not c.at_noise for c in dx.calibration.fits)
+    assert "at the noise level" not in dx.calibration.text()

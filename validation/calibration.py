@@ -113,8 +113,9 @@ class CalibrationFit:
 
     @property
     def at_noise(self) -> bool:
-        """Whether the residual is consistent with the noise and shows no pattern."""
-        return bool(self.lack.consistent and not self.pattern.found)
+        """Whether the residual is consistent with the noise and shows no pattern (False without a noise estimate:
+        nothing can be said)."""
+        return bool(self.lack.test != "none" and self.lack.consistent and not self.pattern.found)
 
     def describe(self) -> str:
         """The error in words: what the measured mu would read, with its standard error."""
