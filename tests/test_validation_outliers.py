@@ -106,6 +106,7 @@ def test_the_diagnosis_and_the_loop_name_a_faulty_row_in_their_verdicts():
     dx = validation.diagnose(model, m, candidates=["adhesion"])
     assert dx.outliers is not None and dx.outliers.rows == (17,)
     assert "row 17" in dx.verdict.outliers and dx.verdict.outliers in dx.explanation
+    assert dx.verdict.outliers.startswith("A row lies") and "Check it for a fault" in dx.verdict.outliers
     assert dx.as_dict()["outliers"]["rows"] == [17]
     imp = validation.improve(model, m, candidates=["adhesion"])
     assert imp.outliers is not None and imp.outliers.rows == (17,)

@@ -73,12 +73,13 @@ class Outliers:
         """One sentence naming the rows and how far each lies, and what to do."""
         where = [f"line {ln}" if ln > 0 else f"row {i}" for i, ln in zip(self.rows, self.lines)]
         far = ", ".join(f"{w} ({z:+.1f})" for w, z in zip(where, self.z))
-        what = "row lies" if len(self.rows) == 1 else f"{len(self.rows)} rows lie"
+        one = len(self.rows) == 1
+        what = "A row lies" if one else f"{len(self.rows)} rows lie"
         src = f" of {self.source}" if self.source and not self.source.startswith("<") else ""
-        return (f"{what[0].upper()}{what[1:]} farther from {self.model} than noise would put any row "
-                f"(residual / noise beyond {self.threshold:.2f}, which pure noise exceeds anywhere in 1 of "
-                f"{round(1 / ALPHA)} data sets): {far}{src}. Check them for faults of the measurement (the "
-                "verdict uses every row).")
+        check = "Check it for a fault" if one else "Check them for faults"
+        return (f"{what} farther from {self.model} than noise would put any row (residual / noise beyond "
+                f"{self.threshold:.2f}, which pure noise exceeds anywhere in 1 of {round(1 / ALPHA)} data sets): "
+                f"{far}{src}. {check} of the measurement (the verdict uses every row).")
 
     def as_dict(self) -> dict:
         """``rows``, ``lines``, ``z``, ``threshold``, ``alpha``, ``model`` and ``source``."""
