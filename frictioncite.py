@@ -165,6 +165,8 @@ REFERENCES: dict[str, str] = {
     "10.1214/aos/1176344136": "G. Schwarz, Estimating the dimension of a model, Ann. Stat. 6, 461 (1978).",
     "isbn:9780471170822": "N. R. Draper, H. Smith, Applied Regression Analysis, 3rd ed., Wiley, New York "
     "(1998).",
+    "cook-weisberg:residuals-1982": "R. D. Cook, S. Weisberg, Residuals and Influence in Regression, Chapman and "
+    "Hall, New York (1982).",
     "10.1137/0710036": "G. H. Golub, V. Pereyra, The differentiation of pseudo-inverses and nonlinear least squares "
     "problems whose variables separate, SIAM J. Numer. Anal. 10, 413 (1973).",
     "en:13036-4": "EN 13036-4, Road and airfield surface characteristics - Test methods - Part 4: Method for "

@@ -163,3 +163,26 @@ def test_without_a_noise_estimate_a_rival_is_never_said_to_be_at_the_noise(basel
     assert dx.verdict.verdict == "undetermined"
     assert all(not c.at_noise for c in dx.calibration.fits)
     assert "at the noise level" not in dx.calibration.text()
+
+
+def test_a_temperature_offset_of_the_recorded_rows_is_found_and_named():
+    """Rows measured with the rubber 2 K warmer than recorded (the truth on a converged grid, not the
+    diagnosis's): the offset is found within 4 standard errors and named, and the gain and the zero offset are
+    not what fits."""
+    base = persson.Model(SURFACE, TREAD)
+    truth = persson.Model(SURFACE, TREAD, grid=persson.GridSettings(q_per_decade=64, omega_per_decade=120,
+                                                                    temperature_step=0.1))
+    rows = _rows()
+    warm = validation.Measurements.from_arrays(slip=1.0, speed=rows.speed, temperature=rows.temperature + 2.0,
+                                               pressure=rows.pressure, mu=0.5)
+    m = _with_noise(rows, validation.predict(truth, warm).mu, 15)
+    dx = validation.diagnose(base, m, candidates=["strain_softening"])
+    (t,) = [c for c in dx.calibration.fits if c.kind == "temperature"]
+    assert abs(t.value - 2.0) < 4 * t.std and 0 < t.std < 0.2
+    assert t.rival and t.at_noise and dx.calibration.rivals[0] is t
+    assert "2.0 K warmer than recorded" in dx.verdict.calibration
+    assert "temperature measurement" in dx.verdict.calibration
+    # the loop checks it once, on its final answer
+    imp = validation.improve(base, m, candidates=["strain_softening"])
+    assert [c.kind for c in imp.selection.calibration.fits].count("temperature") == 1
+    assert [c.kind for c in imp.steps[0].diagnosis.calibration.fits].count("temperature") == 0

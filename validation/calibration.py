@@ -4,7 +4,8 @@ A friction rig measures two forces, and mu is their ratio. A gain error of eithe
 mu by one factor; a zero offset of the friction force adds :math:`\Delta F_x / F_z`, which falls as 1/p with the
 nominal pressure p (the contact patch fixed). Neither is a physical effect of the rubber, but either can be
 mistaken for one: a loss modulus 8 % higher (strain softening with a loss factor of 1.08) raises the hysteresis
-friction almost uniformly, as a gain of 1.08 on the friction force does.
+friction almost uniformly, as a gain of 1.08 on the friction force does. So can an offset of the recorded rubber
+temperature (a pyrometer's emissivity): through the WLF shift every row moves along the master curve.
 
 For each set of effects the diagnosis fitted that is a proper subset of its answer (the baseline included), this
 module fits the two calibration errors to the measured rows on top of that set's fitted prediction :math:`f`,
@@ -17,6 +18,11 @@ each in closed form (weighted linear least squares in one parameter, weights :ma
 .. math:: \text{offset:}\quad \mu = f + c\,\frac{p_{ref}}{p}, \qquad
           \hat c = \frac{\sum w^2 (y - f) d}{\sum w^2 d^2}, \quad d = \frac{p_{ref}}{p},
 
+and, on the baseline only, an offset :math:`\Delta T` of the recorded temperatures: every row predicted at
+:math:`T + \Delta T` through the fit's own prediction path, :math:`\Delta T` found by two Gauss-Newton steps from 0
+with the central-difference derivative :math:`J = \partial\mu/\partial T` at 0 (a chord method; Seber & Wild,
+Nonlinear Regression, Wiley (1989), sec. 14.1), the best point evaluated kept, and its standard error
+:math:`\sqrt{s^2 / \sum w^2 J^2}` as for the gain (four predictions of the baseline);
 with :math:`p_{ref}` the geometric mean of the rows' pressures (with one pressure the offset is a constant) and
 :math:`s^2` the variance unit of the fits (1 with ``mu_std``, else the noise variance), scaled by the Birge
 ratio where the calibrated model misses the noise (R. T. Birge, Phys. Rev. 40, 207 (1932); weighted least
@@ -26,11 +32,12 @@ fitted values, so the BIC is an upper bound of that of a joint fit, and a calibr
 least as well as said.
 
 A calibration error is a **rival** of the answer when it is plausible (a gain within :data:`GAIN_RANGE`, an offset
-of at most :data:`OFFSET_LIMIT` in mu at :math:`p_{ref}`: a rig further out has a fault that shows without a
-model), earns its own parameter (its BIC more than :data:`EARN` units below that of its set) and comes within
-:data:`BAND` BIC units of the answer (or beats it). The data then cannot tell
-the answer's extra effects from a calibration error: the diagnosis says so and asks for the rig's calibration to
-be checked (a reference surface, the load cells against weights). Nothing is changed in the answer itself.
+of at most :data:`OFFSET_LIMIT` in mu at :math:`p_{ref}`, a temperature offset of at most :data:`TEMPERATURE_LIMIT`:
+a rig further out has a fault that shows without a model), earns its own parameter (its BIC more than
+:data:`EARN` units below that of its set) and comes within :data:`BAND` BIC units of the answer (or beats it). The
+data then cannot tell the answer's extra effects from a calibration error: the diagnosis says so and asks for the
+measurement to be checked (the load cells against weights, a reference surface, the thermometer). Nothing is
+changed in the answer itself.
 """
 
 from __future__ import annotations
@@ -42,14 +49,27 @@ import numpy as np
 
 from frictioncite import doi
 
+from .band import SEBER_WILD_1989
 from .candidates import SCHWARZ_1978, bic
 
-__all__ = ["CalibrationFit", "CalibrationCheck", "check_calibration", "GAIN_RANGE", "OFFSET_LIMIT"]
+__all__ = ["CalibrationFit", "CalibrationCheck", "check_calibration", "GAIN_RANGE", "OFFSET_LIMIT",
+           "TEMPERATURE_LIMIT"]
 
 #: Gains of the measured mu taken as a plausible calibration error (a rig more than 30 % off is faulty).
 GAIN_RANGE = (0.7, 1.3)
 #: Largest |offset| of the measured mu at the reference pressure taken as a plausible zero offset.
 OFFSET_LIMIT = 0.1
+#: Largest |offset| of the recorded temperatures taken as plausible, K (a pyrometer's emissivity or a probe's
+#: position is often off by a few K; more is a fault that shows without a model).
+TEMPERATURE_LIMIT = 10.0
+#: The range the temperature offset is searched in, K.
+TEMPERATURE_SEARCH = 15.0
+#: Gauss-Newton steps of the temperature offset.
+_TEMPERATURE_STEPS = 2
+#: What to check for each kind of error.
+_ADVICE = {"gain": "the rig's calibration (the load cells against known weights, a reference surface)",
+           "offset": "the rig's calibration (the friction force's zero with the wheel lifted, a reference surface)",
+           "temperature": "the temperature measurement (a pyrometer's emissivity, where and when the probe reads)"}
 #: BIC units within which a calibration error fits as well as the answer: the set search's band of equally
 #: supported sets (``validation.select.EQUAL``).
 BAND = 10.0
@@ -67,13 +87,14 @@ class CalibrationFit:
     Attributes
     ----------
     kind : str
-        ``"gain"`` (measured mu = gain x model) or ``"offset"`` (measured mu = model + offset p_ref / p).
+        ``"gain"`` (measured mu = gain x model), ``"offset"`` (measured mu = model + offset p_ref / p) or
+        ``"temperature"`` (measured mu = model at the recorded temperature + value).
     on : str
         Label of the set of effects it is fitted on (``"(baseline)"`` for none).
     effects : tuple of str
         That set's effects.
     value : float
-        The gain (1 = none), or the offset in mu at ``p_ref``.
+        The gain (1 = none), the offset in mu at ``p_ref``, or the temperature offset in K.
     std : float
         Its standard error.
     p_ref : float
@@ -91,7 +112,7 @@ class CalibrationFit:
     pattern : validation.noise.Pattern
         Systematic structure left in its residual.
     plausible : bool
-        Within :data:`GAIN_RANGE` or :data:`OFFSET_LIMIT`.
+        Within :data:`GAIN_RANGE`, :data:`OFFSET_LIMIT` or :data:`TEMPERATURE_LIMIT`.
     rival : bool
         Plausible, earns its parameter and within :data:`BAND` BIC units of the answer (module docstring).
     """
@@ -123,6 +144,9 @@ class CalibrationFit:
             pct = 100.0 * (self.value - 1.0)
             return (f"the measured mu reading {abs(pct):.1f} % {'high' if pct >= 0 else 'low'} (gain "
                     f"{self.value:.4g} +- {self.std:.2g})")
+        if self.kind == "temperature":
+            return (f"the rubber {abs(self.value):.1f} K {'warmer' if self.value >= 0 else 'colder'} than recorded "
+                    f"(a temperature offset of {self.value:+.2f} +- {self.std:.2g} K)")
         return (f"a zero offset of the friction force adding {self.value:+.3g} +- {self.std:.2g} to mu at "
                 f"{self.p_ref / 1e6:.3g} MPa (as p_ref / p)")
 
@@ -180,9 +204,8 @@ class CalibrationCheck:
         others = [f"{f.on} with {f.describe()} ({f.delta_bic:+.1f})" for f in r[1:3]]
         if others:
             what += "; also " + "; ".join(others)
-        tail = (f"Before taking {' + '.join(extra)} as physics, check the rig's calibration (the load cells against "
-                "known weights, a reference surface)." if extra else
-                "Check the rig's calibration (the load cells against known weights, a reference surface).")
+        how = _ADVICE[best.kind]
+        tail = (f"Before taking {' + '.join(extra)} as physics, check {how}." if extra else f"Check {how}.")
         return what + ". " + tail
 
     def as_dict(self) -> dict:
@@ -194,10 +217,10 @@ class CalibrationCheck:
 
 
 # ==========================================================================================================
-@doi(DRAPER_SMITH_1998, SCHWARZ_1978)
-def check_calibration(sets, answer, context) -> CalibrationCheck:
-    """A gain and an offset of the measured mu fitted on top of each of ``sets`` and compared with ``answer``
-    (module docstring).
+@doi(DRAPER_SMITH_1998, SCHWARZ_1978, SEBER_WILD_1989)
+def check_calibration(sets, answer, context, baseline=None) -> CalibrationCheck:
+    """A gain and an offset of the measured mu fitted on top of each of ``sets``, and an offset of the recorded
+    temperatures on the baseline, compared with ``answer`` (module docstring).
 
     Parameters
     ----------
@@ -209,6 +232,8 @@ def check_calibration(sets, answer, context) -> CalibrationCheck:
         The diagnosis' answer.
     context : validation.diagnose.FitContext
         The fits' data, weights, noise and tests.
+    baseline : (model, contact, n_params, bic), optional
+        The fitted baseline, for the temperature offset (:func:`_temperature_offset`); None: no temperature fit.
 
     Returns
     -------
@@ -216,7 +241,7 @@ def check_calibration(sets, answer, context) -> CalibrationCheck:
     """
     label, answer_effects, answer_bic = answer
     s = context.settings
-    y, w, n = np.asarray(s.y, dtype=float), np.asarray(s.w, dtype=float), s.y.size
+    y, w = np.asarray(s.y, dtype=float), np.asarray(s.w, dtype=float)
     p = np.asarray(context.measurements.pressure, dtype=float)
     p_ref = float(np.exp(np.mean(np.log(p))))
     d = p_ref / p
@@ -233,19 +258,79 @@ def check_calibration(sets, answer, context) -> CalibrationCheck:
                 continue
             value = float(np.sum(w2 * target * basis)) / norm
             model = value * f if kind == "gain" else f + value * d
-            r = y - model
-            rss = float(np.sum(w2 * r * r))
-            b = bic(rss, n, k + 1, s.sigma_known)
-            var = rss / max(n - k - 1, 1)
-            unit = context.s2 if math.isfinite(context.s2) and context.s2 > 0 else var
-            std = math.sqrt(max(unit, var) / norm)  # the Birge ratio's scaling where the fit misses the noise
             plausible = (GAIN_RANGE[0] <= value <= GAIN_RANGE[1] if kind == "gain" else abs(value) <= OFFSET_LIMIT)
-            earns = set_bic - b > EARN
-            fits.append(CalibrationFit(
-                kind=kind, on=set_label, effects=tuple(effects), value=value, std=std, p_ref=p_ref, bic=b,
-                gain_over_set=set_bic - b, delta_bic=b - answer_bic, rmse=float(np.sqrt(np.mean(r * r))),
-                lack=context.lack_of_fit(r, k + 1), pattern=context.pattern(r), plausible=plausible,
-                rival=bool(plausible and earns and b - answer_bic < BAND)))
+            fits.append(_fit(kind, set_label, effects, value, basis, model, k, set_bic, answer_bic, p_ref, plausible,
+                             context))
+    if baseline is not None:  # the baseline is the answer or a proper subset of it
+        model, contact, k, set_bic = baseline
+        f0 = next((f for _, e, f, *_ in sets if not e), None)
+        t = None if f0 is None else _temperature_offset(model, contact, f0, context)
+        if t is not None:
+            value, J, pred = t
+            fits.append(_fit("temperature", "(baseline)", (), value, J, pred, k, set_bic, answer_bic, p_ref,
+                             abs(value) <= TEMPERATURE_LIMIT, context))
     fits.sort(key=lambda c: c.bic)
     return CalibrationCheck(answer=label, answer_effects=tuple(answer_effects), answer_bic=float(answer_bic),
                             fits=tuple(fits))
+
+
+def _fit(kind, on, effects, value, basis, predicted, k, set_bic, answer_bic, p_ref, plausible, context):
+    """The record of one calibration error at ``value``: its BIC with one parameter more than the set's ``k``,
+    its standard error from ``basis`` (d prediction / d value per row), its tests and whether it rivals."""
+    s = context.settings
+    y, w, n = np.asarray(s.y, dtype=float), np.asarray(s.w, dtype=float), s.y.size
+    r = y - predicted
+    rss = float(np.sum((w * r) ** 2))
+    b = bic(rss, n, k + 1, s.sigma_known)
+    norm = float(np.sum((w * basis) ** 2))
+    var = rss / max(n - k - 1, 1)
+    unit = context.s2 if math.isfinite(context.s2) and context.s2 > 0 else var
+    std = math.sqrt(max(unit, var) / norm) if norm > 0 else math.inf  # Birge-scaled where the fit misses the noise
+    earns = set_bic - b > EARN
+    return CalibrationFit(kind=kind, on=on, effects=tuple(effects), value=float(value), std=std, p_ref=p_ref, bic=b,
+                          gain_over_set=set_bic - b, delta_bic=b - answer_bic, rmse=float(np.sqrt(np.mean(r * r))),
+                          lack=context.lack_of_fit(r, k + 1), pattern=context.pattern(r), plausible=bool(plausible),
+                          rival=bool(plausible and earns and b - answer_bic < BAND))
+
+
+def _temperature_offset(model, contact, f0, context):
+    """The offset dT of the recorded temperatures that fits the rows best with ``model`` (each row predicted at its
+    temperature + dT, through the fit's prediction path; ``f0`` its prediction at dT = 0): Gauss-Newton steps from
+    0 with the central-difference derivative at 0 (a chord method, :data:`_TEMPERATURE_STEPS` steps, clipped to
+    +-:data:`TEMPERATURE_SEARCH` K), the best point evaluated kept; four predictions in all. Returns (dT, d mu / d dT
+    per row, the prediction at dT), or None where the model fails. Its parameters stay at their fitted values."""
+    import dataclasses
+    import warnings
+
+    from .predict import predict
+
+    m = context.measurements
+    s = context.settings
+    y, w = np.asarray(s.y, dtype=float), np.asarray(s.w, dtype=float)
+
+    def at(dT):
+        shifted = dataclasses.replace(m, temperature=m.temperature + float(dT), _checked=True)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            return np.asarray(predict(model, shifted, contact).mu, dtype=float)
+
+    try:
+        h = 0.5
+        J = (at(h) - at(-h)) / (2 * h)
+        norm = float(np.sum((w * J) ** 2))
+        if not (np.all(np.isfinite(J)) and norm > 0):
+            return None
+        dT, f = 0.0, np.asarray(f0, dtype=float)
+        best = (float(np.sum((w * (y - f)) ** 2)), dT, f)
+        for _ in range(_TEMPERATURE_STEPS):
+            dT = float(np.clip(dT + float(np.sum(w * w * (y - f) * J)) / norm, -TEMPERATURE_SEARCH,
+                               TEMPERATURE_SEARCH))
+            f = at(dT)
+            if not np.all(np.isfinite(f)):
+                break
+            c = float(np.sum((w * (y - f)) ** 2))
+            if c < best[0]:
+                best = (c, dT, f)
+    except Exception:  # noqa: BLE001  (a model that fails at shifted temperatures has no offset to offer)
+        return None
+    return best[1], J, best[2]

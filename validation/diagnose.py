@@ -288,9 +288,12 @@ class Diagnosis:
 def diagnose_single(model, measurements: Measurements | None = None, candidates=None, contact=None, *, fit=None,
                     parameters: dict | None = None, n_starts: int = 3, seed: int = 0, probe: bool = True,
                     name: str = "", max_evals: int | None = None, noise: NoiseEstimate | None = None,
-                    refit_baseline: bool = True, progress=None, predictor=None) -> Diagnosis:
+                    refit_baseline: bool = True, progress=None, predictor=None,
+                    check_conditions: bool = True) -> Diagnosis:
     """Each candidate effect added alone to ``model``, ranked, and the verdict: :func:`validation.diagnose` with
-    ``search="single"`` (its parameters, less ``search``)."""
+    ``search="single"`` (its parameters, less ``search``). ``check_conditions=False`` leaves out the fit of a
+    temperature offset in the calibration check (:mod:`validation.calibration`), for a diagnosis whose answer a set
+    search judges again."""
     t_start = time.perf_counter()
     model, measurements, contact, fit, name = _unpack(model, measurements, contact, fit, name)
     from persson.effects import Effect, available
@@ -345,7 +348,7 @@ def diagnose_single(model, measurements: Measurements | None = None, candidates=
         clusters, used = separate(clusters, results, m, contact)
         n_eval += used
     verdict = decide(baseline, results, noise)
-    calibration = _calibration_check(verdict, baseline, results, ctx)
+    calibration = _calibration_check(verdict, baseline, results, ctx, conditions=check_conditions)
     verdict = with_calibration(verdict, calibration)
     outliers = _outliers(verdict, baseline, results, m, noise)
     verdict = with_outliers(verdict, outliers)
@@ -372,12 +375,14 @@ def _outliers(verdict, baseline, results, measurements, noise):
     return outlying_rows(measurements.mu - baseline.predicted, noise, measurements, "the baseline")
 
 
-def _calibration_check(verdict, baseline, results, ctx):
+def _calibration_check(verdict, baseline, results, ctx, conditions=True):
     """A gain and a zero offset of the measured mu on the baseline, against the candidate the verdict names (the
     baseline itself when it names none): :func:`validation.calibration.check_calibration`."""
     named = next((c for c in results if c.effect == verdict.effect), None) if verdict.effect else None
     answer = ("(baseline)", (), baseline.bic) if named is None else (named.effect, (named.effect,), named.bic)
-    return check_calibration([("(baseline)", (), baseline.predicted, baseline.n_params, baseline.bic)], answer, ctx)
+    return check_calibration([("(baseline)", (), baseline.predicted, baseline.n_params, baseline.bic)], answer, ctx,
+                             baseline=(baseline.model, baseline.contact or ctx.settings.contact, baseline.n_params,
+                                       baseline.bic) if conditions else None)
 
 
 @dataclass(frozen=True, eq=False)

@@ -399,7 +399,8 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
     predictor = Predictor(measurements, contact)
     if dx is None:
         dx = diagnose_single(model, measurements, cands, contact, fit=base_fit, name=name,
-                             progress=_sub(progress, "step 0"), predictor=predictor, **diagnose_options)
+                             progress=_sub(progress, "step 0"), predictor=predictor, check_conditions=False,
+                             **diagnose_options)
     noise = diagnose_options.pop("noise", None) or dx.noise_estimate
     n_evals = dx.n_evaluations
     search = SetSearch(model, base_fit, dx.context)
@@ -562,7 +563,8 @@ def _diagnose_set(search, current, measurements, cands, contact, base_fit, name,
     s = search.get(current)
     return diagnose_single(s.model, measurements, remaining, s.contact or contact,
                            fit=_fit_names(base_fit, current, search), name=name, refit_baseline=False, noise=noise,
-                           predictor=predictor, progress=_sub(progress, f"step {step}"), **options)
+                           predictor=predictor, progress=_sub(progress, f"step {step}"), check_conditions=False,
+                           **options)
 
 
 def _step(index, action, added, removed, s, previous, base_fit, search, alternatives=(), estimates=None) -> Step:

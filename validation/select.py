@@ -783,8 +783,12 @@ class SetSearch:
                     seps.append(pair[0])
                     if pair[1] is not None:
                         seps_in.append(pair[1])
+        base = self.sets.get(frozenset())
         calibration = check_calibration([(s.label, s.effects, s.predicted, s.n_params, s.bic) for s in visited],
-                                        (best.label, best.effects, best.bic), self.ctx)
+                                        (best.label, best.effects, best.bic), self.ctx,
+                                        baseline=None if base is None else (base.model, base.contact or
+                                                                            self.ctx.settings.contact,
+                                                                            base.n_params, base.bic))
         return Selection(best=best, supported=tuple(supported), drop_costs=costs, separations=tuple(seps),
                          separations_in_range=tuple(seps_in), visited=tuple(visited), removed=tuple(self.removed),
                          explored=tuple(self.explored), resumed=tuple(self.resumed), reduced=tuple(self.reduced),
