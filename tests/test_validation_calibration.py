@@ -11,6 +11,7 @@ badly calibrated rig can name strain softening. The check fits both errors on to
 
 import dataclasses
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -186,3 +187,26 @@ def test_a_temperature_offset_of_the_recorded_rows_is_found_and_named():
     imp = validation.improve(base, m, candidates=["strain_softening"])
     assert [c.kind for c in imp.selection.calibration.fits].count("temperature") == 1
     assert [c.kind for c in imp.steps[0].diagnosis.calibration.fits].count("temperature") == 0
+
+
+@pytest.mark.parametrize("temperatures, speeds, pressure, sigma", [
+    ((-30.0, -20.0, -10.0), (0.1, 3.0), 5e4, SIGMA),      # glassy: cold, fast, light
+    ((60.0, 80.0, 100.0), (1e-5, 1e-2), 8e5, 0.001),      # soft: hot, slow, heavy (mu 0.00-0.06)
+], ids=["cold-fast-light", "hot-slow-heavy"])
+def test_the_temperature_offset_is_found_at_the_corners(temperatures, speeds, pressure, sigma):
+    """A 6 K offset, where the WLF shift is steep (cold) and where the friction is nearly gone (hot, slow): the
+    two chord steps still land within 4 standard errors (data from a converged grid)."""
+    base = persson.Model(SURFACE, TREAD)
+    truth = persson.Model(SURFACE, TREAD, grid=persson.GridSettings(q_per_decade=64, omega_per_decade=120,
+                                                                    temperature_step=0.1))
+    v = np.geomspace(*speeds, 10)
+    rows = validation.Measurements.from_arrays(slip=1.0, speed=np.tile(v, 3), temperature=np.repeat(temperatures, 10),
+                                               pressure=pressure, mu=0.5, mu_std=sigma)
+    warm = validation.Measurements.from_arrays(slip=1.0, speed=rows.speed, temperature=rows.temperature + 6.0,
+                                               pressure=pressure, mu=0.5)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        mu = np.clip(validation.predict(truth, warm).mu + np.random.default_rng(1).normal(0.0, sigma, rows.n), 0, None)
+        dx = validation.diagnose(base, rows.with_mu(mu, mu_std=np.full(rows.n, sigma)), candidates=["strain_softening"])
+    (t,) = [c for c in dx.calibration.fits if c.kind == "temperature"]
+    assert abs(t.value - 6.0) < 4 * t.std and t.rival and t.at_noise

@@ -111,3 +111,13 @@ def test_the_diagnosis_and_the_loop_name_a_faulty_row_in_their_verdicts():
     imp = validation.improve(model, m, candidates=["adhesion"])
     assert imp.outliers is not None and imp.outliers.rows == (17,)
     assert "row 17" in imp.final.headline and imp.as_dict()["outliers"]["z"][0] > imp.outliers.threshold
+
+
+def test_a_residual_that_does_not_match_the_rows_is_refused_naming_the_argument():
+    n = 20
+    with pytest.raises(validation.InputError, match="residual: expected one finite value per row"):
+        outlying_rows(np.zeros(n - 1), _known(n), _rows(n), "m")
+    r = np.zeros(n)
+    r[2] = math.nan
+    with pytest.raises(validation.InputError, match="residual"):
+        outlying_rows(r, _known(n), _rows(n), "m")

@@ -348,9 +348,10 @@ def diagnose_single(model, measurements: Measurements | None = None, candidates=
         clusters, used = separate(clusters, results, m, contact)
         n_eval += used
     verdict = decide(baseline, results, noise)
-    calibration = _calibration_check(verdict, baseline, results, ctx, conditions=check_conditions)
+    named = next((c for c in results if c.effect == verdict.effect), None) if verdict.effect else None
+    calibration = _calibration_check(named, baseline, ctx, conditions=check_conditions)
     verdict = with_calibration(verdict, calibration)
-    outliers = _outliers(verdict, baseline, results, m, noise)
+    outliers = _outliers(named, baseline, m, noise)
     verdict = with_outliers(verdict, outliers)
     # the baseline at its optimum again, in full: its solutions are kept by the predictor, so this costs no solve
     extrapolated = predictor.predict(baseline.model, full=True).modulus_extrapolated_share
@@ -365,20 +366,19 @@ def diagnose_single(model, measurements: Measurements | None = None, candidates=
                      outliers=outliers)
 
 
-def _outliers(verdict, baseline, results, measurements, noise):
-    """The rows far from the verdict's model (the named candidate's, else the baseline):
-    :func:`validation.outliers.outlying_rows`."""
-    named = next((c for c in results if c.effect == verdict.effect), None) if verdict.effect else None
+def _outliers(named, baseline, measurements, noise):
+    """The rows far from the verdict's model (that of ``named``, the candidate the verdict names, else the
+    baseline): :func:`validation.outliers.outlying_rows`."""
     if named is not None and named.predicted is not None:
         return outlying_rows(measurements.mu - named.predicted, noise, measurements,
                              f"the baseline + {named.effect}")
     return outlying_rows(measurements.mu - baseline.predicted, noise, measurements, "the baseline")
 
 
-def _calibration_check(verdict, baseline, results, ctx, conditions=True):
-    """A gain and a zero offset of the measured mu on the baseline, against the candidate the verdict names (the
-    baseline itself when it names none): :func:`validation.calibration.check_calibration`."""
-    named = next((c for c in results if c.effect == verdict.effect), None) if verdict.effect else None
+def _calibration_check(named, baseline, ctx, conditions=True):
+    """A gain and a zero offset of the measured mu on the baseline (and, with ``conditions``, an offset of the
+    recorded temperatures), against ``named``, the candidate the verdict names (the baseline itself when None):
+    :func:`validation.calibration.check_calibration`."""
     answer = ("(baseline)", (), baseline.bic) if named is None else (named.effect, (named.effect,), named.bic)
     return check_calibration([("(baseline)", (), baseline.predicted, baseline.n_params, baseline.bic)], answer, ctx,
                              baseline=(baseline.model, baseline.contact or ctx.settings.contact, baseline.n_params,

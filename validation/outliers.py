@@ -29,6 +29,7 @@ import numpy as np
 from frictioncite import doi
 
 from .distributions import t_isf
+from .errors import InputError
 
 __all__ = ["Outliers", "outlying_rows", "ALPHA", "MAX_SHARE", "MAX_ROWS"]
 
@@ -108,13 +109,21 @@ def outlying_rows(residual, noise, measurements, model: str) -> Outliers | None:
     Outliers or None
         None without a noise estimate, when no row is beyond the threshold, or when too many are to be single
         faults.
+
+    Raises
+    ------
+    InputError
+        ``residual`` does not have one finite value per row of ``measurements`` and of the noise.
     """
     if not noise.known:
         return None
     r = np.asarray(residual, dtype=float)
     n = r.size
     sigma = np.asarray(noise.row_sigma, dtype=float)
-    if n == 0 or sigma.shape != r.shape or not np.all(np.isfinite(sigma) & (sigma > 0)):
+    if r.ndim != 1 or n != measurements.n or sigma.shape != r.shape or not np.all(np.isfinite(r)):
+        raise InputError(f"residual: expected one finite value per row ({measurements.n} rows, noise levels for "
+                         f"{sigma.size}), got shape {r.shape}")
+    if n == 0 or not np.all(np.isfinite(sigma) & (sigma > 0)):
         return None
     tail = ALPHA / (2.0 * n)
     t = t_isf(tail, noise.dof if not math.isfinite(noise.dof) else max(noise.dof, 1.0))
