@@ -32,9 +32,10 @@ Each case is drawn at random and made by a path independent of the diagnosis:
 
 The diagnosis sees the case as a user would (:func:`validation.improve` with the default candidates) and the
 outcome is compared with the truth. Printed: the confusion matrix (hidden physics against the set of effects
-found), the misses named among the equally supported sets, false alarms on null and wet cases, physics outside the
-candidates called ``explained``, detection against the effect-to-noise and the distinguishable ratios, and the
-coverage of the reported 68 % and 95 % intervals of the parameters of a hidden effect found alone.
+found), the misses named among the equally supported sets, false alarms on null and wet cases, calibration errors of
+the rig named as rivals (none of the cases has one), physics outside the candidates called ``explained``, detection
+against the effect-to-noise and the distinguishable ratios, and the coverage of the reported 68 % and 95 %
+intervals of the parameters of a hidden effect found alone.
 """
 
 from __future__ import annotations
@@ -336,6 +337,8 @@ def run(case: BlindCase) -> dict:
            "noise_estimate": imp.noise, "seconds": time.perf_counter() - t0,
            "supported": [list(s.effects) for s in imp.selection.supported] if imp.selection else [],
            "resumed": list(imp.selection.resumed) if imp.selection else [],
+           "calibration_rivals": [f"{f.describe()} on {f.on}" for f in imp.selection.calibration.rivals]
+           if imp.selection is not None and imp.selection.calibration is not None else [],
            "coverage": []}
     if case.kind in ("single", "pair") and set(found) == set(truth):
         est = {e.key: e for e in imp.selection.best.estimates}
@@ -408,6 +411,11 @@ def summarize(results: list) -> str:
     fa = [r for r in nw if not right(r)]
     lines.append(f"False alarms on null and wet cases: {len(fa)} of {len(nw)}" + (
         " (" + "; ".join(f"case {r['index']}: {r['verdict']} {r['found']}" for r in fa) + ")" if fa else ""))
+    cal = [r for r in results if r.get("calibration_rivals")]
+    if any("calibration_rivals" in r for r in results):
+        lines.append(f"A calibration error of the rig named as a rival (no case has one): {len(cal)} of "
+                     f"{sum('calibration_rivals' in r for r in results)}" + (" (" + "; ".join(
+                         f"case {r['index']}: {r['calibration_rivals'][0]}" for r in cal) + ")" if cal else ""))
     out = [r for r in results if r["kind"] == "outside"]
     lines.append(f"Physics outside the candidates called explained: {sum(r['verdict'] == 'explained' for r in out)} "
                  f"of {len(out)} (verdicts: {', '.join(r['verdict'] for r in out) or '-'})")

@@ -193,20 +193,70 @@ def test_a_temperature_offset_of_the_recorded_rows_is_found_and_named():
     ((-30.0, -20.0, -10.0), (0.1, 3.0), 5e4, SIGMA),      # glassy: cold, fast, light
     ((60.0, 80.0, 100.0), (1e-5, 1e-2), 8e5, 0.001),      # soft: hot, slow, heavy (mu 0.00-0.06)
 ], ids=["cold-fast-light", "hot-slow-heavy"])
-def test_the_temperature_offset_is_found_at_the_corners(temperatures, speeds, pressure, sigma):
-    """A 6 K offset, where the WLF shift is steep (cold) and where the friction is nearly gone (hot, slow): the
-    two chord steps still land within 4 standard errors (data from a converged grid)."""
+@pytest.mark.parametrize("kind, error", [("temperature", 6.0), ("speed", 0.8)])
+def test_the_errors_of_the_conditions_are_found_at_the_corners(temperatures, speeds, pressure, sigma, kind, error):
+    """A 6 K offset or speeds 20 % below the recorded ones, where the WLF shift is steep (cold) and where the
+    friction is nearly gone (hot, slow): the two chord steps still land within 4 standard errors (data from a
+    converged grid)."""
     base = persson.Model(SURFACE, TREAD)
     truth = persson.Model(SURFACE, TREAD, grid=persson.GridSettings(q_per_decade=64, omega_per_decade=120,
                                                                     temperature_step=0.1))
     v = np.geomspace(*speeds, 10)
     rows = validation.Measurements.from_arrays(slip=1.0, speed=np.tile(v, 3), temperature=np.repeat(temperatures, 10),
                                                pressure=pressure, mu=0.5, mu_std=sigma)
-    warm = validation.Measurements.from_arrays(slip=1.0, speed=rows.speed, temperature=rows.temperature + 6.0,
-                                               pressure=pressure, mu=0.5)
+    warm = validation.Measurements.from_arrays(
+        slip=1.0, speed=rows.speed * (error if kind == "speed" else 1.0),
+        temperature=rows.temperature + (error if kind == "temperature" else 0.0), pressure=pressure, mu=0.5)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         mu = np.clip(validation.predict(truth, warm).mu + np.random.default_rng(1).normal(0.0, sigma, rows.n), 0, None)
         dx = validation.diagnose(base, rows.with_mu(mu, mu_std=np.full(rows.n, sigma)), candidates=["strain_softening"])
+    (t,) = [c for c in dx.calibration.fits if c.kind == kind]
+    assert abs(t.value - error) < 4 * t.std and t.rival and t.at_noise
+
+
+def test_a_speed_error_of_the_rig_is_found_and_named():
+    """Rows whose true speeds are 20 % above the recorded ones (a wheel's rolling radius or an encoder off; the
+    truth on a converged grid): the speed factor is found within 4 standard errors, rivals strain softening at the
+    noise level and fits best. Through the WLF shift a temperature offset of about -0.9 K moves the rows almost as a
+    speed factor does (the shift per K changes little between 10 and 40 C), so it is named beside it."""
+    base = persson.Model(SURFACE, TREAD)
+    truth = persson.Model(SURFACE, TREAD, grid=persson.GridSettings(q_per_decade=64, omega_per_decade=120,
+                                                                    temperature_step=0.1))
+    rows = _rows()
+    fast = dataclasses.replace(rows, speed=1.2 * rows.speed)
+    m = _with_noise(rows, validation.predict(truth, fast).mu, 16)
+    dx = validation.diagnose(base, m, candidates=["strain_softening"])
+    (v,) = [c for c in dx.calibration.fits if c.kind == "speed"]
     (t,) = [c for c in dx.calibration.fits if c.kind == "temperature"]
-    assert abs(t.value - 6.0) < 4 * t.std and t.rival and t.at_noise
+    assert abs(v.value - 1.2) < 4 * v.std and 0 < v.std < 0.05
+    assert v.rival and v.at_noise and dx.calibration.rivals[0] is v
+    assert v.bic < t.bic and t.rival and t.value < 0
+    assert "also (baseline) with the rubber" in dx.verdict.calibration
+    assert "speeds" in dx.verdict.calibration and "higher than recorded" in dx.verdict.calibration
+    assert "speed measurement" in dx.verdict.calibration
+    assert dx.as_dict()["calibration"]["fits"][0]["kind"] == "speed"
+
+
+def test_the_errors_of_the_conditions_are_fitted_on_the_sets_one_effect_short_of_the_answer(baseline):
+    """Against an answer of two effects, the temperature and speed errors are fitted on the baseline and on each
+    set that lacks one of the two (there they may replace it), not on sets that lack both or are not subsets. The
+    sets here are stand-ins (the baseline model under other labels), enough to follow which are used."""
+    base, rows, f = baseline
+    m = _with_noise(rows, validation.predict(base, dataclasses.replace(rows, speed=0.85 * rows.speed)).mu, 17)
+    dx = validation.diagnose(base, m, candidates=["strain_softening"])
+    ctx = dx.context
+    y, w = ctx.settings.y, ctx.settings.w
+    b = validation.candidates.bic(float(np.sum((w * (y - f)) ** 2)), rows.n, 0, True)
+    sets = [("(baseline)", (), f, 0, b), ("adhesion", ("adhesion",), f, 0, b), ("wet", ("wet",), f, 0, b)]
+    conditions = [(label, effects, base, None, 0, b) for label, effects, *_ in sets]
+    check = check_calibration(sets, ("adhesion + microtexture", ("adhesion", "microtexture"), b - 50.0), ctx,
+                              conditions=conditions)
+    on = sorted((c.kind, c.on) for c in check.fits if c.kind in ("temperature", "speed"))
+    assert on == [("speed", "adhesion"), ("temperature", "adhesion")]
+    check = check_calibration(sets, ("adhesion + microtexture", ("adhesion", "microtexture"), b - 50.0), ctx,
+                              baseline=(base, None, 0, b), conditions=conditions)
+    (v,) = [c for c in check.fits if c.kind == "speed" and c.on == "adhesion"]
+    # the baseline is exact here, so the chord steps land on the factor the rows were made with
+    assert abs(v.value - 0.85) < 4 * v.std and v.effects == ("adhesion",)
+    assert sorted(c.on for c in check.fits if c.kind == "speed") == ["(baseline)", "adhesion"]

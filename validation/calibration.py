@@ -5,7 +5,9 @@ mu by one factor; a zero offset of the friction force adds :math:`\Delta F_x / F
 nominal pressure p (the contact patch fixed). Neither is a physical effect of the rubber, but either can be
 mistaken for one: a loss modulus 8 % higher (strain softening with a loss factor of 1.08) raises the hysteresis
 friction almost uniformly, as a gain of 1.08 on the friction force does. So can an offset of the recorded rubber
-temperature (a pyrometer's emissivity): through the WLF shift every row moves along the master curve.
+temperature (a pyrometer's emissivity): through the WLF shift every row moves along the master curve; and so can a
+factor on the recorded speeds (a wheel's effective rolling radius, an encoder): every row moves along log v, and
+where the flash temperature acts, its heating moves with it.
 
 For each set of effects the diagnosis fitted that is a proper subset of its answer (the baseline included), this
 module fits the two calibration errors to the measured rows on top of that set's fitted prediction :math:`f`,
@@ -18,11 +20,13 @@ each in closed form (weighted linear least squares in one parameter, weights :ma
 .. math:: \text{offset:}\quad \mu = f + c\,\frac{p_{ref}}{p}, \qquad
           \hat c = \frac{\sum w^2 (y - f) d}{\sum w^2 d^2}, \quad d = \frac{p_{ref}}{p},
 
-and, on the baseline only, an offset :math:`\Delta T` of the recorded temperatures: every row predicted at
-:math:`T + \Delta T` through the fit's own prediction path, :math:`\Delta T` found by two Gauss-Newton steps from 0
-with the central-difference derivative :math:`J = \partial\mu/\partial T` at 0 (a chord method; Seber & Wild,
-Nonlinear Regression, Wiley (1989), sec. 14.1), the best point evaluated kept, and its standard error
-:math:`\sqrt{s^2 / \sum w^2 J^2}` as for the gain (four predictions of the baseline);
+and, on the baseline and on each set one effect short of the answer, two errors of the recorded conditions: an
+offset :math:`\Delta T` of the temperatures (every row predicted at :math:`T + \Delta T`) and a factor :math:`s_v`
+on the speeds (every row predicted at :math:`s_v V`, the slip unchanged, fitted as :math:`x = \ln s_v`), each
+through the fit's own prediction path and found by two Gauss-Newton steps from 0 with the central-difference
+derivative :math:`J = \partial\mu/\partial x` at 0 (a chord method; Seber & Wild, Nonlinear Regression, Wiley
+(1989), sec. 14.1), the best point evaluated kept, and its standard error :math:`\sqrt{s^2 / \sum w^2 J^2}` as for
+the gain (four predictions of the set each);
 with :math:`p_{ref}` the geometric mean of the rows' pressures (with one pressure the offset is a constant) and
 :math:`s^2` the variance unit of the fits (1 with ``mu_std``, else the noise variance), scaled by the Birge
 ratio where the calibrated model misses the noise (R. T. Birge, Phys. Rev. 40, 207 (1932); weighted least
@@ -32,12 +36,12 @@ fitted values, so the BIC is an upper bound of that of a joint fit, and a calibr
 least as well as said.
 
 A calibration error is a **rival** of the answer when it is plausible (a gain within :data:`GAIN_RANGE`, an offset
-of at most :data:`OFFSET_LIMIT` in mu at :math:`p_{ref}`, a temperature offset of at most :data:`TEMPERATURE_LIMIT`:
-a rig further out has a fault that shows without a model), earns its own parameter (its BIC more than
-:data:`EARN` units below that of its set) and comes within :data:`BAND` BIC units of the answer (or beats it). The
-data then cannot tell the answer's extra effects from a calibration error: the diagnosis says so and asks for the
-measurement to be checked (the load cells against weights, a reference surface, the thermometer). Nothing is
-changed in the answer itself.
+of at most :data:`OFFSET_LIMIT` in mu at :math:`p_{ref}`, a temperature offset of at most :data:`TEMPERATURE_LIMIT`,
+a speed factor within :data:`SPEED_RANGE`: a rig further out has a fault that shows without a model), earns its own
+parameter (its BIC more than :data:`EARN` units below that of its set) and comes within :data:`BAND` BIC units of
+the answer (or beats it). The data then cannot tell the answer's extra effects from a calibration error: the
+diagnosis says so and asks for the measurement to be checked (the load cells against weights, a reference surface,
+the thermometer, the wheel's rolling radius). Nothing is changed in the answer itself.
 """
 
 from __future__ import annotations
@@ -53,7 +57,7 @@ from .band import SEBER_WILD_1989
 from .candidates import SCHWARZ_1978, bic
 
 __all__ = ["CalibrationFit", "CalibrationCheck", "check_calibration", "GAIN_RANGE", "OFFSET_LIMIT",
-           "TEMPERATURE_LIMIT"]
+           "TEMPERATURE_LIMIT", "SPEED_RANGE"]
 
 #: Gains of the measured mu taken as a plausible calibration error (a rig more than 30 % off is faulty).
 GAIN_RANGE = (0.7, 1.3)
@@ -64,12 +68,21 @@ OFFSET_LIMIT = 0.1
 TEMPERATURE_LIMIT = 10.0
 #: The range the temperature offset is searched in, K.
 TEMPERATURE_SEARCH = 15.0
-#: Gauss-Newton steps of the temperature offset.
-_TEMPERATURE_STEPS = 2
+#: Factors on the recorded speeds taken as plausible (symmetric in log speed: friction depends on log v; a wheel's
+#: effective rolling radius or an encoder more than 30 % off is a fault that shows without a model).
+SPEED_RANGE = (1.0 / 1.3, 1.3)
+#: The largest factor (or its inverse) the speed error is searched to.
+SPEED_SEARCH = 1.5
+#: The conditions' errors: (step of the central difference, half-width of the search), in the fitted coordinate
+#: (dT in K; ln s for the speed factor s).
+_CONDITIONS = {"temperature": (0.5, TEMPERATURE_SEARCH), "speed": (math.log(1.02), math.log(SPEED_SEARCH))}
+#: Gauss-Newton steps of a condition's error.
+_CONDITION_STEPS = 2
 #: What to check for each kind of error.
 _ADVICE = {"gain": "the rig's calibration (the load cells against known weights, a reference surface)",
            "offset": "the rig's calibration (the friction force's zero with the wheel lifted, a reference surface)",
-           "temperature": "the temperature measurement (a pyrometer's emissivity, where and when the probe reads)"}
+           "temperature": "the temperature measurement (a pyrometer's emissivity, where and when the probe reads)",
+           "speed": "the speed measurement (the wheel's effective rolling radius, the encoder)"}
 #: BIC units within which a calibration error fits as well as the answer: the set search's band of equally
 #: supported sets (``validation.select.EQUAL``).
 BAND = 10.0
@@ -87,14 +100,16 @@ class CalibrationFit:
     Attributes
     ----------
     kind : str
-        ``"gain"`` (measured mu = gain x model), ``"offset"`` (measured mu = model + offset p_ref / p) or
-        ``"temperature"`` (measured mu = model at the recorded temperature + value).
+        ``"gain"`` (measured mu = gain x model), ``"offset"`` (measured mu = model + offset p_ref / p),
+        ``"temperature"`` (measured mu = model at the recorded temperature + value) or ``"speed"`` (measured mu =
+        model at value x the recorded speed).
     on : str
         Label of the set of effects it is fitted on (``"(baseline)"`` for none).
     effects : tuple of str
         That set's effects.
     value : float
-        The gain (1 = none), the offset in mu at ``p_ref``, or the temperature offset in K.
+        The gain (1 = none), the offset in mu at ``p_ref``, the temperature offset in K, or the speed factor (1 =
+        none).
     std : float
         Its standard error.
     p_ref : float
@@ -112,7 +127,7 @@ class CalibrationFit:
     pattern : validation.noise.Pattern
         Systematic structure left in its residual.
     plausible : bool
-        Within :data:`GAIN_RANGE`, :data:`OFFSET_LIMIT` or :data:`TEMPERATURE_LIMIT`.
+        Within :data:`GAIN_RANGE`, :data:`OFFSET_LIMIT`, :data:`TEMPERATURE_LIMIT` or :data:`SPEED_RANGE`.
     rival : bool
         Plausible, earns its parameter and within :data:`BAND` BIC units of the answer (module docstring).
     """
@@ -144,6 +159,10 @@ class CalibrationFit:
             pct = 100.0 * (self.value - 1.0)
             return (f"the measured mu reading {abs(pct):.1f} % {'high' if pct >= 0 else 'low'} (gain "
                     f"{self.value:.4g} +- {self.std:.2g})")
+        if self.kind == "speed":
+            pct = 100.0 * (self.value - 1.0)
+            return (f"the speeds {abs(pct):.1f} % {'higher' if pct >= 0 else 'lower'} than recorded (a speed factor "
+                    f"of {self.value:.4g} +- {self.std:.2g})")
         if self.kind == "temperature":
             return (f"the rubber {abs(self.value):.1f} K {'warmer' if self.value >= 0 else 'colder'} than recorded "
                     f"(a temperature offset of {self.value:+.2f} +- {self.std:.2g} K)")
@@ -218,9 +237,10 @@ class CalibrationCheck:
 
 # ==========================================================================================================
 @doi(DRAPER_SMITH_1998, SCHWARZ_1978, SEBER_WILD_1989)
-def check_calibration(sets, answer, context, baseline=None) -> CalibrationCheck:
+def check_calibration(sets, answer, context, baseline=None, conditions=()) -> CalibrationCheck:
     """A gain and an offset of the measured mu fitted on top of each of ``sets``, and an offset of the recorded
-    temperatures on the baseline, compared with ``answer`` (module docstring).
+    temperatures and a factor on the recorded speeds on the baseline and on the sets one effect short of the
+    answer, compared with ``answer`` (module docstring).
 
     Parameters
     ----------
@@ -233,7 +253,11 @@ def check_calibration(sets, answer, context, baseline=None) -> CalibrationCheck:
     context : validation.diagnose.FitContext
         The fits' data, weights, noise and tests.
     baseline : (model, contact, n_params, bic), optional
-        The fitted baseline, for the temperature offset (:func:`_temperature_offset`); None: no temperature fit.
+        The fitted baseline, for the errors of the recorded conditions (:func:`_condition_error`); None: none
+        fitted on it.
+    conditions : iterable of (label, effects, model, contact, n_params, bic)
+        Further fitted sets to fit the conditions' errors on: those one effect short of the answer are used (their
+        predictions taken from ``sets``), the others skipped.
 
     Returns
     -------
@@ -261,14 +285,20 @@ def check_calibration(sets, answer, context, baseline=None) -> CalibrationCheck:
             plausible = (GAIN_RANGE[0] <= value <= GAIN_RANGE[1] if kind == "gain" else abs(value) <= OFFSET_LIMIT)
             fits.append(_fit(kind, set_label, effects, value, basis, model, k, set_bic, answer_bic, p_ref, plausible,
                              context))
-    if baseline is not None:  # the baseline is the answer or a proper subset of it
-        model, contact, k, set_bic = baseline
-        f0 = next((f for _, e, f, *_ in sets if not e), None)
-        t = None if f0 is None else _temperature_offset(model, contact, f0, context)
-        if t is not None:
+    targets = [] if baseline is None else [("(baseline)", (), *baseline)]  # the answer or a proper subset of it
+    targets += [c for c in conditions if set(c[1]) < set(answer_effects) and len(c[1]) == len(answer_effects) - 1
+                and c[1]]
+    for set_label, effects, model, contact, k, set_bic in targets:
+        f0 = next((f for _, e, f, *_ in sets if set(e) == set(effects)), None)
+        for kind in _CONDITIONS:
+            t = None if f0 is None else _condition_error(kind, model, contact, f0, context)
+            if t is None:
+                continue
             value, J, pred = t
-            fits.append(_fit("temperature", "(baseline)", (), value, J, pred, k, set_bic, answer_bic, p_ref,
-                             abs(value) <= TEMPERATURE_LIMIT, context))
+            plausible = (abs(value) <= TEMPERATURE_LIMIT if kind == "temperature" else
+                         SPEED_RANGE[0] <= value <= SPEED_RANGE[1])
+            fits.append(_fit(kind, set_label, effects, value, J, pred, k, set_bic, answer_bic, p_ref, plausible,
+                             context))
     fits.sort(key=lambda c: c.bic)
     return CalibrationCheck(answer=label, answer_effects=tuple(answer_effects), answer_bic=float(answer_bic),
                             fits=tuple(fits))
@@ -293,12 +323,14 @@ def _fit(kind, on, effects, value, basis, predicted, k, set_bic, answer_bic, p_r
                           rival=bool(plausible and earns and b - answer_bic < BAND))
 
 
-def _temperature_offset(model, contact, f0, context):
-    """The offset dT of the recorded temperatures that fits the rows best with ``model`` (each row predicted at its
-    temperature + dT, through the fit's prediction path; ``f0`` its prediction at dT = 0): Gauss-Newton steps from
-    0 with the central-difference derivative at 0 (a chord method, :data:`_TEMPERATURE_STEPS` steps, clipped to
-    +-:data:`TEMPERATURE_SEARCH` K), the best point evaluated kept; four predictions in all. Returns (dT, d mu / d dT
-    per row, the prediction at dT), or None where the model fails. Its parameters stay at their fitted values."""
+def _condition_error(kind, model, contact, f0, context):
+    """The error of the recorded conditions of ``kind`` (``"temperature"``: an offset dT in K; ``"speed"``: a factor
+    on the recorded speeds, fitted as x = ln s) that fits the rows best with ``model`` (every row predicted at the
+    shifted condition through the fit's prediction path; ``f0`` its prediction at x = 0): Gauss-Newton steps from 0
+    with the central-difference derivative at 0 (a chord method, :data:`_CONDITION_STEPS` steps, clipped to the
+    search range of :data:`_CONDITIONS`), the best point evaluated kept; four predictions in all. Returns (the
+    value: dT, or the factor s; d mu / d value per row; the prediction there), or None where the model fails. Its
+    parameters stay at their fitted values."""
     import dataclasses
     import warnings
 
@@ -307,30 +339,34 @@ def _temperature_offset(model, contact, f0, context):
     m = context.measurements
     s = context.settings
     y, w = np.asarray(s.y, dtype=float), np.asarray(s.w, dtype=float)
+    h, search = _CONDITIONS[kind]
 
-    def at(dT):
-        shifted = dataclasses.replace(m, temperature=m.temperature + float(dT), _checked=True)
+    def at(x):
+        x = float(x)
+        shifted = (dataclasses.replace(m, temperature=m.temperature + x, _checked=True) if kind == "temperature" else
+                   dataclasses.replace(m, speed=m.speed * math.exp(x), _checked=True))
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             return np.asarray(predict(model, shifted, contact).mu, dtype=float)
 
     try:
-        h = 0.5
         J = (at(h) - at(-h)) / (2 * h)
         norm = float(np.sum((w * J) ** 2))
         if not (np.all(np.isfinite(J)) and norm > 0):
             return None
-        dT, f = 0.0, np.asarray(f0, dtype=float)
-        best = (float(np.sum((w * (y - f)) ** 2)), dT, f)
-        for _ in range(_TEMPERATURE_STEPS):
-            dT = float(np.clip(dT + float(np.sum(w * w * (y - f) * J)) / norm, -TEMPERATURE_SEARCH,
-                               TEMPERATURE_SEARCH))
-            f = at(dT)
+        x, f = 0.0, np.asarray(f0, dtype=float)
+        best = (float(np.sum((w * (y - f)) ** 2)), x, f)
+        for _ in range(_CONDITION_STEPS):
+            x = float(np.clip(x + float(np.sum(w * w * (y - f) * J)) / norm, -search, search))
+            f = at(x)
             if not np.all(np.isfinite(f)):
                 break
             c = float(np.sum((w * (y - f)) ** 2))
             if c < best[0]:
-                best = (c, dT, f)
-    except Exception:  # noqa: BLE001  (a model that fails at shifted temperatures has no offset to offer)
+                best = (c, x, f)
+    except Exception:  # noqa: BLE001  (a model that fails at shifted conditions has no error to offer)
         return None
-    return best[1], J, best[2]
+    _, x, f = best
+    if kind == "speed":  # d mu / d s = (d mu / d ln s) / s
+        return math.exp(x), J / math.exp(x), f
+    return x, J, f

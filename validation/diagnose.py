@@ -291,9 +291,9 @@ def diagnose_single(model, measurements: Measurements | None = None, candidates=
                     refit_baseline: bool = True, progress=None, predictor=None,
                     check_conditions: bool = True) -> Diagnosis:
     """Each candidate effect added alone to ``model``, ranked, and the verdict: :func:`validation.diagnose` with
-    ``search="single"`` (its parameters, less ``search``). ``check_conditions=False`` leaves out the fit of a
-    temperature offset in the calibration check (:mod:`validation.calibration`), for a diagnosis whose answer a set
-    search judges again."""
+    ``search="single"`` (its parameters, less ``search``). ``check_conditions=False`` leaves out the fits of a
+    temperature offset and a speed factor in the calibration check (:mod:`validation.calibration`), for a diagnosis
+    whose answer a set search judges again."""
     t_start = time.perf_counter()
     model, measurements, contact, fit, name = _unpack(model, measurements, contact, fit, name)
     from persson.effects import Effect, available
@@ -377,8 +377,8 @@ def _outliers(named, baseline, measurements, noise):
 
 def _calibration_check(named, baseline, ctx, conditions=True):
     """A gain and a zero offset of the measured mu on the baseline (and, with ``conditions``, an offset of the
-    recorded temperatures), against ``named``, the candidate the verdict names (the baseline itself when None):
-    :func:`validation.calibration.check_calibration`."""
+    recorded temperatures and a factor on the recorded speeds), against ``named``, the candidate the verdict names
+    (the baseline itself when None): :func:`validation.calibration.check_calibration`."""
     answer = ("(baseline)", (), baseline.bic) if named is None else (named.effect, (named.effect,), named.bic)
     return check_calibration([("(baseline)", (), baseline.predicted, baseline.n_params, baseline.bic)], answer, ctx,
                              baseline=(baseline.model, baseline.contact or ctx.settings.contact, baseline.n_params,

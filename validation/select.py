@@ -239,8 +239,10 @@ class Selection:
         What refitting the subsets of the sets within reach of the best (:meth:`SetSearch.reduce`) found, in words:
         a subset that fits better than the path's set, or that it stopped at its budget (empty when neither).
     calibration : validation.calibration.CalibrationCheck or None
-        A gain and a zero offset of the measured mu fitted on top of each subset of the best set: a calibration
-        error of the rig that fits as well as the best set's extra effects is a rival of them
+        A gain and a zero offset of the measured mu fitted on top of each subset of the best set, an offset of the
+        recorded temperatures and a factor on the recorded speeds on the baseline and on the subsets one effect
+        short of it: a calibration error of the rig that fits as well as the best set's extra effects is a rival
+        of them
         (:func:`validation.calibration.check_calibration`).
     """
 
@@ -788,7 +790,10 @@ class SetSearch:
                                         (best.label, best.effects, best.bic), self.ctx,
                                         baseline=None if base is None else (base.model, base.contact or
                                                                             self.ctx.settings.contact,
-                                                                            base.n_params, base.bic))
+                                                                            base.n_params, base.bic),
+                                        conditions=[(s.label, s.effects, s.model,
+                                                     s.contact or self.ctx.settings.contact, s.n_params, s.bic)
+                                                    for s in visited if s.effects])
         return Selection(best=best, supported=tuple(supported), drop_costs=costs, separations=tuple(seps),
                          separations_in_range=tuple(seps_in), visited=tuple(visited), removed=tuple(self.removed),
                          explored=tuple(self.explored), resumed=tuple(self.resumed), reduced=tuple(self.reduced),
