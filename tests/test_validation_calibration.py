@@ -260,3 +260,38 @@ def test_the_errors_of_the_conditions_are_fitted_on_the_sets_one_effect_short_of
     # the baseline is exact here, so the chord steps land on the factor the rows were made with
     assert abs(v.value - 0.85) < 4 * v.std and v.effects == ("adhesion",)
     assert sorted(c.on for c in check.fits if c.kind == "speed") == ["(baseline)", "adhesion"]
+
+
+def test_a_gain_of_one_device_among_two_is_found_by_a_gain_per_device(baseline):
+    """Rows from two rigs, the warmest temperature measured on rig B only, whose mu reads 10 % high: to a model
+    the excess looks like friction that rises with temperature. One gain for all rows cannot fit it; a gain per
+    device (block-diagonal least squares, checked against numpy's) does, at the noise level, and is named."""
+    base, rows, f = baseline
+    device = np.where(rows.temperature > 30.0, "rig B", "rig A")
+    m = _with_noise(rows, np.where(device == "rig B", 1.10, 1.0) * f, 18)
+    m = dataclasses.replace(m, device=tuple(device))
+    dx = validation.diagnose(base, m, candidates=["strain_softening"])
+    (g,) = [c for c in dx.calibration.fits if c.kind == "device_gains"]
+    (one,) = [c for c in dx.calibration.fits if c.kind == "gain"]
+    gains = {d: (v, sd) for d, v, sd in g.per_device}
+    for rig, true in (("rig A", 1.0), ("rig B", 1.10)):
+        assert abs(gains[rig][0] - true) < 4 * gains[rig][1]
+    assert g.value == gains["rig B"][0] and g.std == gains["rig B"][1]
+    assert g.rival and g.at_noise and dx.calibration.rivals[0] is g and g.bic < one.bic - 10
+    assert "device rig B reading" in dx.verdict.calibration and "each device's calibration" in dx.verdict.calibration
+    # the same numbers from numpy: one column per device (f on its rows, 0 elsewhere), weights 1 / mu_std
+    X = np.column_stack([np.where(device == d, f, 0.0) for d in ("rig A", "rig B")]) / SIGMA
+    coef, res, *_ = np.linalg.lstsq(X, m.mu / SIGMA, rcond=None)
+    cov = np.linalg.inv(X.T @ X)
+    assert np.allclose([gains["rig A"][0], gains["rig B"][0]], coef, rtol=1e-10)
+    assert np.allclose([gains["rig A"][1], gains["rig B"][1]], np.sqrt(np.diag(cov)) * max(1.0, math.sqrt(
+        res[0] / (rows.n - 2))), rtol=1e-8)
+    assert g.bic == pytest.approx(validation.candidates.bic(float(res[0]), rows.n, 2, True))
+    data = dx.as_dict()["calibration"]["fits"][0]
+    assert data["kind"] == "device_gains" and [d["device"] for d in data["per_device"]] == ["rig A", "rig B"]
+
+
+def test_rows_of_one_device_get_no_gain_per_device(baseline):
+    base, rows, f = baseline
+    dx = validation.diagnose(base, _with_noise(rows, 1.05 * f, 19), candidates=["strain_softening"])
+    assert not [c for c in dx.calibration.fits if c.kind == "device_gains"]

@@ -20,6 +20,11 @@ each in closed form (weighted linear least squares in one parameter, weights :ma
 .. math:: \text{offset:}\quad \mu = f + c\,\frac{p_{ref}}{p}, \qquad
           \hat c = \frac{\sum w^2 (y - f) d}{\sum w^2 d^2}, \quad d = \frac{p_{ref}}{p},
 
+where the rows name two or more measuring devices (``Measurements.device``), a gain per device
+(:math:`\mu = s_D f` on the rows of device D, :math:`\hat s_D` the gain's formula over D's rows alone: the
+design's columns do not overlap, so the fit is block-diagonal, one parameter per device; plausible when every gain
+is), since devices that measured different conditions let one device's calibration pass for physics;
+
 and, on the baseline and on each set one effect short of the answer, two errors of the recorded conditions: an
 offset :math:`\Delta T` of the temperatures (every row predicted at :math:`T + \Delta T`) and a factor :math:`s_v`
 on the speeds (every row predicted at :math:`s_v V`, the slip unchanged, fitted as :math:`x = \ln s_v`), each
@@ -82,7 +87,9 @@ _CONDITION_STEPS = 2
 _ADVICE = {"gain": "the rig's calibration (the load cells against known weights, a reference surface)",
            "offset": "the rig's calibration (the friction force's zero with the wheel lifted, a reference surface)",
            "temperature": "the temperature measurement (a pyrometer's emissivity, where and when the probe reads)",
-           "speed": "the speed measurement (the wheel's effective rolling radius, the encoder)"}
+           "speed": "the speed measurement (the wheel's effective rolling radius, the encoder)",
+           "device_gains": "each device's calibration (the load cells against known weights, a reference surface "
+                           "measured on every device)"}
 #: BIC units within which a calibration error fits as well as the answer: the set search's band of equally
 #: supported sets (``validation.select.EQUAL``).
 BAND = 10.0
@@ -101,15 +108,16 @@ class CalibrationFit:
     ----------
     kind : str
         ``"gain"`` (measured mu = gain x model), ``"offset"`` (measured mu = model + offset p_ref / p),
-        ``"temperature"`` (measured mu = model at the recorded temperature + value) or ``"speed"`` (measured mu =
-        model at value x the recorded speed).
+        ``"temperature"`` (measured mu = model at the recorded temperature + value), ``"speed"`` (measured mu =
+        model at value x the recorded speed) or ``"device_gains"`` (measured mu = gain of the row's device x model,
+        one gain per device: :attr:`per_device`).
     on : str
         Label of the set of effects it is fitted on (``"(baseline)"`` for none).
     effects : tuple of str
         That set's effects.
     value : float
-        The gain (1 = none), the offset in mu at ``p_ref``, the temperature offset in K, or the speed factor (1 =
-        none).
+        The gain (1 = none), the offset in mu at ``p_ref``, the temperature offset in K, the speed factor (1 =
+        none), or the device gain farthest from 1.
     std : float
         Its standard error.
     p_ref : float
@@ -127,9 +135,12 @@ class CalibrationFit:
     pattern : validation.noise.Pattern
         Systematic structure left in its residual.
     plausible : bool
-        Within :data:`GAIN_RANGE`, :data:`OFFSET_LIMIT`, :data:`TEMPERATURE_LIMIT` or :data:`SPEED_RANGE`.
+        Within :data:`GAIN_RANGE` (every device's gain), :data:`OFFSET_LIMIT`, :data:`TEMPERATURE_LIMIT` or
+        :data:`SPEED_RANGE`.
     rival : bool
         Plausible, earns its parameter and within :data:`BAND` BIC units of the answer (module docstring).
+    per_device : tuple of (str, float, float)
+        For ``"device_gains"``: (device, gain, standard error) per device; empty otherwise.
     """
 
     kind: str
@@ -146,6 +157,7 @@ class CalibrationFit:
     pattern: object
     plausible: bool
     rival: bool
+    per_device: tuple = ()
 
     @property
     def at_noise(self) -> bool:
@@ -159,6 +171,12 @@ class CalibrationFit:
             pct = 100.0 * (self.value - 1.0)
             return (f"the measured mu reading {abs(pct):.1f} % {'high' if pct >= 0 else 'low'} (gain "
                     f"{self.value:.4g} +- {self.std:.2g})")
+        if self.kind == "device_gains":
+            each = ", ".join(f"{d or '(unlabelled)'} {g:.4g} +- {sd:.2g}" for d, g, sd in self.per_device)
+            far = next(d for d, g, _ in self.per_device if g == self.value)
+            pct = 100.0 * (self.value - 1.0)
+            return (f"the measured mu of device {far or '(unlabelled)'} reading {abs(pct):.1f} % "
+                    f"{'high' if pct >= 0 else 'low'} (a gain per device: {each})")
         if self.kind == "speed":
             pct = 100.0 * (self.value - 1.0)
             return (f"the speeds {abs(pct):.1f} % {'higher' if pct >= 0 else 'lower'} than recorded (a speed factor "
@@ -170,13 +188,14 @@ class CalibrationFit:
                 f"{self.p_ref / 1e6:.3g} MPa (as p_ref / p)")
 
     def as_dict(self) -> dict:
-        """The fit as a JSON-ready dict: every attribute, ``lack_of_fit`` (its ``as_dict``), ``remaining_pattern``
-        (in words), ``at_noise`` and ``description``."""
+        """The fit as a JSON-ready dict: every attribute (``per_device`` as a list of ``{"device", "gain", "std"}``),
+        ``lack_of_fit`` (its ``as_dict``), ``remaining_pattern`` (in words), ``at_noise`` and ``description``."""
         return {"kind": self.kind, "on": self.on, "effects": list(self.effects), "value": self.value,
                 "std": self.std, "p_ref": self.p_ref, "bic": self.bic, "gain_over_set": self.gain_over_set,
                 "delta_bic": self.delta_bic, "rmse": self.rmse, "lack_of_fit": self.lack.as_dict(),
                 "remaining_pattern": self.pattern.describe(), "at_noise": self.at_noise,
-                "plausible": self.plausible, "rival": self.rival, "description": self.describe()}
+                "plausible": self.plausible, "rival": self.rival, "description": self.describe(),
+                "per_device": [{"device": d, "gain": g, "std": sd} for d, g, sd in self.per_device]}
 
 
 @dataclass(frozen=True)
@@ -270,6 +289,7 @@ def check_calibration(sets, answer, context, baseline=None, conditions=()) -> Ca
     p_ref = float(np.exp(np.mean(np.log(p))))
     d = p_ref / p
     w2 = w * w
+    devices = _devices(context.measurements)
     fits = []
     for set_label, effects, f, k, set_bic in sets:
         if not (set(effects) < set(answer_effects) or (not answer_effects and not effects)):
@@ -285,6 +305,17 @@ def check_calibration(sets, answer, context, baseline=None, conditions=()) -> Ca
             plausible = (GAIN_RANGE[0] <= value <= GAIN_RANGE[1] if kind == "gain" else abs(value) <= OFFSET_LIMIT)
             fits.append(_fit(kind, set_label, effects, value, basis, model, k, set_bic, answer_bic, p_ref, plausible,
                              context))
+        if len(devices) > 1:
+            groups = [(label, mask, float(np.sum(w2[mask] * y[mask] * f[mask])) / norm)
+                      for label, mask in devices if (norm := float(np.sum(w2[mask] * f[mask] ** 2))) > 0.0]
+            if len(groups) == len(devices):
+                gain = np.zeros(y.size)
+                for _, mask, g in groups:
+                    gain[mask] = g
+                far = max((g for *_, g in groups), key=lambda g: abs(g - 1.0))
+                plausible = all(GAIN_RANGE[0] <= g <= GAIN_RANGE[1] for *_, g in groups)
+                fits.append(_fit("device_gains", set_label, effects, far, f, gain * f, k, set_bic, answer_bic, p_ref,
+                                 plausible, context, groups=groups))
     targets = [] if baseline is None else [("(baseline)", (), *baseline)]  # the answer or a proper subset of it
     targets += [c for c in conditions if set(c[1]) < set(answer_effects) and len(c[1]) == len(answer_effects) - 1
                 and c[1]]
@@ -304,23 +335,45 @@ def check_calibration(sets, answer, context, baseline=None, conditions=()) -> Ca
                             fits=tuple(fits))
 
 
-def _fit(kind, on, effects, value, basis, predicted, k, set_bic, answer_bic, p_ref, plausible, context):
+def _fit(kind, on, effects, value, basis, predicted, k, set_bic, answer_bic, p_ref, plausible, context, groups=None):
     """The record of one calibration error at ``value``: its BIC with one parameter more than the set's ``k``,
-    its standard error from ``basis`` (d prediction / d value per row), its tests and whether it rivals."""
+    its standard error from ``basis`` (d prediction / d value per row), its tests and whether it rivals. With
+    ``groups`` ((label, row mask, value) per device), one parameter per group, each with its own standard error
+    from the basis on its rows (the groups' columns are orthogonal); ``value`` is then that of the group farthest
+    from 1."""
     s = context.settings
     y, w, n = np.asarray(s.y, dtype=float), np.asarray(s.w, dtype=float), s.y.size
     r = y - predicted
     rss = float(np.sum((w * r) ** 2))
-    b = bic(rss, n, k + 1, s.sigma_known)
-    norm = float(np.sum((w * basis) ** 2))
-    var = rss / max(n - k - 1, 1)
+    extra = 1 if groups is None else len(groups)
+    b = bic(rss, n, k + extra, s.sigma_known)
+    var = rss / max(n - k - extra, 1)
     unit = context.s2 if math.isfinite(context.s2) and context.s2 > 0 else var
-    std = math.sqrt(max(unit, var) / norm) if norm > 0 else math.inf  # Birge-scaled where the fit misses the noise
+    unit = max(unit, var)  # Birge-scaled where the fit misses the noise
+
+    def std_of(mask):
+        norm = float(np.sum((w[mask] * basis[mask]) ** 2))
+        return math.sqrt(unit / norm) if norm > 0 else math.inf
+
+    per_group = () if groups is None else tuple((label, float(g), std_of(mask)) for label, mask, g in groups)
+    std = std_of(np.ones(n, dtype=bool)) if groups is None else next(sd for _, g, sd in per_group if g == value)
     earns = set_bic - b > EARN
     return CalibrationFit(kind=kind, on=on, effects=tuple(effects), value=float(value), std=std, p_ref=p_ref, bic=b,
                           gain_over_set=set_bic - b, delta_bic=b - answer_bic, rmse=float(np.sqrt(np.mean(r * r))),
-                          lack=context.lack_of_fit(r, k + 1), pattern=context.pattern(r), plausible=bool(plausible),
-                          rival=bool(plausible and earns and b - answer_bic < BAND))
+                          lack=context.lack_of_fit(r, k + extra), pattern=context.pattern(r),
+                          plausible=bool(plausible), rival=bool(plausible and earns and b - answer_bic < BAND),
+                          per_device=per_group)
+
+
+def _devices(m):
+    """(label, row mask) of each measuring device of ``m`` with at least two rows, in order of first appearance;
+    empty when the rows name fewer than two devices (rows without a label form a device of their own)."""
+    labels = tuple(getattr(m, "device", ()) or ())
+    if len(set(labels)) < 2:
+        return []
+    arr = np.asarray(labels, dtype=object)
+    out = [(label, arr == label) for label in dict.fromkeys(labels)]
+    return out if all(int(mask.sum()) >= 2 for _, mask in out) else []
 
 
 def _condition_error(kind, model, contact, f0, context):
