@@ -25,13 +25,17 @@ where the rows name two or more measuring devices (``Measurements.device``), a g
 design's columns do not overlap, so the fit is block-diagonal, one parameter per device; plausible when every gain
 is), since devices that measured different conditions let one device's calibration pass for physics;
 
-and, on the baseline and on each set one effect short of the answer, two errors of the recorded conditions: an
-offset :math:`\Delta T` of the temperatures (every row predicted at :math:`T + \Delta T`) and a factor :math:`s_v`
-on the speeds (every row predicted at :math:`s_v V`, the slip unchanged, fitted as :math:`x = \ln s_v`), each
-through the fit's own prediction path and found by two Gauss-Newton steps from 0 with the central-difference
-derivative :math:`J = \partial\mu/\partial x` at 0 (a chord method; Seber & Wild, Nonlinear Regression, Wiley
-(1989), sec. 14.1), the best point evaluated kept, and its standard error :math:`\sqrt{s^2 / \sum w^2 J^2}` as for
-the gain (four predictions of the set each);
+and, on the baseline and on each set one effect short of the answer, the errors of the recorded conditions: an
+offset :math:`\Delta T` of the temperatures (every row predicted at :math:`T + \Delta T`), a factor :math:`s_v`
+on the speeds (every row predicted at :math:`s_v V`, the slip unchanged, fitted as :math:`x = \ln s_v`) and, where
+at least three rows have slip < 1, an offset :math:`\delta` of their slip ratios (predicted at
+:math:`s + \delta`: a wheel's effective rolling radius off the one assumed; the horizontal shift :math:`S_H` of
+the Magic Formula, H. B. Pacejka, E. Bakker, Veh. Syst. Dyn. 21 (sup1), 1 (1992)). Each goes through the fit's
+own prediction path, by Gauss-Newton steps from 0: the first with the central-difference derivative
+:math:`J = \partial\mu/\partial x` at 0, the next with the secant between the last two points (Broyden's update,
+exact in one parameter; Seber & Wild, Nonlinear Regression, Wiley (1989), sec. 14.1), until a step is shorter than
+a twentieth of the standard error (at most five), the best point evaluated kept, and its standard error
+:math:`\sqrt{s^2 / \sum w^2 J^2}` as for the gain (three to seven predictions of the set each);
 with :math:`p_{ref}` the geometric mean of the rows' pressures (with one pressure the offset is a constant) and
 :math:`s^2` the variance unit of the fits (1 with ``mu_std``, else the noise variance), scaled by the Birge
 ratio where the calibrated model misses the noise (R. T. Birge, Phys. Rev. 40, 207 (1932); weighted least
@@ -42,15 +46,20 @@ least as well as said.
 
 A calibration error is a **rival** of the answer when it is plausible (a gain within :data:`GAIN_RANGE`, an offset
 of at most :data:`OFFSET_LIMIT` in mu at :math:`p_{ref}`, a temperature offset of at most :data:`TEMPERATURE_LIMIT`,
-a speed factor within :data:`SPEED_RANGE`: a rig further out has a fault that shows without a model), earns its own
-parameter (its BIC more than :data:`EARN` units below that of its set) and comes within :data:`BAND` BIC units of
-the answer (or beats it). The data then cannot tell the answer's extra effects from a calibration error: the
-diagnosis says so and asks for the measurement to be checked (the load cells against weights, a reference surface,
-the thermometer, the wheel's rolling radius). Nothing is changed in the answer itself.
+a speed factor within :data:`SPEED_RANGE`, a slip offset of at most :data:`SLIP_LIMIT`: a rig further out has a
+fault that shows without a model), earns its own parameter (its BIC more than :data:`EARN` units below that of
+its set) and comes within :data:`BAND` BIC units of the answer (or beats it). The data then cannot tell the
+answer's extra effects from a calibration error: the diagnosis says so and asks for the measurement to be checked
+(the load cells against weights, a reference surface, the thermometer, the wheel's rolling radius). Where the
+answer itself misses the noise, every error is also fitted on top of it, and one that brings the residual to the
+noise level is named as what the answer leaves (on top of the answer, or of the baseline when that is the answer,
+a rival must reach the noise level: earning a parameter is not enough there). Nothing is changed in the answer
+itself.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
@@ -62,7 +71,7 @@ from .band import SEBER_WILD_1989
 from .candidates import SCHWARZ_1978, bic
 
 __all__ = ["CalibrationFit", "CalibrationCheck", "check_calibration", "GAIN_RANGE", "OFFSET_LIMIT",
-           "TEMPERATURE_LIMIT", "SPEED_RANGE"]
+           "TEMPERATURE_LIMIT", "SPEED_RANGE", "SLIP_LIMIT"]
 
 #: Gains of the measured mu taken as a plausible calibration error (a rig more than 30 % off is faulty).
 GAIN_RANGE = (0.7, 1.3)
@@ -78,16 +87,29 @@ TEMPERATURE_SEARCH = 15.0
 SPEED_RANGE = (1.0 / 1.3, 1.3)
 #: The largest factor (or its inverse) the speed error is searched to.
 SPEED_SEARCH = 1.5
+#: Largest |offset| of the recorded slip ratios taken as plausible (a wheel's effective rolling radius 3 % off
+#: the one assumed shifts every slip by about 0.03: Pacejka's horizontal shift S_H of the Magic Formula).
+SLIP_LIMIT = 0.03
+#: The range the slip offset is searched in.
+SLIP_SEARCH = 0.05
 #: The conditions' errors: (step of the central difference, half-width of the search), in the fitted coordinate
-#: (dT in K; ln s for the speed factor s).
-_CONDITIONS = {"temperature": (0.5, TEMPERATURE_SEARCH), "speed": (math.log(1.02), math.log(SPEED_SEARCH))}
-#: Gauss-Newton steps of a condition's error.
-_CONDITION_STEPS = 2
+#: (dT in K; ln s for the speed factor s; the slip offset).
+_CONDITIONS = {"temperature": (0.5, TEMPERATURE_SEARCH), "speed": (math.log(1.02), math.log(SPEED_SEARCH)),
+               "slip": (0.002, SLIP_SEARCH)}
+#: Fewest rows with slip < 1 for a slip offset to be fitted.
+_MIN_SLIP_ROWS = 3
+#: The smallest slip (and 1 less the largest) a shifted slip row keeps.
+_SLIP_FLOOR = 1e-6
+#: Most Gauss-Newton steps of a condition's error.
+_CONDITION_STEPS = 5
+#: A step shorter than this many standard errors ends the Gauss-Newton steps.
+_CONDITION_TOL = 0.05
 #: What to check for each kind of error.
 _ADVICE = {"gain": "the rig's calibration (the load cells against known weights, a reference surface)",
            "offset": "the rig's calibration (the friction force's zero with the wheel lifted, a reference surface)",
            "temperature": "the temperature measurement (a pyrometer's emissivity, where and when the probe reads)",
            "speed": "the speed measurement (the wheel's effective rolling radius, the encoder)",
+           "slip": "the slip measurement (the wheel's effective rolling radius, the slip's zero at free rolling)",
            "device_gains": "each device's calibration (the load cells against known weights, a reference surface "
                            "measured on every device)"}
 #: BIC units within which a calibration error fits as well as the answer: the set search's band of equally
@@ -98,6 +120,9 @@ BAND = 10.0
 EARN = 10.0
 #: N. R. Draper, H. Smith, Applied Regression Analysis, 3rd ed., Wiley (1998): least squares in one parameter.
 DRAPER_SMITH_1998 = "isbn:9780471170822"
+#: H. B. Pacejka, E. Bakker, The Magic Formula tyre model, Vehicle System Dynamics 21 (sup1), 1 (1992): the
+#: horizontal shift S_H of a slip curve, the slip offset here.
+MAGIC_FORMULA_1992 = "10.1080/00423119208969994"
 
 
 @dataclass(frozen=True)
@@ -109,7 +134,8 @@ class CalibrationFit:
     kind : str
         ``"gain"`` (measured mu = gain x model), ``"offset"`` (measured mu = model + offset p_ref / p),
         ``"temperature"`` (measured mu = model at the recorded temperature + value), ``"speed"`` (measured mu =
-        model at value x the recorded speed) or ``"device_gains"`` (measured mu = gain of the row's device x model,
+        model at value x the recorded speed), ``"slip"`` (measured mu = model at the recorded slip + value, rows
+        with slip < 1) or ``"device_gains"`` (measured mu = gain of the row's device x model,
         one gain per device: :attr:`per_device`).
     on : str
         Label of the set of effects it is fitted on (``"(baseline)"`` for none).
@@ -117,7 +143,7 @@ class CalibrationFit:
         That set's effects.
     value : float
         The gain (1 = none), the offset in mu at ``p_ref``, the temperature offset in K, the speed factor (1 =
-        none), or the device gain farthest from 1.
+        none), the slip offset, or the device gain farthest from 1.
     std : float
         Its standard error.
     p_ref : float
@@ -135,8 +161,8 @@ class CalibrationFit:
     pattern : validation.noise.Pattern
         Systematic structure left in its residual.
     plausible : bool
-        Within :data:`GAIN_RANGE` (every device's gain), :data:`OFFSET_LIMIT`, :data:`TEMPERATURE_LIMIT` or
-        :data:`SPEED_RANGE`.
+        Within :data:`GAIN_RANGE` (every device's gain), :data:`OFFSET_LIMIT`, :data:`TEMPERATURE_LIMIT`,
+        :data:`SPEED_RANGE` or :data:`SLIP_LIMIT`.
     rival : bool
         Plausible, earns its parameter and within :data:`BAND` BIC units of the answer (module docstring).
     per_device : tuple of (str, float, float)
@@ -177,6 +203,9 @@ class CalibrationFit:
             pct = 100.0 * (self.value - 1.0)
             return (f"the measured mu of device {far or '(unlabelled)'} reading {abs(pct):.1f} % "
                     f"{'high' if pct >= 0 else 'low'} (a gain per device: {each})")
+        if self.kind == "slip":
+            return (f"the slip ratios {abs(self.value):.3g} {'higher' if self.value >= 0 else 'lower'} than recorded "
+                    f"(a slip offset of {self.value:+.3g} +- {self.std:.2g})")
         if self.kind == "speed":
             pct = 100.0 * (self.value - 1.0)
             return (f"the speeds {abs(pct):.1f} % {'higher' if pct >= 0 else 'lower'} than recorded (a speed factor "
@@ -233,6 +262,9 @@ class CalibrationCheck:
             how = "better than" if best.delta_bic < -BAND else "as well as"
             what = (f"A calibration error of the rig fits these rows {how} {' + '.join(extra)}: "
                     f"{best.on} with {best.describe()} (BIC {best.delta_bic:+.1f} against {self.answer}")
+        elif self.answer_effects:  # on top of the answer: what it leaves
+            what = (f"A calibration error of the rig fits what {self.answer} leaves: {best.on} with "
+                    f"{best.describe()} (BIC {best.delta_bic:+.1f} against {self.answer} alone")
         else:
             what = (f"A calibration error of the rig fits these rows: {best.on} with {best.describe()} (BIC "
                     f"{best.delta_bic:+.1f} against {self.answer}")
@@ -255,8 +287,8 @@ class CalibrationCheck:
 
 
 # ==========================================================================================================
-@doi(DRAPER_SMITH_1998, SCHWARZ_1978, SEBER_WILD_1989)
-def check_calibration(sets, answer, context, baseline=None, conditions=()) -> CalibrationCheck:
+@doi(DRAPER_SMITH_1998, SCHWARZ_1978, SEBER_WILD_1989, MAGIC_FORMULA_1992)
+def check_calibration(sets, answer, context, baseline=None, conditions=(), on_answer=False) -> CalibrationCheck:
     """A gain and an offset of the measured mu fitted on top of each of ``sets``, and an offset of the recorded
     temperatures and a factor on the recorded speeds on the baseline and on the sets one effect short of the
     answer, compared with ``answer`` (module docstring).
@@ -276,7 +308,10 @@ def check_calibration(sets, answer, context, baseline=None, conditions=()) -> Ca
         fitted on it.
     conditions : iterable of (label, effects, model, contact, n_params, bic)
         Further fitted sets to fit the conditions' errors on: those one effect short of the answer are used (their
-        predictions taken from ``sets``), the others skipped.
+        predictions taken from ``sets``), and the answer itself with ``on_answer``; the others are skipped.
+    on_answer : bool
+        Fit every error on top of the answer itself too (when it misses the noise: a calibration error may be what
+        it leaves); the answer must then be among ``sets`` (and ``conditions``).
 
     Returns
     -------
@@ -292,7 +327,8 @@ def check_calibration(sets, answer, context, baseline=None, conditions=()) -> Ca
     devices = _devices(context.measurements)
     fits = []
     for set_label, effects, f, k, set_bic in sets:
-        if not (set(effects) < set(answer_effects) or (not answer_effects and not effects)):
+        if not (set(effects) < set(answer_effects) or (set(effects) == set(answer_effects)
+                                                       and (on_answer or not answer_effects))):
             continue
         f = np.asarray(f, dtype=float)
         for kind, basis in (("gain", f), ("offset", d)):
@@ -317,19 +353,25 @@ def check_calibration(sets, answer, context, baseline=None, conditions=()) -> Ca
                 fits.append(_fit("device_gains", set_label, effects, far, f, gain * f, k, set_bic, answer_bic, p_ref,
                                  plausible, context, groups=groups))
     targets = [] if baseline is None else [("(baseline)", (), *baseline)]  # the answer or a proper subset of it
-    targets += [c for c in conditions if set(c[1]) < set(answer_effects) and len(c[1]) == len(answer_effects) - 1
-                and c[1]]
+    targets += [c for c in conditions if c[1] and (
+        (set(c[1]) < set(answer_effects) and len(c[1]) == len(answer_effects) - 1)
+        or (on_answer and set(c[1]) == set(answer_effects)))]
     for set_label, effects, model, contact, k, set_bic in targets:
         f0 = next((f for _, e, f, *_ in sets if set(e) == set(effects)), None)
         for kind in _CONDITIONS:
+            if kind == "slip" and int(np.sum(context.measurements.slip < 1.0)) < _MIN_SLIP_ROWS:
+                continue
             t = None if f0 is None else _condition_error(kind, model, contact, f0, context)
             if t is None:
                 continue
             value, J, pred = t
             plausible = (abs(value) <= TEMPERATURE_LIMIT if kind == "temperature" else
-                         SPEED_RANGE[0] <= value <= SPEED_RANGE[1])
+                         abs(value) <= SLIP_LIMIT if kind == "slip" else SPEED_RANGE[0] <= value <= SPEED_RANGE[1])
             fits.append(_fit(kind, set_label, effects, value, J, pred, k, set_bic, answer_bic, p_ref, plausible,
                              context))
+    # on top of the answer itself a rival must explain what the answer leaves, not merely earn its parameter
+    fits = [dataclasses.replace(c, rival=c.rival and c.at_noise) if set(c.effects) == set(answer_effects) else c
+            for c in fits]
     fits.sort(key=lambda c: c.bic)
     return CalibrationCheck(answer=label, answer_effects=tuple(answer_effects), answer_bic=float(answer_bic),
                             fits=tuple(fits))
@@ -378,13 +420,14 @@ def _devices(m):
 
 def _condition_error(kind, model, contact, f0, context):
     """The error of the recorded conditions of ``kind`` (``"temperature"``: an offset dT in K; ``"speed"``: a factor
-    on the recorded speeds, fitted as x = ln s) that fits the rows best with ``model`` (every row predicted at the
-    shifted condition through the fit's prediction path; ``f0`` its prediction at x = 0): Gauss-Newton steps from 0
-    with the central-difference derivative at 0 (a chord method, :data:`_CONDITION_STEPS` steps, clipped to the
-    search range of :data:`_CONDITIONS`), the best point evaluated kept; four predictions in all. Returns (the
-    value: dT, or the factor s; d mu / d value per row; the prediction there), or None where the model fails. Its
-    parameters stay at their fitted values."""
-    import dataclasses
+    on the recorded speeds, fitted as x = ln s; ``"slip"``: an offset of the recorded slip ratios of the rows with
+    slip < 1, kept within (0, 1)) that fits the rows best with ``model`` (every row predicted at the shifted
+    condition through the fit's prediction path; ``f0`` its prediction at x = 0): up to :data:`_CONDITION_STEPS`
+    Gauss-Newton steps from 0, clipped to the search range of :data:`_CONDITIONS`, the first with the
+    central-difference derivative at 0 and each next with the secant through the last two points, until a step is
+    shorter than :data:`_CONDITION_TOL` standard errors; the best point evaluated kept (three to seven
+    predictions). Returns (the value: dT, the factor s or the slip offset; d mu / d value per row there; the
+    prediction there), or None where the model fails. Its parameters stay at their fitted values."""
     import warnings
 
     from .predict import predict
@@ -396,8 +439,13 @@ def _condition_error(kind, model, contact, f0, context):
 
     def at(x):
         x = float(x)
-        shifted = (dataclasses.replace(m, temperature=m.temperature + x, _checked=True) if kind == "temperature" else
-                   dataclasses.replace(m, speed=m.speed * math.exp(x), _checked=True))
+        if kind == "temperature":
+            shifted = dataclasses.replace(m, temperature=m.temperature + x, _checked=True)
+        elif kind == "speed":
+            shifted = dataclasses.replace(m, speed=m.speed * math.exp(x), _checked=True)
+        else:  # rows that slide stay sliding; a slip row stays a slip row, its slip kept inside (0, 1)
+            slip = np.where(m.slip < 1.0, np.clip(m.slip + x, _SLIP_FLOOR, 1.0 - _SLIP_FLOOR), m.slip)
+            shifted = dataclasses.replace(m, slip=slip, _checked=True)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             return np.asarray(predict(model, shifted, contact).mu, dtype=float)
@@ -408,18 +456,28 @@ def _condition_error(kind, model, contact, f0, context):
         if not (np.all(np.isfinite(J)) and norm > 0):
             return None
         x, f = 0.0, np.asarray(f0, dtype=float)
-        best = (float(np.sum((w * (y - f)) ** 2)), x, f)
+        best = (float(np.sum((w * (y - f)) ** 2)), x, f, J)
+        unit = context.s2 if math.isfinite(context.s2) and context.s2 > 0 else 0.0
         for _ in range(_CONDITION_STEPS):
-            x = float(np.clip(x + float(np.sum(w * w * (y - f) * J)) / norm, -search, search))
-            f = at(x)
-            if not np.all(np.isfinite(f)):
+            x_new = float(np.clip(x + float(np.sum(w * w * (y - f) * J)) / norm, -search, search))
+            # a step far below the standard error changes nothing that is reported
+            if abs(x_new - x) <= _CONDITION_TOL * math.sqrt(unit / norm):
                 break
+            f_new = at(x_new)
+            if not np.all(np.isfinite(f_new)):
+                break
+            # the secant between the last two points (Broyden's update, exact for one parameter): the derivative
+            # follows the curvature of mu(x) at no extra prediction
+            J_new = (f_new - f) / (x_new - x)
+            if float(np.sum((w * J_new) ** 2)) > 0.0:
+                J, norm = J_new, float(np.sum((w * J_new) ** 2))
+            x, f = x_new, f_new
             c = float(np.sum((w * (y - f)) ** 2))
             if c < best[0]:
-                best = (c, x, f)
+                best = (c, x, f, J)
     except Exception:  # noqa: BLE001  (a model that fails at shifted conditions has no error to offer)
         return None
-    _, x, f = best
+    _, x, f, J = best
     if kind == "speed":  # d mu / d s = (d mu / d ln s) / s
         return math.exp(x), J / math.exp(x), f
     return x, J, f

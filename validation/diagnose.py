@@ -377,12 +377,25 @@ def _outliers(named, baseline, measurements, noise):
 
 def _calibration_check(named, baseline, ctx, conditions=True):
     """A gain and a zero offset of the measured mu on the baseline (and, with ``conditions``, an offset of the
-    recorded temperatures and a factor on the recorded speeds), against ``named``, the candidate the verdict names
-    (the baseline itself when None): :func:`validation.calibration.check_calibration`."""
+    recorded temperatures, a factor on the recorded speeds and an offset of the slip ratios), against ``named``, the
+    candidate the verdict names (the baseline itself when None); on top of ``named`` too when it misses the noise:
+    :func:`validation.calibration.check_calibration`."""
     answer = ("(baseline)", (), baseline.bic) if named is None else (named.effect, (named.effect,), named.bic)
-    return check_calibration([("(baseline)", (), baseline.predicted, baseline.n_params, baseline.bic)], answer, ctx,
+    sets = [("(baseline)", (), baseline.predicted, baseline.n_params, baseline.bic)]
+    on_answer = named is not None and named.predicted is not None and not _at_noise(named)
+    if on_answer:
+        sets.append((named.effect, (named.effect,), named.predicted, named.n_params, named.bic))
+    return check_calibration(sets, answer, ctx,
                              baseline=(baseline.model, baseline.contact or ctx.settings.contact, baseline.n_params,
-                                       baseline.bic) if conditions else None)
+                                       baseline.bic) if conditions else None,
+                             conditions=[(named.effect, (named.effect,), named.model,
+                                          named.contact or ctx.settings.contact, named.n_params, named.bic)]
+                             if conditions and on_answer else (), on_answer=on_answer)
+
+
+def _at_noise(c) -> bool:
+    """Whether the fit ``c`` (a candidate) leaves a residual consistent with the noise and no pattern."""
+    return bool(c.lack is not None and c.lack.consistent and not (c.pattern is not None and c.pattern.found))
 
 
 @dataclass(frozen=True, eq=False)

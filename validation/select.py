@@ -793,7 +793,8 @@ class SetSearch:
                                                                             base.n_params, base.bic),
                                         conditions=[(s.label, s.effects, s.model,
                                                      s.contact or self.ctx.settings.contact, s.n_params, s.bic)
-                                                    for s in visited if s.effects])
+                                                    for s in visited if s.effects],
+                                        on_answer=not fits_at_noise(best))
         return Selection(best=best, supported=tuple(supported), drop_costs=costs, separations=tuple(seps),
                          separations_in_range=tuple(seps_in), visited=tuple(visited), removed=tuple(self.removed),
                          explored=tuple(self.explored), resumed=tuple(self.resumed), reduced=tuple(self.reduced),
