@@ -410,7 +410,7 @@ def _fit(kind, on, effects, value, basis, predicted, k, set_bic, answer_bic, p_r
 def _devices(m):
     """(label, row mask) of each measuring device of ``m`` with at least two rows, in order of first appearance;
     empty when the rows name fewer than two devices (rows without a label form a device of their own)."""
-    labels = tuple(getattr(m, "device", ()) or ())
+    labels = tuple(str(d) for d in (getattr(m, "device", ()) or ()))
     if len(set(labels)) < 2:
         return []
     arr = np.asarray(labels, dtype=object)
