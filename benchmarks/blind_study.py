@@ -87,6 +87,9 @@ class BlindCase:
     separable: float = math.nan        # what the closest other candidate set leaves of the truth, / sigma
     closest: tuple = ()                # that set
     notes: dict = field(default_factory=dict)
+    truth: object = None               # the truth's model (converged grid), its contact and noise-free mu
+    truth_contact: object = None
+    mu_true: object = None
 
 
 # ==========================================================================================================
@@ -201,7 +204,7 @@ def draw(index: int, seed: int) -> BlindCase:
                      contact=contact_case, fit=fit, ratio=ratio, sigma=sigma, distinguishable=distinguishable,
                      separable=separable, closest=closest,
                      noise_kind="mu_std" if use_std else "replicates" if replicate else "local differences",
-                     notes=notes)
+                     notes=notes, truth=truth, truth_contact=contact_truth, mu_true=mu_true)
 
 
 def _closest_other_set(kind, hidden, base, truth_rows, contact, fit, known) -> tuple[float, tuple]:

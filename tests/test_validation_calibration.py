@@ -342,3 +342,29 @@ def test_on_top_of_the_answer_a_calibration_error_must_reach_the_noise():
     on_answer = [c for c in dx.calibration.fits if set(c.effects) == set(dx.calibration.answer_effects)]
     assert any(c.gain_over_set > 10 for c in on_answer)
     assert not any(c.rival for c in on_answer) and all(not c.at_noise for c in on_answer)
+
+
+def test_an_error_partly_taken_up_by_a_fitted_parameter_is_found_by_the_joint_step():
+    """A zero offset of the friction force (+0.04 at p_ref, as 1/p) with the adhesion's shear stress fitted: the
+    refit baseline's tau_f0 takes up part of the offset, and the offset alone on top of it comes out at 0.01, 400
+    BIC units worse than the answer. Refitted together with tau_f0 (one Gauss-Newton step, checked by a
+    prediction) it is found within 4 standard errors, at the noise level, and named (truth on a converged grid)."""
+    from persson import effects as fx
+
+    truth = persson.Model(SURFACE, TREAD, effects=[fx.Adhesion(tau_f0=1.0e6, c=0.1, v_ref=1e-2)],
+                          grid=persson.GridSettings(q_per_decade=64, omega_per_decade=120))
+    base = persson.Model(SURFACE, TREAD, effects=[fx.Adhesion(tau_f0=1.5e6, c=0.1, v_ref=1e-2)])
+    rows = _rows()
+    p_ref = float(np.exp(np.mean(np.log(rows.pressure))))
+    m = _with_noise(rows, validation.predict(truth, rows).mu + 0.04 * p_ref / rows.pressure, 22)
+    dx = validation.diagnose(base, m, candidates=["strain_softening"], fit=("adhesion.tau_f0",))
+    (off,) = [c for c in dx.calibration.fits if c.kind == "offset" and c.on == "(baseline)"]
+    assert off.joint and off.rival and off.at_noise and dx.calibration.rivals[0] is off
+    assert abs(off.value - 0.04) < 4 * off.std < 0.01
+    # the same check without the joint step (the baseline's parameters held): far off, and no rival
+    b = dx.baseline
+    alone = check_calibration([("(baseline)", (), b.predicted, b.n_params, b.bic)],
+                              (dx.calibration.answer, dx.calibration.answer_effects, dx.calibration.answer_bic),
+                              dx.context)
+    (held,) = [c for c in alone.fits if c.kind == "offset"]
+    assert not held.joint and not held.rival and abs(held.value - 0.04) > 10 * held.std

@@ -40,9 +40,15 @@ with :math:`p_{ref}` the geometric mean of the rows' pressures (with one pressur
 :math:`s^2` the variance unit of the fits (1 with ``mu_std``, else the noise variance), scaled by the Birge
 ratio where the calibrated model misses the noise (R. T. Birge, Phys. Rev. 40, 207 (1932); weighted least
 squares: N. R. Draper, H. Smith, Applied Regression Analysis, 3rd ed., Wiley (1998)). Each is scored by the BIC
-of the set with one more parameter (:func:`validation.candidates.bic`); the set's other parameters stay at their
-fitted values, so the BIC is an upper bound of that of a joint fit, and a calibration error named here fits at
-least as well as said.
+of the set with one more parameter (one per device; :func:`validation.candidates.bic`), first with the set's own
+parameters held at their fitted values. A fitted parameter of the set may have taken up part of the error (a
+fitted shear stress part of a zero offset); so where the linear estimate of a joint step could make the error a
+rival (weighted least squares of the residual on the set's Jacobian d mu / d u and the error's column together),
+the step is taken: the set is predicted at its stepped parameters (with the stepped condition for an error of
+the conditions), the closed-form errors are solved again on that prediction, and the result is kept where it fits
+better (one prediction; Seber & Wild, sec. 14.1). Either way the BIC is that of a real prediction, an upper bound
+of the joint optimum: a calibration error named here fits at least as well as said. The standard errors of a
+joint step come from the joint design, so they include the correlation with the set's parameters.
 
 A calibration error is a **rival** of the answer when it is plausible (a gain within :data:`GAIN_RANGE`, an offset
 of at most :data:`OFFSET_LIMIT` in mu at :math:`p_{ref}`, a temperature offset of at most :data:`TEMPERATURE_LIMIT`,
@@ -96,6 +102,9 @@ SLIP_SEARCH = 0.05
 #: (dT in K; ln s for the speed factor s; the slip offset).
 _CONDITIONS = {"temperature": (0.5, TEMPERATURE_SEARCH), "speed": (math.log(1.02), math.log(SPEED_SEARCH)),
                "slip": (0.002, SLIP_SEARCH)}
+#: The values a condition's error may take in a joint step (dT in K, the speed factor, the slip offset).
+_VALUE_RANGE = {"temperature": (-TEMPERATURE_SEARCH, TEMPERATURE_SEARCH),
+                "speed": (1.0 / SPEED_SEARCH, SPEED_SEARCH), "slip": (-SLIP_SEARCH, SLIP_SEARCH)}
 #: Fewest rows with slip < 1 for a slip offset to be fitted.
 _MIN_SLIP_ROWS = 3
 #: The smallest slip (and 1 less the largest) a shifted slip row keeps.
@@ -167,6 +176,9 @@ class CalibrationFit:
         Plausible, earns its parameter and within :data:`BAND` BIC units of the answer (module docstring).
     per_device : tuple of (str, float, float)
         For ``"device_gains"``: (device, gain, standard error) per device; empty otherwise.
+    joint : bool
+        The set's own parameters were refitted with the error (one Gauss-Newton step of both; the standard errors
+        then include their correlation); False: held at their fitted values.
     """
 
     kind: str
@@ -184,6 +196,7 @@ class CalibrationFit:
     plausible: bool
     rival: bool
     per_device: tuple = ()
+    joint: bool = False
 
     @property
     def at_noise(self) -> bool:
@@ -224,7 +237,8 @@ class CalibrationFit:
                 "delta_bic": self.delta_bic, "rmse": self.rmse, "lack_of_fit": self.lack.as_dict(),
                 "remaining_pattern": self.pattern.describe(), "at_noise": self.at_noise,
                 "plausible": self.plausible, "rival": self.rival, "description": self.describe(),
-                "per_device": [{"device": d, "gain": g, "std": sd} for d, g, sd in self.per_device]}
+                "per_device": [{"device": d, "gain": g, "std": sd} for d, g, sd in self.per_device],
+                "joint": self.joint}
 
 
 @dataclass(frozen=True)
@@ -288,7 +302,8 @@ class CalibrationCheck:
 
 # ==========================================================================================================
 @doi(DRAPER_SMITH_1998, SCHWARZ_1978, SEBER_WILD_1989, MAGIC_FORMULA_1992)
-def check_calibration(sets, answer, context, baseline=None, conditions=(), on_answer=False) -> CalibrationCheck:
+def check_calibration(sets, answer, context, baseline=None, conditions=(), on_answer=False,
+                      refits=None) -> CalibrationCheck:
     """A gain and an offset of the measured mu fitted on top of each of ``sets``, and an offset of the recorded
     temperatures and a factor on the recorded speeds on the baseline and on the sets one effect short of the
     answer, compared with ``answer`` (module docstring).
@@ -312,52 +327,45 @@ def check_calibration(sets, answer, context, baseline=None, conditions=(), on_an
     on_answer : bool
         Fit every error on top of the answer itself too (when it misses the noise: a calibration error may be what
         it leaves); the answer must then be among ``sets`` (and ``conditions``).
+    refits : dict, optional
+        frozenset of effects -> :class:`SetFit`: for those sets, an error whose linear estimate could make a rival
+        is refitted together with the set's parameters (one Gauss-Newton step, checked by a prediction).
 
     Returns
     -------
     CalibrationCheck
     """
     label, answer_effects, answer_bic = answer
-    s = context.settings
-    y, w = np.asarray(s.y, dtype=float), np.asarray(s.w, dtype=float)
     p = np.asarray(context.measurements.pressure, dtype=float)
     p_ref = float(np.exp(np.mean(np.log(p))))
     d = p_ref / p
-    w2 = w * w
     devices = _devices(context.measurements)
+    refits = dict(refits or {})
+    closed = ("gain", "offset") + (("device_gains",) if len(devices) > 1 else ())
     fits = []
     for set_label, effects, f, k, set_bic in sets:
         if not (set(effects) < set(answer_effects) or (set(effects) == set(answer_effects)
                                                        and (on_answer or not answer_effects))):
             continue
+        on = _On(set_label, tuple(effects), k, set_bic, float(answer_bic), p_ref, context,
+                 refits.get(frozenset(effects)))
         f = np.asarray(f, dtype=float)
-        for kind, basis in (("gain", f), ("offset", d)):
-            target = y if kind == "gain" else y - f
-            norm = float(np.sum(w2 * basis * basis))
-            if not norm > 0.0:
+        for kind in closed:
+            est = _closed_form(kind, f, d, devices, context)
+            if est is None:
                 continue
-            value = float(np.sum(w2 * target * basis)) / norm
-            model = value * f if kind == "gain" else f + value * d
-            plausible = (GAIN_RANGE[0] <= value <= GAIN_RANGE[1] if kind == "gain" else abs(value) <= OFFSET_LIMIT)
-            fits.append(_fit(kind, set_label, effects, value, basis, model, k, set_bic, answer_bic, p_ref, plausible,
-                             context))
-        if len(devices) > 1:
-            groups = [(label, mask, float(np.sum(w2[mask] * y[mask] * f[mask])) / norm)
-                      for label, mask in devices if (norm := float(np.sum(w2[mask] * f[mask] ** 2))) > 0.0]
-            if len(groups) == len(devices):
-                gain = np.zeros(y.size)
-                for _, mask, g in groups:
-                    gain[mask] = g
-                far = max((g for *_, g in groups), key=lambda g: abs(g - 1.0))
-                plausible = all(GAIN_RANGE[0] <= g <= GAIN_RANGE[1] for *_, g in groups)
-                fits.append(_fit("device_gains", set_label, effects, far, f, gain * f, k, set_bic, answer_bic, p_ref,
-                                 plausible, context, groups=groups))
+            rec = _record(kind, on, *est)
+            if on.refit is not None:
+                rec = _joint_closed_form(rec, kind, est, d, devices, on) or rec
+            fits.append(rec)
     targets = [] if baseline is None else [("(baseline)", (), *baseline)]  # the answer or a proper subset of it
     targets += [c for c in conditions if c[1] and (
         (set(c[1]) < set(answer_effects) and len(c[1]) == len(answer_effects) - 1)
         or (on_answer and set(c[1]) == set(answer_effects)))]
     for set_label, effects, model, contact, k, set_bic in targets:
         f0 = next((f for _, e, f, *_ in sets if set(e) == set(effects)), None)
+        on = _On(set_label, tuple(effects), k, set_bic, float(answer_bic), p_ref, context,
+                 refits.get(frozenset(effects)))
         for kind in _CONDITIONS:
             if kind == "slip" and int(np.sum(context.measurements.slip < 1.0)) < _MIN_SLIP_ROWS:
                 continue
@@ -365,10 +373,10 @@ def check_calibration(sets, answer, context, baseline=None, conditions=(), on_an
             if t is None:
                 continue
             value, J, pred = t
-            plausible = (abs(value) <= TEMPERATURE_LIMIT if kind == "temperature" else
-                         abs(value) <= SLIP_LIMIT if kind == "slip" else SPEED_RANGE[0] <= value <= SPEED_RANGE[1])
-            fits.append(_fit(kind, set_label, effects, value, J, pred, k, set_bic, answer_bic, p_ref, plausible,
-                             context))
+            rec = _record(kind, on, np.array([value]), pred, J[:, None], None)
+            if on.refit is not None:
+                rec = _joint_condition(rec, kind, value, J, pred, on) or rec
+            fits.append(rec)
     # on top of the answer itself a rival must explain what the answer leaves, not merely earn its parameter
     fits = [dataclasses.replace(c, rival=c.rival and c.at_noise) if set(c.effects) == set(answer_effects) else c
             for c in fits]
@@ -377,34 +385,242 @@ def check_calibration(sets, answer, context, baseline=None, conditions=(), on_an
                             fits=tuple(fits))
 
 
-def _fit(kind, on, effects, value, basis, predicted, k, set_bic, answer_bic, p_ref, plausible, context, groups=None):
-    """The record of one calibration error at ``value``: its BIC with one parameter more than the set's ``k``,
-    its standard error from ``basis`` (d prediction / d value per row), its tests and whether it rivals. With
-    ``groups`` ((label, row mask, value) per device), one parameter per group, each with its own standard error
-    from the basis on its rows (the groups' columns are orthogonal); ``value`` is then that of the group farthest
-    from 1."""
+@dataclass(frozen=True)
+class SetFit:
+    """What the joint step of a calibration error needs of a fitted set (:func:`check_calibration`): its model and
+    contact, the map from the fit's coordinates u to them, the optimum and d mu / d u there.
+
+    Attributes
+    ----------
+    model : persson.Model
+    contact : persson.slip.Contact or None
+    space : validation.fitting.ParameterSpace
+    u : ndarray (k,)
+    jacobian : ndarray (rows, k)
+        Unweighted.
+    """
+
+    model: object
+    contact: object
+    space: object
+    u: np.ndarray
+    jacobian: np.ndarray
+
+    @classmethod
+    def of(cls, model, contact, covariance, jacobian) -> "SetFit | None":
+        """From a fit's covariance (its space and optimum) and Jacobian; None when either is missing or they do not
+        match."""
+        if covariance is None or jacobian is None:
+            return None
+        J = np.asarray(jacobian, dtype=float)
+        u = np.asarray(covariance.u, dtype=float)
+        if J.ndim != 2 or J.shape[1] != u.size or u.size == 0 or not np.all(np.isfinite(J)):
+            return None
+        return cls(model=model, contact=contact, space=covariance.space, u=u, jacobian=J)
+
+    def predict(self, du, measurements) -> np.ndarray | None:
+        """The set's prediction of ``measurements`` with its parameters at u + ``du`` (clipped to the box); None
+        where the model fails."""
+        import warnings
+
+        from .predict import predict
+
+        u = np.clip(self.u + np.asarray(du, dtype=float), 0.0, 1.0)
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                mu = np.asarray(predict(self.space.apply(self.model, u), measurements,
+                                        self.space.apply_contact(self.contact, u)).mu, dtype=float)
+        except Exception:  # noqa: BLE001  (a step the model cannot take is not taken)
+            return None
+        return mu if np.all(np.isfinite(mu)) else None
+
+
+@dataclass(frozen=True)
+class _On:
+    """The set an error is fitted on, and what its record is compared with."""
+
+    label: str
+    effects: tuple
+    k: int
+    set_bic: float
+    answer_bic: float
+    p_ref: float
+    context: object
+    refit: SetFit | None
+
+
+def _closed_form(kind, f, d, devices, context):
+    """(values, prediction, d prediction / d values (rows x values), device groups or None) of the closed-form
+    error ``kind`` on top of the set's prediction ``f`` (module docstring), or None where it is undetermined."""
     s = context.settings
+    y, w = np.asarray(s.y, dtype=float), np.asarray(s.w, dtype=float)
+    w2 = w * w
+    if kind == "device_gains":
+        masks = [mask for _, mask in devices]
+        norms = [float(np.sum(w2[mask] * f[mask] ** 2)) for mask in masks]
+        if not all(n > 0.0 for n in norms):
+            return None
+        g = np.array([float(np.sum(w2[mask] * y[mask] * f[mask])) / n for mask, n in zip(masks, norms)])
+        columns = np.column_stack([np.where(mask, f, 0.0) for mask in masks])
+        return g, columns @ g, columns, [label for label, _ in devices]
+    basis = f if kind == "gain" else d
+    norm = float(np.sum(w2 * basis * basis))
+    if not norm > 0.0:
+        return None
+    target = y if kind == "gain" else y - f
+    value = float(np.sum(w2 * target * basis)) / norm
+    return np.array([value]), (value * f if kind == "gain" else f + value * d), basis[:, None], None
+
+
+def _record(kind, on, values, predicted, columns, groups, joint=False):
+    """The record of one calibration error at ``values`` (one per device for ``"device_gains"``): its BIC with
+    as many parameters more than the set's, its standard errors from the design ``columns`` (d prediction / d
+    parameter; with ``joint``, the set's own columns first, then the error's), its tests and whether it rivals."""
+    ctx = on.context
+    s = ctx.settings
     y, w, n = np.asarray(s.y, dtype=float), np.asarray(s.w, dtype=float), s.y.size
+    values = np.asarray(values, dtype=float)
+    extra = values.size
     r = y - predicted
     rss = float(np.sum((w * r) ** 2))
-    extra = 1 if groups is None else len(groups)
-    b = bic(rss, n, k + extra, s.sigma_known)
-    var = rss / max(n - k - extra, 1)
-    unit = context.s2 if math.isfinite(context.s2) and context.s2 > 0 else var
+    b = bic(rss, n, on.k + extra, s.sigma_known)
+    var = rss / max(n - on.k - extra, 1)
+    unit = ctx.s2 if math.isfinite(ctx.s2) and ctx.s2 > 0 else var
     unit = max(unit, var)  # Birge-scaled where the fit misses the noise
+    std = _standard_errors(columns, w, unit)[-extra:]
+    if kind == "device_gains":
+        i = int(np.argmax(np.abs(values - 1.0)))
+        per_device = tuple((label, float(g), float(sd)) for label, g, sd in zip(groups, values, std))
+        plausible = bool(np.all((GAIN_RANGE[0] <= values) & (values <= GAIN_RANGE[1])))
+    else:
+        i, per_device = 0, ()
+        plausible = _plausible(kind, float(values[0]))
+    earns = on.set_bic - b > EARN
+    return CalibrationFit(kind=kind, on=on.label, effects=on.effects, value=float(values[i]), std=float(std[i]),
+                          p_ref=on.p_ref, bic=b, gain_over_set=on.set_bic - b, delta_bic=b - on.answer_bic,
+                          rmse=float(np.sqrt(np.mean(r * r))), lack=ctx.lack_of_fit(r, on.k + extra),
+                          pattern=ctx.pattern(r), plausible=plausible,
+                          rival=bool(plausible and earns and b - on.answer_bic < BAND), per_device=per_device,
+                          joint=bool(joint))
 
-    def std_of(mask):
-        norm = float(np.sum((w[mask] * basis[mask]) ** 2))
-        return math.sqrt(unit / norm) if norm > 0 else math.inf
 
-    per_group = () if groups is None else tuple((label, float(g), std_of(mask)) for label, mask, g in groups)
-    std = std_of(np.ones(n, dtype=bool)) if groups is None else next(sd for _, g, sd in per_group if g == value)
-    earns = set_bic - b > EARN
-    return CalibrationFit(kind=kind, on=on, effects=tuple(effects), value=float(value), std=std, p_ref=p_ref, bic=b,
-                          gain_over_set=set_bic - b, delta_bic=b - answer_bic, rmse=float(np.sqrt(np.mean(r * r))),
-                          lack=context.lack_of_fit(r, k + extra), pattern=context.pattern(r),
-                          plausible=bool(plausible), rival=bool(plausible and earns and b - answer_bic < BAND),
-                          per_device=per_group)
+def _plausible(kind, value) -> bool:
+    if kind == "gain":
+        return GAIN_RANGE[0] <= value <= GAIN_RANGE[1]
+    if kind == "offset":
+        return abs(value) <= OFFSET_LIMIT
+    if kind == "temperature":
+        return abs(value) <= TEMPERATURE_LIMIT
+    if kind == "slip":
+        return abs(value) <= SLIP_LIMIT
+    return SPEED_RANGE[0] <= value <= SPEED_RANGE[1]
+
+
+def _standard_errors(columns, w, unit) -> np.ndarray:
+    """sqrt of the diagonal of unit (C^T W^2 C)^-1 (inf for a direction the columns do not determine)."""
+    A = np.asarray(columns, dtype=float) * w[:, None]
+    H = A.T @ A
+    try:
+        cov = np.linalg.pinv(H)
+    except np.linalg.LinAlgError:
+        return np.full(H.shape[0], math.inf)
+    diag = np.diag(cov)
+    return np.where(diag > 0, np.sqrt(np.abs(diag) * unit), math.inf)
+
+
+def _joint_closed_form(rec, kind, est, d, devices, on):
+    """The error ``kind`` refitted together with the set's own parameters: one Gauss-Newton step of both from the
+    error alone (``est``, :func:`_closed_form`), the set predicted at its stepped parameters and the error solved
+    again on that prediction. Tried only where the step's linear estimate could make a rival; kept where the
+    prediction fits better than the error alone. Returns the new record or None."""
+    values, predicted, columns, groups = est
+    J = on.refit.jacobian
+    if kind == "gain":
+        set_columns = values[0] * J
+    elif kind == "device_gains":  # mu = g_D f(u) on the rows of device D
+        set_columns = sum(g * mask for g, (_, mask) in zip(values, devices))[:, None] * J
+    else:
+        set_columns = J
+    step = _linear_step(set_columns, columns, predicted, on)
+    if step is None:
+        return None
+    du, _ = step
+    f2 = on.refit.predict(du, on.context.measurements)
+    if f2 is None:
+        return None
+    est2 = _closed_form(kind, f2, d, devices, on.context)
+    if est2 is None:
+        return None
+    values2, predicted2, columns2, groups2 = est2
+    if _rss(predicted2, on) >= _rss(predicted, on):
+        return None
+    return _record(kind, on, values2, predicted2, np.column_stack([set_columns, columns2]), groups2, joint=True)
+
+
+def _joint_condition(rec, kind, value, J_value, predicted, on):
+    """The error of a recorded condition refitted together with the set's own parameters: one Gauss-Newton step of
+    both from the error alone (at ``value``, where d mu / d value is ``J_value``), the set predicted at the stepped
+    parameters and condition. As :func:`_joint_closed_form` otherwise."""
+    import warnings
+
+    from .predict import predict
+
+    columns = J_value[:, None]
+    step = _linear_step(on.refit.jacobian, columns, predicted, on)
+    if step is None:
+        return None
+    du, dv = step
+    lo, hi = _VALUE_RANGE[kind]
+    value2 = float(np.clip(value + dv[0], lo, hi))
+    u = np.clip(on.refit.u + du, 0.0, 1.0)
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            f2 = np.asarray(predict(on.refit.space.apply(on.refit.model, u), _shifted(on.context.measurements, kind,
+                                                                                       value2),
+                                    on.refit.space.apply_contact(on.refit.contact, u)).mu, dtype=float)
+    except Exception:  # noqa: BLE001  (a step the model cannot take is not taken)
+        return None
+    if not np.all(np.isfinite(f2)) or _rss(f2, on) >= _rss(predicted, on):
+        return None
+    return _record(kind, on, np.array([value2]), f2, np.column_stack([on.refit.jacobian, columns]), None, joint=True)
+
+
+def _linear_step(set_columns, error_columns, predicted, on):
+    """(d u, d values): the weighted least-squares step of the set's parameters and the error's on the residual at
+    ``predicted``, or None when its linear estimate could not make a rival (no gain, or a BIC that does not earn
+    the error's parameters or misses the band of the answer)."""
+    s = on.context.settings
+    y, w, n = np.asarray(s.y, dtype=float), np.asarray(s.w, dtype=float), s.y.size
+    A = np.column_stack([set_columns, error_columns])
+    r = y - predicted
+    sol, *_ = np.linalg.lstsq(A * w[:, None], r * w, rcond=None)
+    if not np.all(np.isfinite(sol)):
+        return None
+    rss_lin = float(np.sum((w * (r - A @ sol)) ** 2))
+    b_lin = bic(rss_lin, n, on.k + error_columns.shape[1], s.sigma_known)
+    b_now = bic(_rss(predicted, on), n, on.k + error_columns.shape[1], s.sigma_known)
+    if not (b_lin < b_now - 1.0 and on.set_bic - b_lin > EARN and b_lin - on.answer_bic < BAND):
+        return None
+    k = set_columns.shape[1]
+    return sol[:k], sol[k:]
+
+
+def _rss(predicted, on) -> float:
+    s = on.context.settings
+    return float(np.sum((np.asarray(s.w, dtype=float) * (np.asarray(s.y, dtype=float) - predicted)) ** 2))
+
+
+def _shifted(m, kind, value):
+    """The rows ``m`` at the conditions shifted by the error ``kind`` of ``value`` (dT in K, the speed factor, the
+    slip offset): rows that slide stay sliding; a slip row stays a slip row, its slip kept inside (0, 1)."""
+    if kind == "temperature":
+        return dataclasses.replace(m, temperature=m.temperature + value, _checked=True)
+    if kind == "speed":
+        return dataclasses.replace(m, speed=m.speed * value, _checked=True)
+    slip = np.where(m.slip < 1.0, np.clip(m.slip + value, _SLIP_FLOOR, 1.0 - _SLIP_FLOOR), m.slip)
+    return dataclasses.replace(m, slip=slip, _checked=True)
 
 
 def _devices(m):
@@ -438,14 +654,7 @@ def _condition_error(kind, model, contact, f0, context):
     h, search = _CONDITIONS[kind]
 
     def at(x):
-        x = float(x)
-        if kind == "temperature":
-            shifted = dataclasses.replace(m, temperature=m.temperature + x, _checked=True)
-        elif kind == "speed":
-            shifted = dataclasses.replace(m, speed=m.speed * math.exp(x), _checked=True)
-        else:  # rows that slide stay sliding; a slip row stays a slip row, its slip kept inside (0, 1)
-            slip = np.where(m.slip < 1.0, np.clip(m.slip + x, _SLIP_FLOOR, 1.0 - _SLIP_FLOOR), m.slip)
-            shifted = dataclasses.replace(m, slip=slip, _checked=True)
+        shifted = _shifted(m, kind, math.exp(x) if kind == "speed" else float(x))
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             return np.asarray(predict(model, shifted, contact).mu, dtype=float)

@@ -157,6 +157,8 @@ class Candidate:
     covariance : validation.refit.ParameterCovariance or None
         The joint covariance of every fitted parameter (the baseline's first), for the uncertainty band of the
         model's curves.
+    jacobian : ndarray (rows, parameters) or None
+        d mu / d u of the prediction at the optimum, in the coordinates of :attr:`covariance` (unweighted).
     """
 
     effect: str
@@ -193,6 +195,7 @@ class Candidate:
     n_starts: int = 0
     n_good: int = 0
     covariance: object = field(default=None, repr=False)
+    jacobian: object = field(default=None, repr=False)
 
     @property
     def credible(self) -> bool:
@@ -475,7 +478,8 @@ def finish_candidate(trial: Trial, base: BaselineFit, settings: FitSettings, *, 
                      n_evals=trial.n_evals + fit.n_evals - trial.fit.n_evals, notes=tuple(notes),
                      estimates=fit.estimates[kb:], baseline_estimates=fit.estimates[:kb], plausible=not issues,
                      issues=issues, lack=lack, pattern=pattern_of(r1), contact=fit.contact,
-                     n_starts=fit.n_starts, n_good=fit.n_good, covariance=fit.covariance)
+                     n_starts=fit.n_starts, n_good=fit.n_good, covariance=fit.covariance,
+                     jacobian=fit.jacobian if fit.covariance is not None else None)
 
 
 # ==========================================================================================================

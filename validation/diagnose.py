@@ -29,7 +29,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .ambiguity import COSINE_THRESHOLD, Ambiguity, Separation, clusters as find_clusters, separate
-from .calibration import check_calibration
+from .calibration import SetFit, check_calibration
 from .candidates import (DELTA_BIC_THRESHOLD, P_THRESHOLD, SIGNIFICANCE_RULE, Baseline, BaselineFit, Candidate,
                          FitSettings, bic, finish_candidate, fit_baseline, fit_candidate, note_kind)
 from .compare import json_text
@@ -385,12 +385,19 @@ def _calibration_check(named, baseline, ctx, conditions=True):
     on_answer = named is not None and named.predicted is not None and not _at_noise(named)
     if on_answer:
         sets.append((named.effect, (named.effect,), named.predicted, named.n_params, named.bic))
+    contact = ctx.settings.contact
+    fit = baseline.fit
+    refits = {frozenset(): SetFit.of(baseline.model, baseline.contact or contact,
+                                     None if fit is None else fit.covariance, None if fit is None else fit.jacobian)}
+    if named is not None:
+        refits[frozenset((named.effect,))] = SetFit.of(named.model, named.contact or contact, named.covariance,
+                                                       named.jacobian)
     return check_calibration(sets, answer, ctx,
-                             baseline=(baseline.model, baseline.contact or ctx.settings.contact, baseline.n_params,
+                             baseline=(baseline.model, baseline.contact or contact, baseline.n_params,
                                        baseline.bic) if conditions else None,
-                             conditions=[(named.effect, (named.effect,), named.model,
-                                          named.contact or ctx.settings.contact, named.n_params, named.bic)]
-                             if conditions and on_answer else (), on_answer=on_answer)
+                             conditions=[(named.effect, (named.effect,), named.model, named.contact or contact,
+                                          named.n_params, named.bic)] if conditions and on_answer else (),
+                             on_answer=on_answer, refits={k: r for k, r in refits.items() if r is not None})
 
 
 def _at_noise(c) -> bool:

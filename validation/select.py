@@ -87,7 +87,7 @@ from scipy.optimize import lsq_linear
 from frictioncite import doi
 
 from .band import SEBER_WILD_1989
-from .calibration import check_calibration
+from .calibration import SetFit, check_calibration
 from .candidates import KASS_RAFTERY_1995, SCHWARZ_1978, bic, fit_baseline
 from .fitting import BudgetExhausted, Fitter, ParameterSpace, halton
 from .refit import BUDGET_NOTE
@@ -125,6 +125,8 @@ class EffectSet:
     notes : tuple of str
     covariance : validation.refit.ParameterCovariance or None
         The joint covariance of the fitted parameters (None when none were fitted).
+    jacobian : ndarray (rows, parameters) or None
+        d mu / d u of the prediction at the optimum, in the coordinates of :attr:`covariance` (unweighted).
     """
 
     effects: tuple
@@ -141,6 +143,7 @@ class EffectSet:
     source: str = ""
     notes: tuple = ()
     covariance: object = field(default=None, repr=False)
+    jacobian: object = field(default=None, repr=False)
 
     @property
     def key(self) -> frozenset:
@@ -375,7 +378,7 @@ class SetSearch:
         self._keep(EffectSet(effects=tuple(effects), model=b.model, contact=b.contact, predicted=b.predicted,
                              rss=b.rss, bic=b.bic, rmse=b.rmse, n_params=b.n_params, estimates=b.estimates,
                              lack=b.lack, pattern=b.pattern, source=f"diagnosis of step {step}",
-                             notes=tuple(b.notes), covariance=_covariance_of(b)))
+                             notes=tuple(b.notes), covariance=_covariance_of(b), jacobian=_jacobian_of(b)))
         for c in dx.candidates:
             if c.status != "ok":
                 continue
@@ -385,7 +388,7 @@ class SetSearch:
                                  predicted=c.predicted, rss=c.rss, bic=c.bic, rmse=c.rmse,
                                  n_params=b.n_params + c.n_params, estimates=c.baseline_estimates + c.estimates,
                                  lack=c.lack, pattern=c.pattern, source=f"diagnosis of step {step}",
-                                 notes=tuple(c.notes), covariance=c.covariance))
+                                 notes=tuple(c.notes), covariance=c.covariance, jacobian=c.jacobian))
 
     def _keep(self, s: EffectSet) -> EffectSet:
         old = self.sets.get(s.key)
@@ -434,7 +437,8 @@ class SetSearch:
         self.n_evals += (b.fit.n_evals - base.fit.n_evals) if b.fit is not None and base.fit is not None else 0
         return EffectSet(effects=effects, model=b.model, contact=b.contact, predicted=b.predicted, rss=b.rss,
                          bic=b.bic, rmse=b.rmse, n_params=b.n_params, estimates=b.estimates, lack=b.lack,
-                         pattern=b.pattern, source=source, notes=tuple(b.notes), covariance=_covariance_of(b))
+                         pattern=b.pattern, source=source, notes=tuple(b.notes), covariance=_covariance_of(b),
+                         jacobian=_jacobian_of(b))
 
     # ---- the search steps ------------------------------------------------------------------------------
     def prune(self, current: tuple, progress=None) -> list[tuple]:
@@ -794,7 +798,10 @@ class SetSearch:
                                         conditions=[(s.label, s.effects, s.model,
                                                      s.contact or self.ctx.settings.contact, s.n_params, s.bic)
                                                     for s in visited if s.effects],
-                                        on_answer=not fits_at_noise(best))
+                                        on_answer=not fits_at_noise(best),
+                                        refits={s.key: r for s in visited if (r := SetFit.of(
+                                            s.model, s.contact or self.ctx.settings.contact, s.covariance,
+                                            s.jacobian)) is not None})
         return Selection(best=best, supported=tuple(supported), drop_costs=costs, separations=tuple(seps),
                          separations_in_range=tuple(seps_in), visited=tuple(visited), removed=tuple(self.removed),
                          explored=tuple(self.explored), resumed=tuple(self.resumed), reduced=tuple(self.reduced),
@@ -826,6 +833,12 @@ def _covariance_of(baseline):
     """The covariance of a refitted baseline's parameters (None when it has none)."""
     fit = getattr(baseline, "fit", None)
     return None if fit is None else fit.covariance
+
+
+def _jacobian_of(baseline):
+    """d mu / d u of a refitted baseline's prediction at its optimum (None without a covariance)."""
+    fit = getattr(baseline, "fit", None)
+    return None if fit is None or fit.covariance is None else fit.jacobian
 
 
 #: Gauss-Newton steps of the pair screen's second value (:meth:`SetSearch.screen_pair`).
