@@ -76,7 +76,7 @@ from frictioncite import doi
 from .band import SEBER_WILD_1989
 from .candidates import SCHWARZ_1978, bic
 
-__all__ = ["CalibrationFit", "CalibrationCheck", "check_calibration", "GAIN_RANGE", "OFFSET_LIMIT",
+__all__ = ["CalibrationFit", "CalibrationCheck", "SetFit", "check_calibration", "GAIN_RANGE", "OFFSET_LIMIT",
            "TEMPERATURE_LIMIT", "SPEED_RANGE", "SLIP_LIMIT"]
 
 #: Gains of the measured mu taken as a plausible calibration error (a rig more than 30 % off is faulty).
@@ -304,9 +304,10 @@ class CalibrationCheck:
 @doi(DRAPER_SMITH_1998, SCHWARZ_1978, SEBER_WILD_1989, MAGIC_FORMULA_1992)
 def check_calibration(sets, answer, context, baseline=None, conditions=(), on_answer=False,
                       refits=None) -> CalibrationCheck:
-    """A gain and an offset of the measured mu fitted on top of each of ``sets``, and an offset of the recorded
-    temperatures and a factor on the recorded speeds on the baseline and on the sets one effect short of the
-    answer, compared with ``answer`` (module docstring).
+    """A gain and an offset of the measured mu (and a gain per device where the rows name several) fitted on top
+    of each of ``sets``, and the errors of the recorded conditions (an offset of the temperatures, a factor on the
+    speeds, an offset of the slip ratios) on the baseline and on the sets one effect short of the answer, each
+    compared with ``answer`` (module docstring).
 
     Parameters
     ----------
@@ -356,7 +357,7 @@ def check_calibration(sets, answer, context, baseline=None, conditions=(), on_an
                 continue
             rec = _record(kind, on, *est)
             if on.refit is not None:
-                rec = _joint_closed_form(rec, kind, est, d, devices, on) or rec
+                rec = _joint_closed_form(kind, est, d, devices, on) or rec
             fits.append(rec)
     targets = [] if baseline is None else [("(baseline)", (), *baseline)]  # the answer or a proper subset of it
     targets += [c for c in conditions if c[1] and (
@@ -375,7 +376,7 @@ def check_calibration(sets, answer, context, baseline=None, conditions=(), on_an
             value, J, pred = t
             rec = _record(kind, on, np.array([value]), pred, J[:, None], None)
             if on.refit is not None:
-                rec = _joint_condition(rec, kind, value, J, pred, on) or rec
+                rec = _joint_condition(kind, value, J, pred, on) or rec
             fits.append(rec)
     # on top of the answer itself a rival must explain what the answer leaves, not merely earn its parameter
     fits = [dataclasses.replace(c, rival=c.rival and c.at_noise) if set(c.effects) == set(answer_effects) else c
@@ -529,7 +530,7 @@ def _standard_errors(columns, w, unit) -> np.ndarray:
     return np.where(diag > 0, np.sqrt(np.abs(diag) * unit), math.inf)
 
 
-def _joint_closed_form(rec, kind, est, d, devices, on):
+def _joint_closed_form(kind, est, d, devices, on):
     """The error ``kind`` refitted together with the set's own parameters: one Gauss-Newton step of both from the
     error alone (``est``, :func:`_closed_form`), the set predicted at its stepped parameters and the error solved
     again on that prediction. Tried only where the step's linear estimate could make a rival; kept where the
@@ -558,14 +559,10 @@ def _joint_closed_form(rec, kind, est, d, devices, on):
     return _record(kind, on, values2, predicted2, np.column_stack([set_columns, columns2]), groups2, joint=True)
 
 
-def _joint_condition(rec, kind, value, J_value, predicted, on):
+def _joint_condition(kind, value, J_value, predicted, on):
     """The error of a recorded condition refitted together with the set's own parameters: one Gauss-Newton step of
     both from the error alone (at ``value``, where d mu / d value is ``J_value``), the set predicted at the stepped
     parameters and condition. As :func:`_joint_closed_form` otherwise."""
-    import warnings
-
-    from .predict import predict
-
     columns = J_value[:, None]
     step = _linear_step(on.refit.jacobian, columns, predicted, on)
     if step is None:
@@ -573,16 +570,8 @@ def _joint_condition(rec, kind, value, J_value, predicted, on):
     du, dv = step
     lo, hi = _VALUE_RANGE[kind]
     value2 = float(np.clip(value + dv[0], lo, hi))
-    u = np.clip(on.refit.u + du, 0.0, 1.0)
-    try:
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            f2 = np.asarray(predict(on.refit.space.apply(on.refit.model, u), _shifted(on.context.measurements, kind,
-                                                                                       value2),
-                                    on.refit.space.apply_contact(on.refit.contact, u)).mu, dtype=float)
-    except Exception:  # noqa: BLE001  (a step the model cannot take is not taken)
-        return None
-    if not np.all(np.isfinite(f2)) or _rss(f2, on) >= _rss(predicted, on):
+    f2 = on.refit.predict(du, _shifted(on.context.measurements, kind, value2))
+    if f2 is None or _rss(f2, on) >= _rss(predicted, on):
         return None
     return _record(kind, on, np.array([value2]), f2, np.column_stack([on.refit.jacobian, columns]), None, joint=True)
 
