@@ -361,6 +361,7 @@ def test_an_error_partly_taken_up_by_a_fitted_parameter_is_found_by_the_joint_st
     (off,) = [c for c in dx.calibration.fits if c.kind == "offset" and c.on == "(baseline)"]
     assert off.joint and off.rival and off.at_noise and dx.calibration.rivals[0] is off
     assert abs(off.value - 0.04) < 4 * off.std < 0.01
+    assert dx.as_dict()["calibration"]["fits"][0]["joint"] is True
     # the same check without the joint step (the baseline's parameters held): far off, and no rival
     b = dx.baseline
     alone = check_calibration([("(baseline)", (), b.predicted, b.n_params, b.bic)],
