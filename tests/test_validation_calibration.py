@@ -387,3 +387,54 @@ def test_a_temperature_offset_is_refitted_with_the_fitted_shear_stress():
     dx = validation.diagnose(base, m, candidates=["strain_softening"], fit=("adhesion.tau_f0",))
     (t,) = [c for c in dx.calibration.fits if c.kind == "temperature" and c.on == "(baseline)"]
     assert t.joint and t.rival and t.at_noise and abs(t.value - 3.0) < 4 * t.std < 0.5
+
+
+@pytest.mark.parametrize("temperatures, speed, pressure, sigma", [
+    ((-30.0, -20.0), 20.0, 5e4, SIGMA),       # glassy: cold, fast, light (mu 0.03-0.59)
+    ((60.0, 80.0), 0.1, 8e5, 0.001),          # soft: hot, slow, heavy (mu 0.01-0.13)
+], ids=["cold-fast-light", "hot-slow-heavy"])
+def test_the_slip_offset_is_found_at_the_corners(temperatures, speed, pressure, sigma):
+    """Slip sweeps 0.01 above the recorded slip where the modulus is glassy and where it is soft: the secant steps
+    land within 4 standard errors of 0.01, at the noise level (truth on a converged grid)."""
+    base = persson.Model(SURFACE, TREAD)
+    truth = persson.Model(SURFACE, TREAD, grid=persson.GridSettings(q_per_decade=64, omega_per_decade=120))
+    slip = np.geomspace(0.005, 0.9, 12)
+    rows = validation.Measurements.from_arrays(
+        slip=np.concatenate([slip, slip]), speed=speed, temperature=np.repeat(temperatures, 12), pressure=pressure,
+        mu=0.5, mu_std=sigma, series=["a"] * 12 + ["b"] * 12,
+        contact=persson.slip.Contact(length=0.02, width=0.01, stiffness=3e9))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        mu = validation.predict(truth, dataclasses.replace(rows, slip=rows.slip + 0.01)).mu
+        mu = np.clip(mu + np.random.default_rng(3).normal(0.0, sigma, rows.n), 0, None)
+        dx = validation.diagnose(base, rows.with_mu(mu, mu_std=np.full(rows.n, sigma)), candidates=["strain_softening"])
+    (s,) = [c for c in dx.calibration.fits if c.kind == "slip" and c.on == "(baseline)"]
+    assert abs(s.value - 0.01) < 4 * s.std and s.rival and s.at_noise
+
+
+@pytest.mark.parametrize("temperatures, speeds, pressure, sigma, offset", [
+    ((-30.0, -20.0, -10.0), (0.1, 3.0), 5e4, SIGMA, 0.02),     # glassy: cold, fast, light
+    ((60.0, 80.0, 100.0), (1e-5, 1e-2), 8e5, 0.001, 0.005),    # soft: hot, slow, heavy
+], ids=["cold-fast-light", "hot-slow-heavy"])
+def test_the_joint_step_finds_a_zero_offset_at_the_corners(temperatures, speeds, pressure, sigma, offset):
+    """A zero offset (as 1/p over two pressures) with the adhesion's shear stress fitted, where the modulus is
+    glassy and where it is soft: refitted together with tau_f0, the offset on the baseline lands within 4 standard
+    errors of the truth, at the noise level (truth on a converged grid)."""
+    from persson import effects as fx
+
+    truth = persson.Model(SURFACE, TREAD, effects=[fx.Adhesion(tau_f0=1.0e6, c=0.1, v_ref=1e-2)],
+                          grid=persson.GridSettings(q_per_decade=64, omega_per_decade=120))
+    base = persson.Model(SURFACE, TREAD, effects=[fx.Adhesion(tau_f0=1.5e6, c=0.1, v_ref=1e-2)])
+    v = np.geomspace(*speeds, 10)
+    rows = validation.Measurements.from_arrays(slip=1.0, speed=np.tile(v, 6),
+                                               temperature=np.tile(np.repeat(temperatures, 10), 2),
+                                               pressure=np.repeat([pressure, 2 * pressure], 30), mu=0.5, mu_std=sigma)
+    p_ref = float(np.exp(np.mean(np.log(rows.pressure))))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        mu = (validation.predict(truth, rows).mu + offset * p_ref / rows.pressure
+              + np.random.default_rng(4).normal(0.0, sigma, rows.n))
+        dx = validation.diagnose(base, rows.with_mu(mu, mu_std=np.full(rows.n, sigma)), candidates=["strain_softening"],
+                                 fit=("adhesion.tau_f0",))
+    (off,) = [c for c in dx.calibration.fits if c.kind == "offset" and c.on == "(baseline)"]
+    assert off.joint and off.rival and off.at_noise and abs(off.value - offset) < 4 * off.std

@@ -422,16 +422,10 @@ class SetFit:
     def predict(self, du, measurements) -> np.ndarray | None:
         """The set's prediction of ``measurements`` with its parameters at u + ``du`` (clipped to the box); None
         where the model fails."""
-        import warnings
-
-        from .predict import predict
-
         u = np.clip(self.u + np.asarray(du, dtype=float), 0.0, 1.0)
         try:
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore")
-                mu = np.asarray(predict(self.space.apply(self.model, u), measurements,
-                                        self.space.apply_contact(self.contact, u)).mu, dtype=float)
+            mu = _quiet_prediction(self.space.apply(self.model, u), measurements,
+                                   self.space.apply_contact(self.contact, u))
         except Exception:  # noqa: BLE001  (a step the model cannot take is not taken)
             return None
         return mu if np.all(np.isfinite(mu)) else None
@@ -601,6 +595,18 @@ def _rss(predicted, on) -> float:
     return float(np.sum((np.asarray(s.w, dtype=float) * (np.asarray(s.y, dtype=float) - predicted)) ** 2))
 
 
+def _quiet_prediction(model, measurements, contact) -> np.ndarray:
+    """mu of ``model`` on ``measurements`` through the fit's prediction path, its warnings silenced (those of a
+    trial point at shifted conditions or stepped parameters are not the fit's notes)."""
+    import warnings
+
+    from .predict import predict
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return np.asarray(predict(model, measurements, contact).mu, dtype=float)
+
+
 def _shifted(m, kind, value):
     """The rows ``m`` at the conditions shifted by the error ``kind`` of ``value`` (dT in K, the speed factor, the
     slip offset): rows that slide stay sliding; a slip row stays a slip row, its slip kept inside (0, 1)."""
@@ -633,20 +639,13 @@ def _condition_error(kind, model, contact, f0, context):
     shorter than :data:`_CONDITION_TOL` standard errors; the best point evaluated kept (three to seven
     predictions). Returns (the value: dT, the factor s or the slip offset; d mu / d value per row there; the
     prediction there), or None where the model fails. Its parameters stay at their fitted values."""
-    import warnings
-
-    from .predict import predict
-
     m = context.measurements
     s = context.settings
     y, w = np.asarray(s.y, dtype=float), np.asarray(s.w, dtype=float)
     h, search = _CONDITIONS[kind]
 
     def at(x):
-        shifted = _shifted(m, kind, math.exp(x) if kind == "speed" else float(x))
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            return np.asarray(predict(model, shifted, contact).mu, dtype=float)
+        return _quiet_prediction(model, _shifted(m, kind, math.exp(x) if kind == "speed" else float(x)), contact)
 
     try:
         J = (at(h) - at(-h)) / (2 * h)
