@@ -127,3 +127,129 @@ def test_the_95_percent_interval_follows_a_likelihood_that_is_not_quadratic_beyo
     quadratic = (e.value - Z95 * e.std, e.value + Z95 * e.std)
     assert abs(quadratic[0] - exact[0]) > 0.1 and abs(quadratic[1] - exact[1]) > 0.5
     assert e.as_dict()["interval95"] == list(e.interval95)
+
+
+def _decay_fit(sigma_over_root_n: float, seed: int = 5):
+    """A fitter of mu = f0 + 0.5 + exp(-b) to rows whose mean excess is exactly exp(-3), with known noise such that
+    sigma / sqrt(n) = ``sigma_over_root_n`` exp(-3): chi^2(b) = n (exp(-3) - exp(-b))^2 / sigma^2 about the optimum,
+    so that the profile ends at delta chi^2 = z^2 are b = -ln(exp(-3) -+ z sigma / sqrt(n)). Returns
+    (fitter, fit, sigma / sqrt(n))."""
+    from dataclasses import dataclass
+
+    import numpy as np
+
+    import materials
+    import persson
+    import surfaces
+    import validation
+    from persson.effects import Effect, Parameter
+    from validation.fitting import Fitter, ParameterSpace, free_parameters
+    from validation.predict import Predictor
+    from validation.refit import global_fit
+
+    @dataclass(frozen=True)
+    class Decay(Effect):
+        name = "test_decay_budget"
+        parameters = (Parameter("b", 3.0, (0.0, 8.0), "1", "decay exponent"),)
+        b: float = 3.0
+
+        def friction_term(self, state):
+            return np.full_like(state.conditions.speed, 0.5 + math.exp(-self.b))
+
+    v = np.geomspace(1e-3, 1.0, 8)
+    rows = validation.Measurements.from_arrays(slip=1.0, speed=np.tile(v, 2), temperature=np.repeat([10.0, 30.0], 8),
+                                               pressure=3e5, mu=0.5)
+    plain = persson.Model(surfaces.SelfAffine(hurst=0.8, q0=1e3, q1=1e5, hrms=1e-4), materials.example_tread())
+    f0 = validation.predict(plain, rows).mu
+    n = rows.n
+    sigma = sigma_over_root_n * math.exp(-3.0) * math.sqrt(n)
+    noise = np.random.default_rng(seed).normal(0.0, sigma, n)
+    y = f0 + 0.5 + math.exp(-3.0) + noise - noise.mean()
+    m = rows.with_mu(y, mu_std=np.full(n, sigma))
+    model = plain.with_effect(Decay())
+    fitter = Fitter(Predictor(m, None), y, np.full(n, 1.0 / sigma), model,
+                    ParameterSpace(free_parameters(Decay())), max_evals=400)
+    return fitter, global_fit(fitter, fitter.space.u_of(model, None)), sigma / math.sqrt(n)
+
+
+def test_the_95_percent_profile_has_evaluations_of_its_own_when_the_68_percent_ones_spent_the_budget(monkeypatch):
+    """With a budget that the 68 % interval's checks use up, the 95 % interval is still the profile's (exact ends
+    b = -ln(exp(-3) -+ 1.96 sigma / sqrt(n))), not the symmetric 1.96 standard errors it fell back on before, which
+    miss the exact ends by 0.1 and 0.5 here. (The reserve is the default where no budget is given; an explicit
+    budget is a cap unless the reserve is asked for.)"""
+    from persson.effects import base
+    from validation.refit import Z95, with_uncertainty
+
+    monkeypatch.setattr(base, "_REGISTRY", dict(base._REGISTRY))
+    fitter, fit, se = _decay_fit(0.4)
+    out = with_uncertainty(fitter, fit, s2=1.0, profile=True, budget=2, reserve=True)
+    (e,) = out.estimates
+    exact = (-math.log(math.exp(-3.0) + Z95 * se), -math.log(math.exp(-3.0) - Z95 * se))
+    assert e.interval95 == pytest.approx(exact, abs=0.01)
+    assert not any("extrapolated" in n for n in out.notes)
+
+
+def test_intervals_with_an_estimated_noise_use_students_t():
+    """With the variance unit estimated on nu degrees of freedom the quadratic intervals are t_nu(0.8413) and
+    t_nu(0.975) standard errors wide on each side (scipy.stats' quantiles, independently), the standard error itself
+    unchanged; with a known variance, 1 and 1.96."""
+    from scipy import stats
+
+    from validation.refit import t_quantiles, with_uncertainty
+
+    assert t_quantiles(math.inf) == pytest.approx((1.0, 1.959964), rel=1e-6)
+    for nu in (3, 8, 20, 200):
+        expect = (stats.t.ppf(stats.norm.cdf(1.0), nu), stats.t.ppf(0.975, nu))
+        assert t_quantiles(nu) == pytest.approx(expect, rel=1e-9)
+    fitter, fit, se = _decay_fit(0.02)          # nearly linear: both intervals quadratic
+    known = with_uncertainty(fitter, fit, s2=1.0, profile=True)
+    (k,) = known.estimates
+    (e,) = with_uncertainty(fitter, fit, s2=1.0, profile=True, dof=8).estimates
+    assert e.std == pytest.approx(k.std, rel=1e-12) and e.method == k.method == "quadratic"
+    t68, t95 = stats.t.ppf(stats.norm.cdf(1.0), 8), stats.t.ppf(0.975, 8)
+    assert e.interval[1] - e.value == pytest.approx(t68 * (k.interval[1] - k.value), rel=1e-3)
+    assert e.interval95[1] - e.value == pytest.approx(t95 / 1.959964 * (k.interval95[1] - k.value), rel=1e-3)
+    assert e.value - e.interval95[0] == pytest.approx(t95 / 1.959964 * (k.value - k.interval95[0]), rel=1e-3)
+
+
+class _Parabola:
+    """A stand-in fitter: chi^2(u) = 100 (u - 0.001)^2 in one parameter (its optimum on the lower bound, so that only
+    the upper side is profiled), with a budget of model evaluations."""
+
+    def __init__(self, evals: int):
+        self.left = evals
+
+    def chi2(self, v):
+        from validation.fitting import BudgetExhausted
+
+        if self.left <= 0:
+            raise BudgetExhausted()
+        self.left -= 1
+        return 100.0 * (float(v[0]) - 0.001) ** 2
+
+
+def test_a_profile_cut_short_by_the_budget_extrapolates_in_the_root_of_delta_chi2():
+    """One evaluation at half the true distance (delta chi^2 = 0.96 of 3.84), then the budget is gone: the upper end
+    is extrapolated linearly in sqrt(delta chi^2), exact for a parabola (0.001 + 1.96 / 10), and the memo says so;
+    with no evaluation at all the budget error propagates (the caller falls back)."""
+    import numpy as np
+
+    from validation.fitting import BudgetExhausted
+    from validation.refit import Z95, _profile
+
+    u = np.array([0.001])
+    memo: dict = {}
+    lo, hi = _profile(_Parabola(1), u, 0, 0.0, 1.0, 0.05, 1, level=Z95 ** 2, memo=memo)
+    assert lo == 0.0 and hi == pytest.approx(0.001 + Z95 / 10, rel=1e-9)
+    assert memo[("extrapolated", 0)]
+    with pytest.raises(BudgetExhausted):
+        _profile(_Parabola(0), u, 0, 0.0, 1.0, 0.05, 1, level=Z95 ** 2)
+    # with the budget it needs, the same profile brackets and refines to the exact end without extrapolating, and
+    # a 68 % profile before it leaves points the 95 % one starts from
+    memo = {}
+    lo1, hi1 = _profile(_Parabola(40), u, 0, 0.0, 1.0, 0.1, 1, level=1.0, memo=memo)
+    assert hi1 == pytest.approx(0.101, rel=1e-6)
+    parabola = _Parabola(40)
+    lo, hi = _profile(parabola, u, 0, 0.0, 1.0, 0.1, 1, level=Z95 ** 2, memo=memo)
+    assert hi == pytest.approx(0.001 + Z95 / 10, rel=1e-6) and ("extrapolated", 0) not in memo
+    assert 40 - parabola.left <= 2

@@ -304,6 +304,34 @@ def test_standard_error_of_a_linear_refit_is_the_least_squares_one(registry):
     assert d["parameters_std"]["c"] == pytest.approx(est.std) and d["intervals"]["c"] == list(est.interval)
 
 
+def test_intervals_of_a_fit_against_a_noise_estimated_from_replicates_use_students_t(registry):
+    """Every condition measured twice and no mu_std: the noise is the replicates' pooled scatter on n/2 degrees of
+    freedom, and the offset's intervals are its standard error s / sqrt(n) times Student's t quantiles with those
+    degrees of freedom (scipy.stats, independently): wider than +- 1 and 1.96 standard errors by 3 % and 6 % here."""
+    Offset = _offset_class()
+    model = persson.Model(SURFACE, TREAD)
+    m1 = _linear_rows()
+    f1 = validation.predict(model, m1).mu
+    n1 = f1.size
+    rng = np.random.default_rng(31)
+    y = np.concatenate([f1, f1]) + 0.03 + rng.normal(0, 0.005, 2 * n1)
+    m = validation.Measurements.from_arrays(slip=np.tile(m1.slip, 2), speed=np.tile(m1.speed, 2),
+                                            temperature=np.tile(m1.temperature, 2),
+                                            pressure=np.tile(m1.pressure, 2), mu=y)
+    dx = validation.diagnose(model, m, candidates=[Offset()], probe=False)
+    noise = dx.noise_estimate
+    assert noise.source == "replicates" and noise.dof == n1
+    pure = np.sum((y[:n1] - y[n1:]) ** 2) / 2 / n1          # pooled variance of the pairs
+    assert noise.sigma == pytest.approx(math.sqrt(pure), rel=1e-9)
+    (est,) = dx.top.estimates
+    se = math.sqrt(pure / (2 * n1))
+    assert est.value == pytest.approx(np.mean(y - np.concatenate([f1, f1])), abs=1e-6)
+    assert est.std == pytest.approx(se, rel=1e-3) and est.method == "quadratic"
+    t68, t95 = stats.t.ppf(stats.norm.cdf(1.0), n1), stats.t.ppf(0.975, n1)
+    assert est.interval == pytest.approx((est.value - t68 * se, est.value + t68 * se), rel=1e-4)
+    assert est.interval95 == pytest.approx((est.value - t95 * se, est.value + t95 * se), rel=1e-4)
+
+
 def test_parameter_on_a_search_bound_is_implausible_and_never_the_explanation(registry):
     """The data want an offset of 0.1; the search stops at 0.05. The fit is significant but not credible, the
     profile interval is open at the bound, and the verdict is 'unexplained'."""
@@ -321,13 +349,15 @@ def test_parameter_on_a_search_bound_is_implausible_and_never_the_explanation(re
     assert c.significant and not c.plausible and not c.credible
     assert est.bound == "search bound" and "upper search bound" in est.issue
     assert est.method.startswith("profile") and est.interval[1] == pytest.approx(0.05)
-    # the profile's lower end, independently: chi2(c) - chi2(0.05) = s2 with chi2 = W (c - c_u)^2 + const about the
-    # unconstrained optimum c_u; the model fails its lack-of-fit test, so the unit s2 is chi2_min / (n - 1) (Birge)
+    # the profile's lower end, independently: chi2(c) - chi2(0.05) = t^2 s2 with chi2 = W (c - c_u)^2 + const about
+    # the unconstrained optimum c_u; the model fails its lack-of-fit test, so the unit s2 is chi2_min / (n - 1)
+    # (Birge), estimated with n - 1 degrees of freedom: t is Student's 84.13 % quantile with them
     W = f0.size / sigma ** 2
     c_u = float(np.mean(y - f0))
     s2 = float(np.sum(((y - f0 - 0.05) / sigma) ** 2)) / (f0.size - 1)
     assert not c.lack.consistent
-    lower = c_u - math.sqrt((0.05 - c_u) ** 2 + s2 / W)
+    t68 = stats.t.ppf(stats.norm.cdf(1.0), f0.size - 1)
+    lower = c_u - math.sqrt((0.05 - c_u) ** 2 + t68 ** 2 * s2 / W)
     assert est.interval[0] == pytest.approx(lower, abs=1e-4)
     assert dx.verdict.verdict == "unexplained" and dx.best is None
     assert "search bound" in dx.explanation and "Not credible" in dx.explanation

@@ -324,7 +324,8 @@ def diagnose_single(model, measurements: Measurements | None = None, candidates=
     noise = noise or _estimate_noise(m, base, trials)
     ctx = FitContext(settings=settings, noise=noise, ranges=ranges, measurements=m,
                      s2=1.0 if sigma_known else (noise.sigma ** 2 if noise.known else
-                                                 base.rss / max(m.n - base.k_eff, 1)))
+                                                 base.rss / max(m.n - base.k_eff, 1)),
+                     dof=math.inf if sigma_known else (noise.dof if noise.known else max(m.n - base.k_eff, 1)))
     s2, lof, pattern = ctx.s2, ctx.lack_of_fit, ctx.pattern
     baseline = ctx.finish(base)
     n_eval += baseline.fit.n_evals - base.fit.n_evals if base.fit is not None else 0
@@ -337,7 +338,7 @@ def diagnose_single(model, measurements: Measurements | None = None, candidates=
         profile = t in contenders
         k = len(t.fitter.space) if t.fitter is not None else 0
         budget = 14 * k if profile and issues_at(t.fitter, t.fit.u, ranges) else None
-        c = finish_candidate(t, base, settings, s2=s2, ranges=ranges, profile=profile, lack_of_fit=lof,
+        c = finish_candidate(t, base, settings, s2=s2, ranges=ranges, profile=profile, lack_of_fit=lof, dof=ctx.dof,
                              pattern_of=pattern, budget=budget)
         n_eval += c.n_evals - t.n_evals
         results.append(c)
@@ -418,6 +419,9 @@ class FitContext:
     s2 : float
         Variance unit of the weighted chi2 for the uncertainties (1 with ``mu_std``, else the noise variance;
         the baseline's residual variance without a noise estimate).
+    dof : float
+        Degrees of freedom of ``s2`` (infinite with ``mu_std``; the noise estimate's, or the baseline residual's):
+        the parameter intervals use Student's t quantiles with them (:func:`validation.refit.t_quantiles`).
     """
 
     settings: object
@@ -425,6 +429,7 @@ class FitContext:
     ranges: object
     measurements: Measurements
     s2: float
+    dof: float = math.inf
 
     def lack_of_fit(self, residual, k):
         """The lack-of-fit test of ``residual`` (measured - predicted, per row), with ``k`` fitted parameters, against
@@ -451,7 +456,8 @@ class FitContext:
 
     def finish(self, base: BaselineFit) -> Baseline:
         """Uncertainties, lack of fit and pattern of a fitted model (a baseline, or a set of effects)."""
-        return _finish_baseline(base, self.settings, self.s2, self.ranges, self.lack_of_fit, self.pattern)
+        return _finish_baseline(base, self.settings, self.s2, self.ranges, self.lack_of_fit, self.pattern,
+                                dof=self.dof)
 
 
 # ==========================================================================================================
@@ -471,14 +477,16 @@ def _contenders(trials, base: BaselineFit, bic0: float, n: int, sigma_known: boo
     return [trials[i] for d, i in sorted(scored) if d < DELTA_BIC_THRESHOLD][:2]
 
 
-def _finish_baseline(base: BaselineFit, settings: FitSettings, s2, ranges, lof, pattern) -> Baseline:
+def _finish_baseline(base: BaselineFit, settings: FitSettings, s2, ranges, lof, pattern,
+                     dof: float = math.inf) -> Baseline:
     fit = base.fit
     y, w, n = settings.y, settings.w, settings.n
     f0 = base.predicted
     r0 = y - f0
     lack = lof(r0, base.k_eff)
     if fit is not None:
-        fit = with_uncertainty(base.fitter, fit, s2=s2, ranges=ranges, profile=True, misfit=not lack.consistent)
+        fit = with_uncertainty(base.fitter, fit, s2=s2, ranges=ranges, profile=True, misfit=not lack.consistent,
+                               dof=dof)
     sigma_hat = math.sqrt(base.rss / max(n - base.k_eff, 1))
     sigma_mu = sigma_hat * float(np.sqrt(np.mean(1.0 / w ** 2))) if settings.sigma_known else sigma_hat
     notes = tuple(fit.notes) if fit is not None else ()

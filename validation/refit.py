@@ -22,7 +22,15 @@ r"""Global, joint refits from several starts, and the uncertainty and plausibili
    parameters refitted; an end that reaches a bound is reported open there. The 95 % interval is
    :math:`\pm 1.96` standard errors where the :math:`\chi^2` step that far out is within a factor 2 of the
    quadratic one, else the profile at :math:`\Delta\chi^2 = 1.96^2 = 3.84`, the 95 % quantile of :math:`\chi^2`
-   with one degree of freedom (S. S. Wilks, Ann. Math. Stat. 9, 60 (1938); Venzon & Moolgavkar, above).
+   with one degree of freedom (S. S. Wilks, Ann. Math. Stat. 9, 60 (1938); Venzon & Moolgavkar, above). The 95 %
+   profile continues from the points of the 68 % one; each profile has model evaluations set aside for it
+   (:data:`PROFILE_EVALS` per fitted parameter): falling back on :math:`\pm 1.96` standard errors where the
+   likelihood is not quadratic made the 95 % intervals of skewed profiles (the flash temperature's macro-scale
+   ratio) miss the truth several times as often as they should. Where the evaluations run out all the same, the end
+   is extrapolated from the profile's two furthest points (a power law :math:`\Delta\chi^2 \propto t^p`,
+   :math:`1 \le p \le 2`) and a note says so. Where the variance unit :math:`s^2` is itself estimated (from local
+   differences or replicates, or a residual) on :math:`\nu` degrees of freedom, the half-widths are Student's
+   :math:`t_\nu` quantiles and the profile thresholds their squares (:func:`t_quantiles`).
 4. **Plausibility.** A parameter that ends on a search bound (a bound that is not one of its declared
    ``physical_limits``) or outside its declared plausible range makes the fit implausible; a physical limit
    (q_m = q0, a factor of 1, zero) is a legitimate optimum and says so.
@@ -35,10 +43,11 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from .distributions import t_isf
 from .fitting import BudgetExhausted, Fitter, halton
 
 __all__ = ["BUDGET_NOTE", "Estimate", "GlobalFit", "ParameterCovariance", "global_fit", "with_uncertainty",
-           "issues_at", "DataRange", "data_range"]
+           "issues_at", "DataRange", "data_range", "t_quantiles", "PROFILE_EVALS"]
 
 #: The note of a fit that stopped at its budget of model evaluations: its optimum may lie further on (a set search
 #: continues such fits where they could change the answer, :meth:`validation.select.SetSearch.resume`).
@@ -393,7 +402,8 @@ def _line_minima(points, j: int = 0) -> list:
 
 
 def with_uncertainty(fitter: Fitter, fit: GlobalFit, *, s2: float, ranges: DataRange | None = None,
-                     profile: bool = True, budget: int | None = None, misfit: bool = False) -> GlobalFit:
+                     profile: bool = True, budget: int | None = None, misfit: bool = False,
+                     dof: float = math.inf, reserve: bool | None = None) -> GlobalFit:
     """``fit`` with an :class:`Estimate` per parameter (module docstring, items 2-4).
 
     Parameters
@@ -411,6 +421,12 @@ def with_uncertainty(fitter: Fitter, fit: GlobalFit, *, s2: float, ranges: DataR
         Model evaluations allowed beyond those already spent (default ``6 k``, plus ``12 k^2`` with ``profile``).
     misfit : bool
         The model fails the lack-of-fit test: scale the errors by the Birge ratio.
+    dof : float
+        Degrees of freedom of ``s2`` (infinite when it is known, as with ``mu_std``; the noise estimate's otherwise):
+        the intervals use Student's t quantiles with them (module docstring, item 3).
+    reserve : bool, optional
+        Give each profile :data:`PROFILE_EVALS` evaluations per parameter beyond the budget (default: only when
+        ``budget`` is not given; an explicit budget is a cap).
     """
     k = len(fitter.space)
     if k == 0:
@@ -426,7 +442,9 @@ def with_uncertainty(fitter: Fitter, fit: GlobalFit, *, s2: float, ranges: DataR
         s2_eff = s2 * max(1.0, c / max(n - k, 1) / s2) if misfit else s2
         if s2_eff > s2 * (1 + 1e-9):
             notes[f"standard errors include the misfit (scaled by the Birge ratio {math.sqrt(s2_eff / s2):.2f})"] = None
-        estimates = _estimates(fitter, u, c, J, s2_eff, good, ranges, profile)
+            dof = max(n - k, 1)     # the variance unit is now the fit's own residual variance
+        estimates = _estimates(fitter, u, c, J, s2_eff, good, ranges, profile, notes=notes, dof=dof,
+                               reserve=budget is None if reserve is None else reserve)
         Jw = J * fitter.w[:, None]
         covariance = ParameterCovariance(space=fitter.space, u=np.array(u, dtype=float),
                                          matrix=_covariance(Jw.T @ Jw / s2_eff), estimates=estimates)
@@ -455,7 +473,10 @@ def issues_at(fitter: Fitter, u, ranges: DataRange | None = None) -> tuple:
     return tuple(e.issue for e in _bare_estimates(fitter, np.asarray(u, dtype=float), ranges) if e.issue)
 
 
-def _estimates(fitter, u, chi2, J, s2, good, ranges, profile) -> tuple:
+def _estimates(fitter, u, chi2, J, s2, good, ranges, profile, notes=None, dof=math.inf,
+               reserve: bool = False) -> tuple:
+    """The estimates of every parameter at the optimum ``u`` (module docstring, items 2-4); ``reserve``: each
+    profile gets :data:`PROFILE_EVALS` model evaluations per parameter beyond the fitter's budget."""
     w = fitter.w
     Jw = J * w[:, None]
     H = Jw.T @ Jw / s2
@@ -463,6 +484,9 @@ def _estimates(fitter, u, chi2, J, s2, good, ranges, profile) -> tuple:
     cov = _covariance(H)
     out = []
     pending = []
+    # the points each profile computed, by (parameter, side): the 95 % profile continues from the 68 % one
+    memo: dict = {}
+    z68, z95 = t_quantiles(dof)
     norms = np.linalg.norm(Jw, axis=0)
     for j, p in enumerate(fitter.space.params):
         x = p.from_u(u[j])
@@ -475,11 +499,13 @@ def _estimates(fitter, u, chi2, J, s2, good, ranges, profile) -> tuple:
         sd_u = math.sqrt(cov[j, j]) if math.isfinite(cov[j, j]) and cov[j, j] >= 0 else math.inf
         on_bound = u[j] < BOUND_TOL or u[j] > 1 - BOUND_TOL
         method = "quadratic"
-        lo_u, hi_u = u[j] - sd_u, u[j] + sd_u
+        lo_u, hi_u = u[j] - z68 * sd_u, u[j] + z68 * sd_u
         try:
             if profile and (on_bound or not math.isfinite(sd_u) or sd_u > 0.25
                             or not _quadratic_ok(fitter, u, j, sd_u, H, chi2, s2)):
-                lo_u, hi_u = _profile(fitter, u, j, chi2, s2, sd_u, k, H=H)
+                if reserve:
+                    fitter.max_evals = max(fitter.max_evals, fitter.n_evals + PROFILE_EVALS * k)
+                lo_u, hi_u = _profile(fitter, u, j, chi2, s2, sd_u, k, H=H, memo=memo, level=z68 * z68)
                 method = "profile"
         except BudgetExhausted:
             method = "quadratic (the profile ran out of model evaluations)"
@@ -494,7 +520,15 @@ def _estimates(fitter, u, chi2, J, s2, good, ranges, profile) -> tuple:
     # the 95 % intervals after every 68 % one, so that their profiles never take the evaluations a 68 % profile
     # (and with it the judgement identified / not identified) needs
     for j, p, sd_u, method, lo_u, hi_u, i in pending:
-        lo95_u, hi95_u = _interval95(fitter, u, j, chi2, s2, sd_u, k, H, profile, method)
+        if profile and reserve:
+            # a 95 % profile of its own: the 68 % profiles must not leave it without evaluations (then it would
+            # fall back on +- 1.96 standard errors exactly where the likelihood is not quadratic)
+            fitter.max_evals = max(fitter.max_evals, fitter.n_evals + PROFILE_EVALS * k)
+        lo95_u, hi95_u = _interval95(fitter, u, j, chi2, s2, sd_u, k, H, profile, method, memo=memo,
+                                     ends68=(lo_u, hi_u), z=z95, z68=z68)
+        if memo.pop(("extrapolated", j), False) and notes is not None:
+            notes[f"the 95 % interval of {p.key} is extrapolated from its profile (the profile ran out of model "
+                  "evaluations)"] = None
         lo95_u, hi95_u = min(lo95_u, lo_u), max(hi95_u, hi_u)  # never narrower than the 68 % interval
         out[i] = replace(out[i], interval95=(p.from_u(lo95_u), p.from_u(hi95_u)))
     return tuple(out)
@@ -502,22 +536,59 @@ def _estimates(fitter, u, chi2, J, s2, good, ranges, profile) -> tuple:
 
 #: Standard errors of a two-sided 95 % interval of a normal variable.
 Z95 = 1.959963984540054
+#: Model evaluations per fitted parameter set aside for each profile (68 % or 95 %) of a fit with the default
+#: budget, beyond what the others left (a refit of the other parameters costs about k + 2 evaluations, a side about
+#: four refits): one parameter's profile must not starve the next one's.
+PROFILE_EVALS = 16
 
 
-def _interval95(fitter, u, j, chi2, s2, sd_u, k, H, profile, method) -> tuple[float, float]:
+def t_quantiles(dof: float) -> tuple[float, float]:
+    r"""The half-widths, in standard errors, of the 68.27 % and 95 % intervals when the variance unit has ``dof``
+    degrees of freedom: Student's t quantiles :math:`t_{\nu}(0.8413)` and :math:`t_{\nu}(0.975)` (1 and 1.96 for a
+    known variance). A profile interval uses their squares as its :math:`\Delta\chi^2 / s^2` threshold: the profile-t
+    intervals of Bates & Watts, Nonlinear Regression Analysis and Its Applications (1988), Sec. 6.1.
+
+    Parameters
+    ----------
+    dof : float
+        Degrees of freedom (> 0; ``inf`` for a known variance).
+
+    Returns
+    -------
+    (float, float)
+    """
+    if not math.isfinite(dof):
+        return 1.0, Z95
+    dof = max(float(dof), 1.0)
+    return t_isf(0.5 * (1.0 - math.erf(1.0 / math.sqrt(2.0))), dof), t_isf(0.025, dof)
+
+
+def _interval95(fitter, u, j, chi2, s2, sd_u, k, H, profile, method, memo=None, ends68=None, z: float = None,
+                z68: float = 1.0) -> tuple[float, float]:
     """The 95 % interval of parameter j in u: +- 1.96 standard errors where the chi^2 that far out (others fixed)
     is within a factor 2 of the quadratic one (:func:`_quadratic_ok`), else, where profiles are allowed, the
     profile likelihood at delta chi^2 = 1.96^2 (a likelihood flatter or steeper than quadratic beyond one standard
-    error, which the 68 % interval's check does not see); clipped to the range searched."""
+    error, which the 68 % interval's check does not see); clipped to the range searched.
+
+    A 95 % profile continues from the points of the 68 % one (``memo``, see :func:`_profile`). Where it cannot run
+    at all (no model evaluations left) after a profiled 68 % interval ``ends68``, each end is ``z / z68`` times as far
+    from the optimum as the 68 % end on its side: the profile's asymmetry is kept (exact where the profile is
+    quadratic in some monotone reparametrization that is linear near the optimum on each side). ``z``, ``z68``: the
+    quantiles of the two intervals (1.96 and 1 with a known variance unit, :func:`t_quantiles`)."""
+    z = Z95 if z is None else z
     if not math.isfinite(sd_u):
         return 0.0, 1.0
-    lo, hi = u[j] - Z95 * sd_u, u[j] + Z95 * sd_u
+    lo, hi = u[j] - z * sd_u, u[j] + z * sd_u
     if profile:
         try:
-            if method.startswith("profile") or not _quadratic_ok(fitter, u, j, Z95 * sd_u, H, chi2, s2):
-                lo, hi = _profile(fitter, u, j, chi2, s2, sd_u, k, H=H, level=Z95 * Z95)
+            if method.startswith("profile") or not _quadratic_ok(fitter, u, j, z * sd_u, H, chi2, s2):
+                lo, hi = _profile(fitter, u, j, chi2, s2, sd_u, k, H=H, level=z * z, memo=memo)
         except BudgetExhausted:
-            pass
+            if method.startswith("profile") and ends68 is not None:
+                f = z / z68
+                lo, hi = u[j] - f * (u[j] - ends68[0]), u[j] + f * (ends68[1] - u[j])
+                if memo is not None:
+                    memo[("extrapolated", j)] = True
     return max(lo, 0.0), min(hi, 1.0)
 
 
@@ -581,13 +652,31 @@ def _covariance(H: np.ndarray) -> np.ndarray:
     return cov
 
 
-def _quadratic_ok(fitter, u, j, sd_u, H, chi2, s2) -> bool:
-    """The chi2 step one standard error away along parameter j (others fixed) against the quadratic one."""
-    expected = sd_u * sd_u * H[j, j]
+def _quadratic_ok(fitter, u, j, step, H, chi2, s2) -> bool:
+    r"""Whether the chi2 ``step`` away along parameter j is within a factor 2 of the quadratic prediction, on both
+    sides. The step follows the linearized profile (the other parameters moved by
+    :math:`-H_{oo}^{-1} H_{oj}\,\delta u_j`, where the quadratic model puts their refitted values), on which the
+    quadratic prediction is :math:`\delta u_j^2 / C_{jj}`: along the axis with the others fixed, a ridge of
+    correlated parameters looks quadratic while the profile along it bends (two strain-softening factors; a
+    parameter with the baseline's tau_f0), and its intervals then came out several times too narrow."""
+    k = u.size
+    others = np.array([i for i in range(k) if i != j], dtype=int)
+    cond = np.zeros(0)
+    if others.size:
+        cond = -np.linalg.lstsq(H[np.ix_(others, others)], H[others, j], rcond=1e-10)[0]
+        if not np.all(np.isfinite(cond)):
+            return False
+    # the curvature of the profile, H_jj - H_jo H_oo^-1 H_oj = 1 / C_jj (the Schur complement)
+    curvature = float(H[j, j] + (H[j, others] @ cond if others.size else 0.0))
+    if not curvature > 0:
+        return False
+    expected = step * step * curvature
     for sign in (-1.0, 1.0):
         v = u.copy()
-        v[j] = u[j] + sign * sd_u
-        if v[j] < 0 or v[j] > 1:
+        v[j] = u[j] + sign * step
+        if others.size:
+            v[others] = u[others] + sign * step * cond
+        if np.any(v < 0) or np.any(v > 1):
             return False
         d = (fitter.chi2(v) - chi2) / s2
         if not (0.5 * expected <= d <= 2.0 * expected):
@@ -596,7 +685,7 @@ def _quadratic_ok(fitter, u, j, sd_u, H, chi2, s2) -> bool:
 
 
 def _profile(fitter, u, j, chi2, s2, sd_u, k, max_steps: int = 4, refine: int = 5, H=None,
-             level: float = 1.0) -> tuple[float, float]:
+             level: float = 1.0, memo: dict | None = None) -> tuple[float, float]:
     r"""Ends of the profile-likelihood interval of parameter j in u at delta chi2 = ``level`` (1: 68 %; 3.84: 95 %;
     a bound when the profile stays below it).
 
@@ -605,6 +694,12 @@ def _profile(fitter, u, j, chi2, s2, sd_u, k, max_steps: int = 4, refine: int = 
     profile at a bound). Each refit starts where the Gauss-Newton Hessian ``H`` at the optimum puts the other
     parameters for the new value of parameter j (:math:`\delta u_o = -H_{oo}^{-1} H_{oj}\,\delta u_j`), so that
     correlated parameters need few iterations.
+
+    ``memo`` (a dict shared by the profiles of one fit) keeps every profile point, so that a profile at a higher
+    ``level`` starts from the furthest point below it and brackets with the nearest one above. Where the model
+    evaluations run out on a side after a point with delta chi2 of at least a tenth of ``level``, that side's end
+    is extrapolated from its furthest points (:func:`_extrapolated_end`; ``memo[("extrapolated", j)]`` says so);
+    with nothing to extrapolate from, :class:`~validation.fitting.BudgetExhausted` propagates.
     """
     others = np.array([i for i in range(k) if i != j], dtype=int)
     cond = None
@@ -612,6 +707,8 @@ def _profile(fitter, u, j, chi2, s2, sd_u, k, max_steps: int = 4, refine: int = 
         cond = -np.linalg.lstsq(H[np.ix_(others, others)], H[others, j], rcond=1e-10)[0]
         if not np.all(np.isfinite(cond)):
             cond = None
+    memo = {} if memo is None else memo
+    root = math.sqrt(level)
     ends = []
     for sign in (-1.0, 1.0):
         edge = 0.0 if sign < 0 else 1.0
@@ -619,6 +716,7 @@ def _profile(fitter, u, j, chi2, s2, sd_u, k, max_steps: int = 4, refine: int = 
         if room < BOUND_TOL:
             ends.append(edge)
             continue
+        points = memo.setdefault((j, sign), [])
 
         def delta(t, start):
             v = start.copy()
@@ -629,37 +727,73 @@ def _profile(fitter, u, j, chi2, s2, sd_u, k, max_steps: int = 4, refine: int = 
                 v, c = fitter.local(v, fixed=(j,), max_nfev=6 * k)
             else:
                 c = fitter.chi2(v)
-            return (c - chi2) / s2, v
+            d = (c - chi2) / s2
+            points.append((t, d, v))
+            return d, v
 
-        root = math.sqrt(level)
-        t = min(root * sd_u if math.isfinite(sd_u) and sd_u > 1e-4 else 0.05 * root, room)
-        lo, hi = (0.0, 0.0), None
-        start = u.copy()
-        for _ in range(max_steps):
-            d, v = delta(t, start)
-            if d >= level:
-                hi = (t, d)
-                break
-            lo, start = (t, d), v
-            if t >= room - 1e-12:
-                break
-            t = min(t * min(max(math.sqrt(1.5 * level / max(d, 1e-3 * level)), 1.5), 4.0), room)
-        if hi is None:
-            ends.append(edge)
-            continue
-        for _ in range(refine):
-            a, b = math.sqrt(max(lo[1], 0.0)), math.sqrt(hi[1])
-            t = lo[0] + (hi[0] - lo[0]) * (root - a) / max(b - a, 1e-12)
-            if hi[0] - lo[0] < 1e-4:
-                break
-            d, v = delta(t, start)
-            if d >= level:
-                hi = (t, d)
-            else:
-                lo, start = (t, d), v
-            if abs(d - level) < 0.02 * level:
-                break
+        below = [p for p in points if p[1] < level]
+        lo, start = (0.0, 0.0), u.copy()
+        if below:
+            t_lo, d_lo, start = max(below, key=lambda p: p[0])
+            lo = (t_lo, d_lo)
+        above = [p for p in points if p[1] >= level and p[0] > lo[0]]
+        hi = min(((p[0], p[1]) for p in above), default=None)
+        try:
+            if hi is None and not (below and lo[0] >= room - 1e-12):
+                t = (min(root * sd_u if math.isfinite(sd_u) and sd_u > 1e-4 else 0.05 * root, room) if not below
+                     else _next_step(lo[0], lo[1], level, room))
+                for _ in range(max_steps):
+                    d, v = delta(t, start)
+                    if d >= level:
+                        hi = (t, d)
+                        break
+                    lo, start = (t, d), v
+                    if t >= room - 1e-12:
+                        break
+                    t = _next_step(t, d, level, room)
+            if hi is None:
+                ends.append(edge)
+                continue
+            for _ in range(refine):
+                a, b = math.sqrt(max(lo[1], 0.0)), math.sqrt(hi[1])
+                t = lo[0] + (hi[0] - lo[0]) * (root - a) / max(b - a, 1e-12)
+                if hi[0] - lo[0] < 1e-4:
+                    break
+                d, v = delta(t, start)
+                if d >= level:
+                    hi = (t, d)
+                else:
+                    lo, start = (t, d), v
+                if abs(d - level) < 0.02 * level:
+                    break
+        except BudgetExhausted:
+            if hi is None:
+                if lo[1] < 0.1 * level:
+                    raise
+                memo[("extrapolated", j)] = True
+                ends.append(u[j] + sign * min(_extrapolated_end(points, lo, level), room))
+                continue
         a, b = math.sqrt(max(lo[1], 0.0)), math.sqrt(hi[1])
         ends.append(u[j] + sign * (lo[0] + (hi[0] - lo[0]) * (root - a) / max(b - a, 1e-12)))
     lo_u, hi_u = sorted(ends)
     return lo_u, hi_u
+
+
+def _extrapolated_end(points, lo, level: float) -> float:
+    """Where a profile side that reached delta chi2 = ``lo[1]`` < ``level`` at distance ``lo[0]`` would cross
+    ``level``: a power law d = a t^p through its two furthest points (``points``: (t, d, v)), the exponent clipped to
+    1-2 (2 is a parabola, linear in sqrt(d); a profile that flattens beyond one standard error rises more slowly,
+    and a parabola through its furthest point would put the end too close)."""
+    t2, d2 = lo
+    inner = [(t, d) for t, d, _ in points if 0.0 < t < t2 * (1 - 1e-9) and 0.0 < d < d2]
+    p = 2.0
+    if inner:
+        t1, d1 = max(inner)
+        p = min(max(math.log(d2 / d1) / math.log(t2 / t1), 1.0), 2.0)
+    return t2 * (level / d2) ** (1.0 / p)
+
+
+def _next_step(t: float, d: float, level: float, room: float) -> float:
+    """The next distance from the optimum of a profile that reached delta chi2 = ``d`` at ``t``: where a parabola
+    through the optimum would put 1.5 ``level``, at least 1.5 and at most 4 times as far, within ``room``."""
+    return min(t * min(max(math.sqrt(1.5 * level / max(d, 1e-3 * level)), 1.5), 4.0), room)
