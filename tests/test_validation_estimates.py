@@ -253,3 +253,67 @@ def test_a_profile_cut_short_by_the_budget_extrapolates_in_the_root_of_delta_chi
     lo, hi = _profile(parabola, u, 0, 0.0, 1.0, 0.1, 1, level=Z95 ** 2, memo=memo)
     assert hi == pytest.approx(0.001 + Z95 / 10, rel=1e-6) and ("extrapolated", 0) not in memo
     assert 40 - parabola.left <= 2
+
+
+def test_the_quadratic_check_follows_the_profile_along_a_ridge_of_correlated_parameters(monkeypatch):
+    """mu = f0 + 0.5 + a b / 10 + exp(-a) x (x = log10 v): the rows fix the product a b sharply and exp(-a) only
+    weakly. Along a with b fixed chi^2 is steep and quadratic (the product term), so a check along the axis passes;
+    along the ridge (b refitted to keep a b) the profile is chi^2(a) = S_xx (exp(-a) - exp(-3))^2 / sigma^2 (the
+    constant a b / 10 takes up the mean of the x term), far from quadratic at this noise. Its exact ends are
+    a = -ln(exp(-3) -+ z sigma / sqrt(S_xx)); the check along the linearized profile sees the bend and profiles (the
+    check along the axis took the 95 % interval for quadratic, 0.75 short of the exact upper end)."""
+    from dataclasses import dataclass
+
+    import numpy as np
+
+    import materials
+    import persson
+    import surfaces
+    import validation
+    from persson.effects import Effect, Parameter, base
+    from validation.fitting import Fitter, ParameterSpace, free_parameters
+    from validation.predict import Predictor
+    from validation.refit import Z95, global_fit, with_uncertainty
+
+    monkeypatch.setattr(base, "_REGISTRY", dict(base._REGISTRY))
+
+    @dataclass(frozen=True)
+    class Ridge(Effect):
+        name = "test_ridge"
+        parameters = (Parameter("a", 3.0, (0.0, 8.0), "1", "decay exponent"),
+                      Parameter("b", 2.0, (0.0, 20.0), "1", "factor of the product"))
+        a: float = 3.0
+        b: float = 2.0
+
+        def friction_term(self, state):
+            x = np.log10(state.conditions.speed)
+            return 0.5 + self.a * self.b / 10.0 + math.exp(-self.a) * x
+
+    v = np.geomspace(1e-3, 1.0, 8)
+    rows = validation.Measurements.from_arrays(slip=1.0, speed=np.tile(v, 2), temperature=np.repeat([10.0, 30.0], 8),
+                                               pressure=3e5, mu=0.5)
+    plain = persson.Model(surfaces.SelfAffine(hurst=0.8, q0=1e3, q1=1e5, hrms=1e-4), materials.example_tread())
+    f0 = validation.predict(plain, rows).mu
+    x = np.log10(rows.speed)
+    sxx = float(np.sum((x - x.mean()) ** 2))
+    sigma = 0.4 * math.exp(-3.0) * math.sqrt(sxx)          # sigma / sqrt(S_xx) = 0.4 exp(-3)
+    # noise orthogonal to the constant and to x: the optimum is exactly a = 3, b = 2
+    basis = np.column_stack([np.ones_like(x), x])
+    noise = np.random.default_rng(7).normal(0.0, sigma, x.size)
+    noise -= basis @ np.linalg.lstsq(basis, noise, rcond=None)[0]
+    y = f0 + 0.5 + 0.6 + math.exp(-3.0) * x + noise
+    m = rows.with_mu(y, mu_std=np.full(x.size, sigma))
+    model = plain.with_effect(Ridge())
+    fitter = Fitter(Predictor(m, None), y, np.full(x.size, 1.0 / sigma), model,
+                    ParameterSpace(free_parameters(Ridge())), max_evals=600)
+    fit = with_uncertainty(fitter, global_fit(fitter, fitter.space.u_of(model, None)), s2=1.0, profile=True)
+    e = next(e for e in fit.estimates if e.key.endswith(".a"))
+    half = math.sqrt(1.0 / sxx) * sigma
+    exact68 = (-math.log(math.exp(-3.0) + half), -math.log(math.exp(-3.0) - half))
+    exact95 = (-math.log(math.exp(-3.0) + Z95 * half), -math.log(math.exp(-3.0) - Z95 * half))
+    assert e.value == pytest.approx(3.0, abs=2e-3) and e.method.startswith("profile")
+    assert e.std == pytest.approx(half * math.exp(3.0), rel=1e-3)
+    assert e.interval == pytest.approx(exact68, abs=0.01)
+    assert e.interval95 == pytest.approx(exact95, abs=0.01)
+    quadratic95 = (e.value - Z95 * e.std, e.value + Z95 * e.std)
+    assert abs(quadratic95[1] - exact95[1]) > 0.4

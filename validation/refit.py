@@ -23,8 +23,8 @@ r"""Global, joint refits from several starts, and the uncertainty and plausibili
    :math:`\pm 1.96` standard errors where the :math:`\chi^2` step that far out is within a factor 2 of the
    quadratic one, else the profile at :math:`\Delta\chi^2 = 1.96^2 = 3.84`, the 95 % quantile of :math:`\chi^2`
    with one degree of freedom (S. S. Wilks, Ann. Math. Stat. 9, 60 (1938); Venzon & Moolgavkar, above). The 95 %
-   profile continues from the points of the 68 % one; each profile has model evaluations set aside for it
-   (:data:`PROFILE_EVALS` per fitted parameter): falling back on :math:`\pm 1.96` standard errors where the
+   profile continues from the points of the 68 % one; each side of each profile has model evaluations set aside for
+   it (:data:`PROFILE_EVALS` per fitted parameter): falling back on :math:`\pm 1.96` standard errors where the
    likelihood is not quadratic made the 95 % intervals of skewed profiles (the flash temperature's macro-scale
    ratio) miss the truth several times as often as they should. Where the evaluations run out all the same, the end
    is extrapolated from the profile's two furthest points (a power law :math:`\Delta\chi^2 \propto t^p`,
@@ -425,8 +425,8 @@ def with_uncertainty(fitter: Fitter, fit: GlobalFit, *, s2: float, ranges: DataR
         Degrees of freedom of ``s2`` (infinite when it is known, as with ``mu_std``; the noise estimate's otherwise):
         the intervals use Student's t quantiles with them (module docstring, item 3).
     reserve : bool, optional
-        Give each profile :data:`PROFILE_EVALS` evaluations per parameter beyond the budget (default: only when
-        ``budget`` is not given; an explicit budget is a cap).
+        Give each side of each profile :data:`PROFILE_EVALS` evaluations per parameter beyond the budget (default:
+        only when ``budget`` is not given; an explicit budget is a cap).
     """
     k = len(fitter.space)
     if k == 0:
@@ -476,7 +476,7 @@ def issues_at(fitter: Fitter, u, ranges: DataRange | None = None) -> tuple:
 def _estimates(fitter, u, chi2, J, s2, good, ranges, profile, notes=None, dof=math.inf,
                reserve: bool = False) -> tuple:
     """The estimates of every parameter at the optimum ``u`` (module docstring, items 2-4); ``reserve``: each
-    profile gets :data:`PROFILE_EVALS` model evaluations per parameter beyond the fitter's budget."""
+    side of each profile gets :data:`PROFILE_EVALS` model evaluations per parameter beyond the fitter's budget."""
     w = fitter.w
     Jw = J * w[:, None]
     H = Jw.T @ Jw / s2
@@ -503,9 +503,8 @@ def _estimates(fitter, u, chi2, J, s2, good, ranges, profile, notes=None, dof=ma
         try:
             if profile and (on_bound or not math.isfinite(sd_u) or sd_u > 0.25
                             or not _quadratic_ok(fitter, u, j, sd_u, H, chi2, s2)):
-                if reserve:
-                    fitter.max_evals = max(fitter.max_evals, fitter.n_evals + PROFILE_EVALS * k)
-                lo_u, hi_u = _profile(fitter, u, j, chi2, s2, sd_u, k, H=H, memo=memo, level=z68 * z68)
+                lo_u, hi_u = _profile(fitter, u, j, chi2, s2, sd_u, k, H=H, memo=memo, level=z68 * z68,
+                                      reserve=PROFILE_EVALS * k if reserve else 0)
                 method = "profile"
         except BudgetExhausted:
             method = "quadratic (the profile ran out of model evaluations)"
@@ -520,12 +519,11 @@ def _estimates(fitter, u, chi2, J, s2, good, ranges, profile, notes=None, dof=ma
     # the 95 % intervals after every 68 % one, so that their profiles never take the evaluations a 68 % profile
     # (and with it the judgement identified / not identified) needs
     for j, p, sd_u, method, lo_u, hi_u, i in pending:
-        if profile and reserve:
-            # a 95 % profile of its own: the 68 % profiles must not leave it without evaluations (then it would
-            # fall back on +- 1.96 standard errors exactly where the likelihood is not quadratic)
-            fitter.max_evals = max(fitter.max_evals, fitter.n_evals + PROFILE_EVALS * k)
+        # a 95 % profile with evaluations of its own: the 68 % profiles must not leave it without (it would then
+        # fall back on +- 1.96 standard errors exactly where the likelihood is not quadratic)
         lo95_u, hi95_u = _interval95(fitter, u, j, chi2, s2, sd_u, k, H, profile, method, memo=memo,
-                                     ends68=(lo_u, hi_u), z=z95, z68=z68)
+                                     ends68=(lo_u, hi_u), z=z95, z68=z68,
+                                     reserve=PROFILE_EVALS * k if reserve else 0)
         if memo.pop(("extrapolated", j), False) and notes is not None:
             notes[f"the 95 % interval of {p.key} is extrapolated from its profile (the profile ran out of model "
                   "evaluations)"] = None
@@ -536,9 +534,9 @@ def _estimates(fitter, u, chi2, J, s2, good, ranges, profile, notes=None, dof=ma
 
 #: Standard errors of a two-sided 95 % interval of a normal variable.
 Z95 = 1.959963984540054
-#: Model evaluations per fitted parameter set aside for each profile (68 % or 95 %) of a fit with the default
-#: budget, beyond what the others left (a refit of the other parameters costs about k + 2 evaluations, a side about
-#: four refits): one parameter's profile must not starve the next one's.
+#: Model evaluations per fitted parameter set aside for each side of each profile (68 % or 95 %) of a fit with the
+#: default budget, beyond what the others left (a refit of the other parameters costs about k + 2 evaluations, a
+#: side about four refits): one profile must not starve the next one.
 PROFILE_EVALS = 16
 
 
@@ -564,7 +562,7 @@ def t_quantiles(dof: float) -> tuple[float, float]:
 
 
 def _interval95(fitter, u, j, chi2, s2, sd_u, k, H, profile, method, memo=None, ends68=None, z: float = None,
-                z68: float = 1.0) -> tuple[float, float]:
+                z68: float = 1.0, reserve: int = 0) -> tuple[float, float]:
     """The 95 % interval of parameter j in u: +- 1.96 standard errors where the chi^2 that far out (others fixed)
     is within a factor 2 of the quadratic one (:func:`_quadratic_ok`), else, where profiles are allowed, the
     profile likelihood at delta chi^2 = 1.96^2 (a likelihood flatter or steeper than quadratic beyond one standard
@@ -580,9 +578,11 @@ def _interval95(fitter, u, j, chi2, s2, sd_u, k, H, profile, method, memo=None, 
         return 0.0, 1.0
     lo, hi = u[j] - z * sd_u, u[j] + z * sd_u
     if profile:
+        if reserve:
+            fitter.max_evals = max(fitter.max_evals, fitter.n_evals + reserve)
         try:
             if method.startswith("profile") or not _quadratic_ok(fitter, u, j, z * sd_u, H, chi2, s2):
-                lo, hi = _profile(fitter, u, j, chi2, s2, sd_u, k, H=H, level=z * z, memo=memo)
+                lo, hi = _profile(fitter, u, j, chi2, s2, sd_u, k, H=H, level=z * z, memo=memo, reserve=reserve)
         except BudgetExhausted:
             if method.startswith("profile") and ends68 is not None:
                 f = z / z68
@@ -685,7 +685,7 @@ def _quadratic_ok(fitter, u, j, step, H, chi2, s2) -> bool:
 
 
 def _profile(fitter, u, j, chi2, s2, sd_u, k, max_steps: int = 4, refine: int = 5, H=None,
-             level: float = 1.0, memo: dict | None = None) -> tuple[float, float]:
+             level: float = 1.0, memo: dict | None = None, reserve: int = 0) -> tuple[float, float]:
     r"""Ends of the profile-likelihood interval of parameter j in u at delta chi2 = ``level`` (1: 68 %; 3.84: 95 %;
     a bound when the profile stays below it).
 
@@ -699,7 +699,8 @@ def _profile(fitter, u, j, chi2, s2, sd_u, k, max_steps: int = 4, refine: int = 
     ``level`` starts from the furthest point below it and brackets with the nearest one above. Where the model
     evaluations run out on a side after a point with delta chi2 of at least a tenth of ``level``, that side's end
     is extrapolated from its furthest points (:func:`_extrapolated_end`; ``memo[("extrapolated", j)]`` says so);
-    with nothing to extrapolate from, :class:`~validation.fitting.BudgetExhausted` propagates.
+    with nothing to extrapolate from, :class:`~validation.fitting.BudgetExhausted` propagates. ``reserve``: model
+    evaluations each side may spend beyond the fitter's budget (:data:`PROFILE_EVALS`).
     """
     others = np.array([i for i in range(k) if i != j], dtype=int)
     cond = None
@@ -717,6 +718,8 @@ def _profile(fitter, u, j, chi2, s2, sd_u, k, max_steps: int = 4, refine: int = 
             ends.append(edge)
             continue
         points = memo.setdefault((j, sign), [])
+        if reserve:
+            fitter.max_evals = max(fitter.max_evals, fitter.n_evals + reserve)
 
         def delta(t, start):
             v = start.copy()
