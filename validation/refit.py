@@ -693,7 +693,9 @@ def _profile(fitter, u, j, chi2, s2, sd_u, k, max_steps: int = 4, refine: int = 
     the crossing by regula falsi in sqrt(delta chi2) (exact for a parabola, and converging for the linear rise of a
     profile at a bound). Each refit starts where the Gauss-Newton Hessian ``H`` at the optimum puts the other
     parameters for the new value of parameter j (:math:`\delta u_o = -H_{oo}^{-1} H_{oj}\,\delta u_j`), so that
-    correlated parameters need few iterations.
+    correlated parameters need few iterations. The first step is at most :data:`FIRST_STEP` per unit of
+    :math:`\sqrt{\Delta\chi^2}` and the next ones at most four times the last, each refit starting from the last
+    point below the level; an upper bracket more than 16 times the level is halved in distance, not interpolated.
 
     ``memo`` (a dict shared by the profiles of one fit) keeps every profile point, so that a profile at a higher
     ``level`` starts from the furthest point below it and brackets with the nearest one above. Where the model
@@ -743,8 +745,11 @@ def _profile(fitter, u, j, chi2, s2, sd_u, k, max_steps: int = 4, refine: int = 
         hi = min(((p[0], p[1]) for p in above), default=None)
         try:
             if hi is None and not (below and lo[0] >= room - 1e-12):
-                t = (min(root * sd_u if math.isfinite(sd_u) and sd_u > 1e-4 else 0.05 * root, room) if not below
-                     else _next_step(lo[0], lo[1], level, room))
+                # the first step at most FIRST_STEP (in u) per unit of sqrt(level): a refit started far along a
+                # curved ridge (the linearized profile clipped at the bounds) can miss it, and its chi2 would then
+                # bracket the crossing far too close to the optimum
+                t = (min(root * sd_u if math.isfinite(sd_u) and sd_u > 1e-4 else 0.05 * root, FIRST_STEP * root, room)
+                     if not below else _next_step(lo[0], lo[1], level, room))
                 for _ in range(max_steps):
                     d, v = delta(t, start)
                     if d >= level:
@@ -760,6 +765,10 @@ def _profile(fitter, u, j, chi2, s2, sd_u, k, max_steps: int = 4, refine: int = 
             for _ in range(refine):
                 a, b = math.sqrt(max(lo[1], 0.0)), math.sqrt(hi[1])
                 t = lo[0] + (hi[0] - lo[0]) * (root - a) / max(b - a, 1e-12)
+                if hi[1] > 16.0 * level:
+                    # an upper point far beyond the level says little about where the crossing is (a refit that
+                    # missed the ridge, or a profile that turns up steeply): halve the bracket in t instead
+                    t = 0.5 * (lo[0] + hi[0])
                 if hi[0] - lo[0] < 1e-4:
                     break
                 d, v = delta(t, start)
@@ -780,6 +789,10 @@ def _profile(fitter, u, j, chi2, s2, sd_u, k, max_steps: int = 4, refine: int = 
         ends.append(u[j] + sign * (lo[0] + (hi[0] - lo[0]) * (root - a) / max(b - a, 1e-12)))
     lo_u, hi_u = sorted(ends)
     return lo_u, hi_u
+
+
+#: Largest first step of a profile, in u per unit of sqrt(delta chi2) (see :func:`_profile`).
+FIRST_STEP = 0.1
 
 
 def _extrapolated_end(points, lo, level: float) -> float:
