@@ -317,3 +317,30 @@ def test_the_quadratic_check_follows_the_profile_along_a_ridge_of_correlated_par
     assert e.interval95 == pytest.approx(exact95, abs=0.01)
     quadratic95 = (e.value - Z95 * e.std, e.value + Z95 * e.std)
     assert abs(quadratic95[1] - exact95[1]) > 0.4
+
+
+class _Trap:
+    """A stand-in fitter whose profile (one parameter, optimum at u = 0.2) rises as (t / 0.5)^4 times the level out to
+    t = 0.6 from the optimum and is 1000 times the level beyond, as where a refit started far along a curved ridge
+    misses it."""
+
+    def __init__(self, level: float):
+        self.level = level
+
+    def chi2(self, v):
+        t = abs(float(v[0]) - 0.2)
+        return self.level * ((t / 0.5) ** 4 if t < 0.6 else 1000.0)
+
+
+@pytest.mark.parametrize("level", [1.0, 1.959964 ** 2])
+def test_a_profile_with_a_large_standard_error_is_not_bracketed_by_a_missed_refit(level):
+    """With a standard error of 0.98 in u the first step used to land on the trap, and five interpolations in
+    sqrt(delta chi2) from the optimum to a point 1000 times the level ended near t = 0.13; stepping out from at most
+    0.1 sqrt(level) and halving an upper bracket that far beyond the level finds the crossing at t = 0.5 (u = 0.7);
+    the lower side runs into the bound u = 0 below the level."""
+    import numpy as np
+
+    from validation.refit import _profile
+
+    lo, hi = _profile(_Trap(level), np.array([0.2]), 0, 0.0, 1.0, 0.98, 1, level=level)
+    assert lo == 0.0 and hi == pytest.approx(0.7, abs=0.005)
