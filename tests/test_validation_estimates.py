@@ -82,45 +82,14 @@ def test_the_95_percent_interval_follows_a_likelihood_that_is_not_quadratic_beyo
     excess), so the 95 % ends are exactly b = -ln(m -+ 1.96 sigma / sqrt(n)). With sigma / sqrt(n) = 0.4 m the
     likelihood is quadratic enough at one standard error (the 68 % interval stays quadratic) but not at two: the
     95 % interval is the profile's, asymmetric, where 1.96 standard errors would be 20-40 % off on either side."""
-    from dataclasses import dataclass
-
-    import numpy as np
-
-    import materials
-    import persson
-    import surfaces
-    import validation
-    from persson.effects import Effect, Parameter, base
-    from validation.fitting import Fitter, ParameterSpace, free_parameters
-    from validation.predict import Predictor
-    from validation.refit import Z95, global_fit, with_uncertainty
+    from persson.effects import base
+    from validation.refit import Z95, with_uncertainty
 
     monkeypatch.setattr(base, "_REGISTRY", dict(base._REGISTRY))
-
-    @dataclass(frozen=True)
-    class Decay(Effect):
-        name = "test_decay"
-        parameters = (Parameter("b", 3.0, (0.0, 8.0), "1", "decay exponent"),)
-        b: float = 3.0
-
-        def friction_term(self, state):  # 0.5 keeps the rows' friction positive at this noise
-            return np.full_like(state.conditions.speed, 0.5 + math.exp(-self.b))
-
-    v = np.geomspace(1e-3, 1.0, 8)
-    rows = validation.Measurements.from_arrays(slip=1.0, speed=np.tile(v, 2), temperature=np.repeat([10.0, 30.0], 8),
-                                               pressure=3e5, mu=0.5)
-    plain = persson.Model(surfaces.SelfAffine(hurst=0.8, q0=1e3, q1=1e5, hrms=1e-4), materials.example_tread())
-    f0 = validation.predict(plain, rows).mu
-    n, sigma = rows.n, 0.08                                  # sigma / sqrt(n) = 0.02 = 0.4 exp(-3)
-    noise = np.random.default_rng(5).normal(0.0, sigma, n)
-    y = f0 + 0.5 + math.exp(-3.0) + noise - noise.mean()     # mean excess exactly exp(-3)
-    m = rows.with_mu(y, mu_std=np.full(n, sigma))
-    model = plain.with_effect(Decay())
-    fitter = Fitter(Predictor(m, None), y, np.full(n, 1.0 / sigma), model,
-                    ParameterSpace(free_parameters(Decay())), max_evals=400)
-    fit = with_uncertainty(fitter, global_fit(fitter, fitter.space.u_of(model, None)), s2=1.0, profile=True)
+    fitter, fit0, se = _decay_fit(0.4)                      # sigma / sqrt(n) = 0.4 exp(-3)
+    fit = with_uncertainty(fitter, fit0, s2=1.0, profile=True)
     (e,) = fit.estimates
-    half = Z95 * sigma / math.sqrt(n)
+    half = Z95 * se
     exact = (-math.log(math.exp(-3.0) + half), -math.log(math.exp(-3.0) - half))
     assert e.value == pytest.approx(3.0, abs=1e-4) and e.method == "quadratic"
     assert e.interval95 == pytest.approx(exact, abs=0.01)
@@ -149,11 +118,11 @@ def _decay_fit(sigma_over_root_n: float, seed: int = 5):
 
     @dataclass(frozen=True)
     class Decay(Effect):
-        name = "test_decay_budget"
+        name = "test_decay"
         parameters = (Parameter("b", 3.0, (0.0, 8.0), "1", "decay exponent"),)
         b: float = 3.0
 
-        def friction_term(self, state):
+        def friction_term(self, state):  # 0.5 keeps the rows' friction positive at this noise
             return np.full_like(state.conditions.speed, 0.5 + math.exp(-self.b))
 
     v = np.geomspace(1e-3, 1.0, 8)
