@@ -207,22 +207,19 @@ class CalibrationFit:
     def describe(self) -> str:
         """The error in words: what the measured mu would read, with its standard error."""
         if self.kind == "gain":
-            pct = 100.0 * (self.value - 1.0)
-            return (f"the measured mu reading {abs(pct):.1f} % {'high' if pct >= 0 else 'low'} (gain "
-                    f"{self.value:.4g} +- {self.std:.2g})")
+            return (f"the measured mu reading {_percent_off(self.value, 'high', 'low')} (gain {self.value:.4g} +- "
+                    f"{self.std:.2g})")
         if self.kind == "device_gains":
             each = ", ".join(f"{d or '(unlabelled)'} {g:.4g} +- {sd:.2g}" for d, g, sd in self.per_device)
             far = next(d for d, g, _ in self.per_device if g == self.value)
-            pct = 100.0 * (self.value - 1.0)
-            return (f"the measured mu of device {far or '(unlabelled)'} reading {abs(pct):.1f} % "
-                    f"{'high' if pct >= 0 else 'low'} (a gain per device: {each})")
+            return (f"the measured mu of device {far or '(unlabelled)'} reading "
+                    f"{_percent_off(self.value, 'high', 'low')} (a gain per device: {each})")
         if self.kind == "slip":
             return (f"the slip ratios {abs(self.value):.3g} {'higher' if self.value >= 0 else 'lower'} than recorded "
                     f"(a slip offset of {self.value:+.3g} +- {self.std:.2g})")
         if self.kind == "speed":
-            pct = 100.0 * (self.value - 1.0)
-            return (f"the speeds {abs(pct):.1f} % {'higher' if pct >= 0 else 'lower'} than recorded (a speed factor "
-                    f"of {self.value:.4g} +- {self.std:.2g})")
+            return (f"the speeds {_percent_off(self.value, 'higher', 'lower')} than recorded (a speed factor of "
+                    f"{self.value:.4g} +- {self.std:.2g})")
         if self.kind == "temperature":
             return (f"the rubber {abs(self.value):.1f} K {'warmer' if self.value >= 0 else 'colder'} than recorded "
                     f"(a temperature offset of {self.value:+.2f} +- {self.std:.2g} K)")
@@ -588,6 +585,12 @@ def _linear_step(set_columns, error_columns, predicted, on):
         return None
     k = set_columns.shape[1]
     return sol[:k], sol[k:]
+
+
+def _percent_off(factor: float, more: str, less: str) -> str:
+    """``"12.2 % high"``: how far ``factor`` is from 1, in per cent, with the word for its side."""
+    pct = 100.0 * (factor - 1.0)
+    return f"{abs(pct):.1f} % {more if pct >= 0 else less}"
 
 
 def _rss(predicted, on) -> float:

@@ -659,13 +659,9 @@ def _quadratic_ok(fitter, u, j, step, H, chi2, s2) -> bool:
     quadratic prediction is :math:`\delta u_j^2 / C_{jj}`: along the axis with the others fixed, a ridge of
     correlated parameters looks quadratic while the profile along it bends (two strain-softening factors; a
     parameter with the baseline's tau_f0), and its intervals then came out several times too narrow."""
-    k = u.size
-    others = np.array([i for i in range(k) if i != j], dtype=int)
-    cond = np.zeros(0)
-    if others.size:
-        cond = -np.linalg.lstsq(H[np.ix_(others, others)], H[others, j], rcond=1e-10)[0]
-        if not np.all(np.isfinite(cond)):
-            return False
+    others, cond = _conditional(H, j)
+    if cond is None:
+        return False
     # the curvature of the profile, H_jj - H_jo H_oo^-1 H_oj = 1 / C_jj (the Schur complement)
     curvature = float(H[j, j] + (H[j, others] @ cond if others.size else 0.0))
     if not curvature > 0:
@@ -705,11 +701,7 @@ def _profile(fitter, u, j, chi2, s2, sd_u, k, max_steps: int = 4, refine: int = 
     evaluations each side may spend beyond the fitter's budget (:data:`PROFILE_EVALS`).
     """
     others = np.array([i for i in range(k) if i != j], dtype=int)
-    cond = None
-    if H is not None and others.size:
-        cond = -np.linalg.lstsq(H[np.ix_(others, others)], H[others, j], rcond=1e-10)[0]
-        if not np.all(np.isfinite(cond)):
-            cond = None
+    cond = _conditional(H, j)[1] if H is not None and others.size else None
     memo = {} if memo is None else memo
     root = math.sqrt(level)
     ends = []
@@ -793,6 +785,17 @@ def _profile(fitter, u, j, chi2, s2, sd_u, k, max_steps: int = 4, refine: int = 
 
 #: Largest first step of a profile, in u per unit of sqrt(delta chi2) (see :func:`_profile`).
 FIRST_STEP = 0.1
+
+
+def _conditional(H: np.ndarray, j: int) -> tuple[np.ndarray, np.ndarray | None]:
+    r"""(others, c): the indices of the parameters other than j, and where the quadratic model with Gauss-Newton
+    Hessian ``H`` puts them per unit step of parameter j once refitted, :math:`c = -H_{oo}^{-1} H_{oj}` (None where
+    that is not finite)."""
+    others = np.array([i for i in range(H.shape[0]) if i != j], dtype=int)
+    if not others.size:
+        return others, np.zeros(0)
+    cond = -np.linalg.lstsq(H[np.ix_(others, others)], H[others, j], rcond=1e-10)[0]
+    return others, cond if np.all(np.isfinite(cond)) else None
 
 
 def _extrapolated_end(points, lo, level: float) -> float:
