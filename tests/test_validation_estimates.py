@@ -4,6 +4,7 @@ out of the range) and when it does not (the data do not determine it at all)."""
 
 import math
 
+import numpy as np
 import pytest
 
 from validation.fitting import FreeParameter
@@ -98,11 +99,11 @@ def test_the_95_percent_interval_follows_a_likelihood_that_is_not_quadratic_beyo
     assert e.as_dict()["interval95"] == list(e.interval95)
 
 
-def _decay_fit(sigma_over_root_n: float, seed: int = 5):
+def _decay_fit(sigma_over_root_n: float, seed: int = 5, hi: float = 8.0):
     """A fitter of mu = f0 + 0.5 + exp(-b) to rows whose mean excess is exactly exp(-3), with known noise such that
     sigma / sqrt(n) = ``sigma_over_root_n`` exp(-3): chi^2(b) = n (exp(-3) - exp(-b))^2 / sigma^2 about the optimum,
-    so that the profile ends at delta chi^2 = z^2 are b = -ln(exp(-3) -+ z sigma / sqrt(n)). Returns
-    (fitter, fit, sigma / sqrt(n))."""
+    so that the profile ends at delta chi^2 = z^2 are b = -ln(exp(-3) -+ z sigma / sqrt(n)); b is searched over
+    0 - ``hi``. Returns (fitter, fit, sigma / sqrt(n))."""
     from dataclasses import dataclass
 
     import numpy as np
@@ -119,8 +120,8 @@ def _decay_fit(sigma_over_root_n: float, seed: int = 5):
     @dataclass(frozen=True)
     class Decay(Effect):
         name = "test_decay"
-        parameters = (Parameter("b", 3.0, (0.0, 8.0), "1", "decay exponent"),)
-        b: float = 3.0
+        parameters = (Parameter("b", min(3.0, hi / 2), (0.0, hi), "1", "decay exponent"),)
+        b: float = min(3.0, hi / 2)
 
         def friction_term(self, state):  # 0.5 keeps the rows' friction positive at this noise
             return np.full_like(state.conditions.speed, 0.5 + math.exp(-self.b))
@@ -313,3 +314,112 @@ def test_a_profile_with_a_large_standard_error_is_not_bracketed_by_a_missed_refi
 
     lo, hi = _profile(_Trap(level), np.array([0.2]), 0, 0.0, 1.0, 0.98, 1, level=level)
     assert lo == 0.0 and hi == pytest.approx(0.7, abs=0.005)
+
+
+def test_intervals_computed_when_first_read_equal_those_computed_at_once(monkeypatch):
+    """``with_uncertainty(defer=True)`` spends the Jacobian's evaluations at once and the profiles' only when the
+    estimates are read; the estimates, notes and covariance it then gives are those of ``defer=False`` (two fresh
+    fitters of the same data), and ``on_evals`` is told what the profiles cost. The skewed 95 % profile of the decay
+    (exact ends b = -ln(exp(-3) -+ 1.96 sigma / sqrt(n))) is the costly part that a search over sets of effects
+    leaves out for the sets it never reports."""
+    from persson.effects import base
+    from validation.refit import Z95, with_uncertainty
+
+    monkeypatch.setattr(base, "_REGISTRY", dict(base._REGISTRY))
+    fitter, fit, se = _decay_fit(0.4)
+    now = with_uncertainty(fitter, fit, s2=1.0, profile=True)
+    spent_now = fitter.n_evals - fit.n_evals
+    fitter2, fit2, _ = _decay_fit(0.4)
+    told = []
+    later = with_uncertainty(fitter2, fit2, s2=1.0, profile=True, defer=True, on_evals=told.append)
+    jacobian_only = fitter2.n_evals - fit2.n_evals
+    assert 0 < jacobian_only < spent_now
+    (bare,) = later.estimates
+    assert math.isnan(bare.std) and bare.value == pytest.approx(now.estimates[0].value, rel=1e-12)
+    assert not later.pending.ready and told == []
+    estimates, notes = later.pending()
+    assert len(told) == 1                                 # the 68 % intervals; the 95 % ones wait to be read
+    assert estimates == now.estimates and notes == now.notes
+    assert len(told) == 2 and told[1] > 0
+    assert later.covariance.estimates == now.estimates
+    assert np.array_equal(later.covariance.matrix, now.covariance.matrix)
+    assert sum(told) == fitter2.n_evals - fit2.n_evals - jacobian_only and jacobian_only + sum(told) == spent_now
+    exact = (-math.log(math.exp(-3.0) + Z95 * se), -math.log(math.exp(-3.0) - Z95 * se))
+    assert estimates[0].interval95 == pytest.approx(exact, abs=0.01)
+
+
+def test_95_percent_intervals_computed_when_first_read_have_the_budget_they_had_at_once(monkeypatch):
+    """``defer95=True`` (the diagnoses of a set search's steps, which report 68 % intervals only): the 68 % intervals
+    at once, the 95 % profile when ``interval95`` is first read, equal to the one computed at once -- even when the
+    fitter has been used in between and its budget moved: the 95 % profile gets the evaluations it had left."""
+    from persson.effects import base
+    from validation.refit import with_uncertainty
+
+    monkeypatch.setattr(base, "_REGISTRY", dict(base._REGISTRY))
+    fitter, fit, _ = _decay_fit(0.4)
+    (now,) = with_uncertainty(fitter, fit, s2=1.0, profile=True).estimates
+    fitter2, fit2, _ = _decay_fit(0.4)
+    told = []
+    (e,) = with_uncertainty(fitter2, fit2, s2=1.0, profile=True, defer95=True, on_evals=told.append).estimates
+    assert (e.value, e.std, e.interval, e.method) == (now.value, now.std, now.interval, now.method)
+    n0 = fitter2.n_evals
+    fitter2.max_evals = fitter2.n_evals             # another user of the fitter spent its budget meanwhile
+    assert e.interval95 == now.interval95 and e.note95 == now.note95 == ""
+    assert told == [fitter2.n_evals - n0] and told[0] > 0
+
+
+def test_the_credibility_of_a_deferred_fit_needs_only_the_intervals_of_its_doubtful_parameters(monkeypatch):
+    """A decay searched over b in 0 - 2 while the data put b at 3: the fit ends on the upper search bound, where
+    only b's 68 % interval tells "pushed out of the range" (bounded below the bound) from "not identified". The
+    credibility estimates say what the full ones say, and cost no more; a parameter off its bounds and inside its
+    plausible range needs none (the bare estimates have no issue)."""
+    from persson.effects import base
+    from validation.refit import with_uncertainty
+
+    monkeypatch.setattr(base, "_REGISTRY", dict(base._REGISTRY))
+    fitter, fit, _ = _decay_fit(0.4, hi=2.0)
+    full = with_uncertainty(fitter, fit, s2=1.0, profile=True)
+    (f,) = full.estimates
+    assert f.value == pytest.approx(2.0) and f.issue.startswith("on the upper search bound 2")
+    fitter2, fit2, _ = _decay_fit(0.4, hi=2.0)
+    later = with_uncertainty(fitter2, fit2, s2=1.0, profile=True, defer=True)
+    (bare,) = later.estimates
+    assert bare.issue                                    # on the bound: the intervals must judge it
+    n0 = fitter2.n_evals
+    (c,) = later.credibility()
+    assert c.issue == f.issue and c.interval == f.interval and math.isnan(c.interval95[0])
+    assert fitter2.n_evals - n0 <= fitter.n_evals - fit.n_evals
+    assert not later.pending.ready
+    fitter3, fit3, _ = _decay_fit(0.4)
+    (inside,) = with_uncertainty(fitter3, fit3, s2=1.0, profile=True, defer=True).estimates
+    assert inside.issue == ""
+
+
+def test_a_set_reads_its_intervals_only_when_they_are_needed():
+    """A set of effects fitted in a search carries its intervals unevaluated: a set whose parameters all lie inside
+    their plausible ranges and off their bounds is credible without them; a doubtful one is judged by its
+    credibility estimates; the intervals themselves are computed once, on the first read of ``estimates``."""
+    from validation.deferred import Deferred, is_ready
+    from validation.refit import Estimate
+    from validation.select import EffectSet
+
+    calls = []
+
+    def intervals():
+        calls.append(1)
+        return (Estimate(key="a.x", value=1.0, std=0.1, interval=(0.9, 1.1), method="quadratic"),)
+
+    def fitted(clean, credibility=None):
+        return EffectSet(effects=("a",), model=None, contact=None, predicted=np.zeros(3), rss=1.0, bic=0.0,
+                         rmse=1.0, n_params=1, estimates=Deferred(intervals), lack=None, pattern=None,
+                         fitted={"a.x": 1.0}, clean=clean, credibility=credibility)
+
+    s = fitted(clean=True)
+    assert s.plausible and s.parameters() == {"a.x": 1.0} and not is_ready(s, "estimates") and calls == []
+    doubtful = Deferred(lambda: (Estimate(key="a.x", value=1.0, std=0.1, interval=(0.9, 1.1), method="profile",
+                                          issue="on the upper search bound 1: the data push it out of the range "
+                                                "searched"),))
+    s = fitted(clean=False, credibility=doubtful)
+    assert not s.plausible and calls == [] and doubtful.ready
+    assert s.estimates[0].interval == (0.9, 1.1) and s.estimates is s.estimates and calls == [1]
+    assert s.issues == ()          # once computed, the intervals themselves judge the set

@@ -435,11 +435,12 @@ def fit_candidate(eff, base: BaselineFit, settings: FitSettings, names=None) -> 
 
 def finish_candidate(trial: Trial, base: BaselineFit, settings: FitSettings, *, s2: float, ranges,
                      profile: bool, lack_of_fit, pattern_of, budget: int | None = None,
-                     dof: float = math.inf) -> Candidate:
+                     dof: float = math.inf, defer95: bool = False, on_evals=None) -> Candidate:
     """Statistics, uncertainty and plausibility of a fitted candidate (module docstring, items 5-7).
 
     ``lack_of_fit(residual, k)`` and ``pattern_of(residual)`` test a residual against the noise; ``dof``: the
-    degrees of freedom of ``s2`` (:func:`validation.refit.with_uncertainty`).
+    degrees of freedom of ``s2``; ``defer95``, ``on_evals``: the 95 % intervals computed when first read
+    (:func:`validation.refit.with_uncertainty`).
     """
     if trial.failed is not None:
         return trial.failed
@@ -449,7 +450,7 @@ def finish_candidate(trial: Trial, base: BaselineFit, settings: FitSettings, *, 
     kb = len(base.space)
     misfit = not lack_of_fit(s.y - trial.fit.mu, base.k_eff + len(trial.free)).consistent
     fit = with_uncertainty(trial.fitter, trial.fit, s2=s2, ranges=ranges, profile=profile, misfit=misfit,
-                           budget=budget, dof=dof)
+                           budget=budget, dof=dof, defer95=defer95, on_evals=on_evals)
     f1 = fit.mu
     r1 = s.y - f1
     rss0, rss1 = base.rss, float(np.sum((r1 * s.w) ** 2))

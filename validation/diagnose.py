@@ -289,11 +289,13 @@ def diagnose_single(model, measurements: Measurements | None = None, candidates=
                     parameters: dict | None = None, n_starts: int = 3, seed: int = 0, probe: bool = True,
                     name: str = "", max_evals: int | None = None, noise: NoiseEstimate | None = None,
                     refit_baseline: bool = True, progress=None, predictor=None,
-                    check_conditions: bool = True) -> Diagnosis:
+                    check_conditions: bool = True, defer95: bool = False, on_evals=None) -> Diagnosis:
     """Each candidate effect added alone to ``model``, ranked, and the verdict: :func:`validation.diagnose` with
     ``search="single"`` (its parameters, less ``search``). ``check_conditions=False`` leaves out the fits of a
     temperature offset and a speed factor in the calibration check (:mod:`validation.calibration`), for a diagnosis
-    whose answer a set search judges again."""
+    whose answer a set search judges again. ``defer95``: the 95 % intervals are computed when first read, and
+    ``on_evals`` is told the model evaluations they spend then (they are not in ``n_evaluations``), for the
+    diagnoses of a set search's steps, which report 68 % intervals only."""
     t_start = time.perf_counter()
     model, measurements, contact, fit, name = _unpack(model, measurements, contact, fit, name)
     from persson.effects import Effect, available
@@ -327,7 +329,7 @@ def diagnose_single(model, measurements: Measurements | None = None, candidates=
                                                  base.rss / max(m.n - base.k_eff, 1)),
                      dof=math.inf if sigma_known else (noise.dof if noise.known else max(m.n - base.k_eff, 1)))
     s2, lof, pattern = ctx.s2, ctx.lack_of_fit, ctx.pattern
-    baseline = ctx.finish(base)
+    baseline = ctx.finish(base, defer95=defer95, on_evals=on_evals)
     n_eval += baseline.fit.n_evals - base.fit.n_evals if base.fit is not None else 0
     bic0 = baseline.bic
     results = []
@@ -339,7 +341,7 @@ def diagnose_single(model, measurements: Measurements | None = None, candidates=
         k = len(t.fitter.space) if t.fitter is not None else 0
         budget = 14 * k if profile and issues_at(t.fitter, t.fit.u, ranges) else None
         c = finish_candidate(t, base, settings, s2=s2, ranges=ranges, profile=profile, lack_of_fit=lof, dof=ctx.dof,
-                             pattern_of=pattern, budget=budget)
+                             pattern_of=pattern, budget=budget, defer95=defer95, on_evals=on_evals)
         n_eval += c.n_evals - t.n_evals
         results.append(c)
     results.sort(key=lambda c: (_rank_group(c.status), c.delta_bic if math.isfinite(c.delta_bic) else math.inf))
@@ -454,10 +456,14 @@ class FitContext:
         """The free parameters ``names`` (``"effect.parameter"``, ``"gamma"``, ``"contact.*"``) of ``model``."""
         return _baseline_params(model, _fit_names(names, model), self.settings.contact)
 
-    def finish(self, base: BaselineFit) -> Baseline:
-        """Uncertainties, lack of fit and pattern of a fitted model (a baseline, or a set of effects)."""
+    def finish(self, base: BaselineFit, *, defer: bool = False, defer95: bool = False, on_evals=None) -> Baseline:
+        """Uncertainties, lack of fit and pattern of a fitted model (a baseline, or a set of effects).
+
+        ``defer``: the parameters' intervals are computed when first asked for (``fit.pending``, see
+        :func:`validation.refit.with_uncertainty`; the baseline's ``estimates`` are then bare values); ``defer95``:
+        only the 95 % ones; ``on_evals`` is called with the model evaluations they spent."""
         return _finish_baseline(base, self.settings, self.s2, self.ranges, self.lack_of_fit, self.pattern,
-                                dof=self.dof)
+                                dof=self.dof, defer=defer, defer95=defer95, on_evals=on_evals)
 
 
 # ==========================================================================================================
@@ -478,7 +484,8 @@ def _contenders(trials, base: BaselineFit, bic0: float, n: int, sigma_known: boo
 
 
 def _finish_baseline(base: BaselineFit, settings: FitSettings, s2, ranges, lof, pattern,
-                     dof: float = math.inf) -> Baseline:
+                     dof: float = math.inf, defer: bool = False, defer95: bool = False,
+                     on_evals=None) -> Baseline:
     fit = base.fit
     y, w, n = settings.y, settings.w, settings.n
     f0 = base.predicted
@@ -486,7 +493,7 @@ def _finish_baseline(base: BaselineFit, settings: FitSettings, s2, ranges, lof, 
     lack = lof(r0, base.k_eff)
     if fit is not None:
         fit = with_uncertainty(base.fitter, fit, s2=s2, ranges=ranges, profile=True, misfit=not lack.consistent,
-                               dof=dof)
+                               dof=dof, defer=defer, defer95=defer95, on_evals=on_evals)
     sigma_hat = math.sqrt(base.rss / max(n - base.k_eff, 1))
     sigma_mu = sigma_hat * float(np.sqrt(np.mean(1.0 / w ** 2))) if settings.sigma_known else sigma_hat
     notes = tuple(fit.notes) if fit is not None else ()

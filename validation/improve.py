@@ -513,7 +513,6 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
 
         probe = Probe(measurements, contact)
     selection = search.finish(current, probe=probe)
-    n_evals += search.n_evals
     if frozenset(selection.best.effects) != frozenset(steps[-1].effects) - frozenset(steps[0].effects):
         for f in [e for e in current if e not in selection.best.effects]:
             current = tuple(e for e in current if e != f)
@@ -523,6 +522,8 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
     outliers = outlying_rows(measurements.mu - best.predicted, noise, measurements,
                              "the baseline" + "".join(f" + {e}" for e in best.effects))
     final = with_outliers(final, outliers)
+    # counted last: a set's intervals are computed when first read (validation.select.EffectSet)
+    n_evals += search.n_evals
     return Improvement(steps=tuple(steps), model=selection.best.model, measurements=measurements, contact=contact,
                        noise=float(noise.sigma) if noise.known else math.nan, stopped=stopped,
                        seconds=time.perf_counter() - t0, name=name, verdict=final.verdict,
@@ -564,7 +565,7 @@ def _diagnose_set(search, current, measurements, cands, contact, base_fit, name,
     return diagnose_single(s.model, measurements, remaining, s.contact or contact,
                            fit=_fit_names(base_fit, current, search), name=name, refit_baseline=False, noise=noise,
                            predictor=predictor, progress=_sub(progress, f"step {step}"), check_conditions=False,
-                           **options)
+                           defer95=True, on_evals=search.spent, **options)
 
 
 def _step(index, action, added, removed, s, previous, base_fit, search, alternatives=(), estimates=None) -> Step:

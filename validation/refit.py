@@ -39,10 +39,11 @@ r"""Global, joint refits from several starts, and the uncertainty and plausibili
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from .deferred import Deferred, Lazy
 from .distributions import t_isf
 from .fitting import BudgetExhausted, Fitter, halton
 
@@ -121,7 +122,12 @@ class Estimate:
     interval95 : (float, float)
         95 % interval: 1.96 standard errors where the chi^2 that far out is still quadratic, else the profile
         likelihood at delta chi^2 = 3.84 (computed where the 68 % interval may be profiled; elsewhere the
-        quadratic one); never narrower than the 68 % interval. NaN when no uncertainty was computed.
+        quadratic one); never narrower than the 68 % interval. NaN when no uncertainty was computed. It may be
+        given as a :class:`validation.deferred.Deferred`, computed when first read (``with_uncertainty(...,
+        defer95=True)``).
+    note95 : str
+        How the 95 % interval was found where that is not as described above (``""`` else): extrapolated from a
+        profile that ran out of model evaluations.
     """
 
     key: str
@@ -136,7 +142,8 @@ class Estimate:
     search: tuple = (-math.inf, math.inf)
     log_scale: bool = False
     one_sided: str = ""
-    interval95: tuple = (math.nan, math.nan)
+    interval95: tuple = Lazy(default=(math.nan, math.nan))
+    note95: str = Lazy(default="")
 
     @property
     def name(self) -> str:
@@ -186,12 +193,12 @@ class Estimate:
         -------
         dict
             ``value``, ``std``, ``interval``, ``method``, ``unit``, ``bound``, ``plausible``, ``issue``, ``search``,
-            ``identified``, ``one_sided`` and ``interval95`` (the pairs as lists).
+            ``identified``, ``one_sided``, ``interval95`` (the pairs as lists) and ``note95``.
         """
         return {"value": self.value, "std": self.std, "interval": list(self.interval), "method": self.method,
                 "unit": self.unit, "bound": self.bound, "plausible": list(self.plausible), "issue": self.issue,
                 "search": list(self.search), "identified": self.identified, "one_sided": self.one_sided,
-                "interval95": list(self.interval95)}
+                "interval95": list(self.interval95), "note95": self.note95}
 
 
 @dataclass(frozen=True, eq=False)
@@ -211,13 +218,14 @@ class ParameterCovariance:
     matrix : ndarray (k, k)
         Covariance in ``u`` (inf in rows and columns of directions the data do not determine).
     estimates : tuple of Estimate
-        The parameters' estimates, in the order of ``space``.
+        The parameters' estimates, in the order of ``space`` (may be given as a
+        :class:`validation.deferred.Deferred`, computed when first read).
     """
 
     space: object
     u: np.ndarray
     matrix: np.ndarray
-    estimates: tuple = ()
+    estimates: tuple = Lazy(default=())
 
     @property
     def keys(self) -> tuple:
@@ -272,6 +280,13 @@ class GlobalFit:
     covariance : ParameterCovariance or None
         The parameters' covariance (set by :func:`with_uncertainty`; None before, or when its budget ran out
         before the Jacobian).
+    pending : validation.deferred.Deferred or None
+        With ``with_uncertainty(..., defer=True)``: ``(estimates, notes)`` with the intervals, computed when first
+        asked for (``estimates`` and ``notes`` are then those of the fit without its intervals).
+    credibility : validation.deferred.Deferred or None
+        With ``defer=True``: estimates with the 68 % intervals of the parameters that may make the fit implausible
+        (on a search bound or outside their plausible range) and the others bare, computed when first asked for:
+        what the fit's :attr:`issues` need, at a fraction of the cost of ``pending``.
     """
 
     u: np.ndarray
@@ -287,6 +302,8 @@ class GlobalFit:
     notes: tuple = ()
     optima: tuple = ()
     covariance: ParameterCovariance | None = None
+    pending: object = field(default=None, repr=False)
+    credibility: object = field(default=None, repr=False)
 
     @property
     def values(self) -> dict:
@@ -403,7 +420,8 @@ def _line_minima(points, j: int = 0) -> list:
 
 def with_uncertainty(fitter: Fitter, fit: GlobalFit, *, s2: float, ranges: DataRange | None = None,
                      profile: bool = True, budget: int | None = None, misfit: bool = False,
-                     dof: float = math.inf, reserve: bool | None = None) -> GlobalFit:
+                     dof: float = math.inf, reserve: bool | None = None, defer: bool = False,
+                     defer95: bool = False, on_evals=None) -> GlobalFit:
     """``fit`` with an :class:`Estimate` per parameter (module docstring, items 2-4).
 
     Parameters
@@ -427,6 +445,19 @@ def with_uncertainty(fitter: Fitter, fit: GlobalFit, *, s2: float, ranges: DataR
     reserve : bool, optional
         Give each side of each profile :data:`PROFILE_EVALS` evaluations per parameter beyond the budget (default:
         only when ``budget`` is not given; an explicit budget is a cap).
+    defer : bool
+        Compute the Jacobian and the covariance now, the estimates (their profiles) only when first asked for:
+        the result's ``estimates`` are then the bare values (no intervals), ``covariance.estimates`` and
+        ``pending`` (a :class:`validation.deferred.Deferred` of ``(estimates, notes)``) give the full ones, equal to
+        what ``defer=False`` gives. For fits whose intervals may never be read (:mod:`validation.select`).
+    defer95 : bool
+        Compute the 95 % intervals (often the costlier profiles) when first read: each estimate's ``interval95`` and
+        ``note95`` are then :class:`validation.deferred.Deferred` (with the budget of model evaluations left now),
+        equal to what ``defer95=False`` gives; a 95 % interval extrapolated from its profile says so in its
+        ``note95`` (and not in the fit's notes). With ``defer``, the 95 % intervals are deferred as well.
+    on_evals : callable, optional
+        With ``defer`` or ``defer95``: called with the number of model evaluations the deferred estimates spent,
+        once they are computed.
     """
     k = len(fitter.space)
     if k == 0:
@@ -437,34 +468,84 @@ def with_uncertainty(fitter: Fitter, fit: GlobalFit, *, s2: float, ranges: DataR
     u, c = fit.u, fit.chi2
     good = [v for cv, v in fit.optima if (cv - c) / s2 <= 1.0 and np.max(np.abs(v - u)) > 0.02]
     J = np.zeros((n, 0))
+    matrix = None
     try:
         J = fitter.jacobian(u)
         s2_eff = s2 * max(1.0, c / max(n - k, 1) / s2) if misfit else s2
         if s2_eff > s2 * (1 + 1e-9):
             notes[f"standard errors include the misfit (scaled by the Birge ratio {math.sqrt(s2_eff / s2):.2f})"] = None
             dof = max(n - k, 1)     # the variance unit is now the fit's own residual variance
-        estimates = _estimates(fitter, u, c, J, s2_eff, good, ranges, profile, notes=notes, dof=dof,
-                               reserve=budget is None if reserve is None else reserve)
         Jw = J * fitter.w[:, None]
-        covariance = ParameterCovariance(space=fitter.space, u=np.array(u, dtype=float),
-                                         matrix=_covariance(Jw.T @ Jw / s2_eff), estimates=estimates)
+        matrix = _covariance(Jw.T @ Jw / s2_eff)
     except BudgetExhausted:
         notes["the uncertainty stopped at its budget of model evaluations"] = None
-        estimates = _bare_estimates(fitter, u, ranges)
-        covariance = None
-    # a distinct optimum just outside the 68 % range (1 < delta chi2 <= 4) is inside the 95 % one: the local
-    # standard errors above do not see it, so say where the best such one is
-    near = sorted(((cv - c) / s2, i) for i, (cv, v) in enumerate(fit.optima)
-                  if 1.0 < (cv - c) / s2 <= 4.0 and np.max(np.abs(v - u)) > 0.02)
-    if near:
-        d, i = near[0]
-        v = fit.optima[i][1]
-        where = ", ".join(f"{p.key} = {p.from_u(float(v[j])):.4g}" for j, p in enumerate(fitter.space.params))
-        notes[f"another local optimum fits almost as well ({where}; delta chi2 = {d:.2f}, inside the 95 % "
-              "range): the standard errors describe the best optimum only"] = None
-    return GlobalFit(u=u, chi2=c, mu=fit.mu, model=fit.model, contact=fit.contact, estimates=estimates,
+
+    def estimates_and_notes() -> tuple:
+        out = dict(notes)
+        if matrix is None:
+            return _bare_estimates(fitter, u, ranges), out, False
+        try:
+            est = _estimates(fitter, u, c, J, s2_eff, good, ranges, profile, notes=out, dof=dof,
+                             reserve=budget is None if reserve is None else reserve, defer95=defer95 or defer,
+                             on_evals=on_evals)
+        except BudgetExhausted:
+            out["the uncertainty stopped at its budget of model evaluations"] = None
+            return _bare_estimates(fitter, u, ranges), out, False
+        return est, out, True
+
+    def finished(est, out) -> tuple:
+        # a distinct optimum just outside the 68 % range (1 < delta chi2 <= 4) is inside the 95 % one: the local
+        # standard errors above do not see it, so say where the best such one is
+        near = sorted(((cv - c) / s2, i) for i, (cv, v) in enumerate(fit.optima)
+                      if 1.0 < (cv - c) / s2 <= 4.0 and np.max(np.abs(v - u)) > 0.02)
+        if near:
+            d, i = near[0]
+            v = fit.optima[i][1]
+            where = ", ".join(f"{p.key} = {p.from_u(float(v[j])):.4g}" for j, p in enumerate(fitter.space.params))
+            out[f"another local optimum fits almost as well ({where}; delta chi2 = {d:.2f}, inside the 95 % "
+                "range): the standard errors describe the best optimum only"] = None
+        return est, tuple(out)
+
+    if defer and matrix is not None:
+        def later() -> tuple:
+            n0 = fitter.n_evals
+            est, out, _ = estimates_and_notes()
+            if on_evals is not None:
+                on_evals(fitter.n_evals - n0)
+            return finished(est, out)
+
+        pending = Deferred(later)
+
+        def credibility() -> tuple:
+            # the 68 % intervals of the parameters that may make the fit implausible (those on a search bound or
+            # outside their plausible range), the others bare: enough to judge the fit, at a fraction of the cost
+            if pending.ready:
+                return pending()[0]
+            bare = _bare_estimates(fitter, u, ranges)
+            n0 = fitter.n_evals
+            try:
+                est = _estimates(fitter, u, c, J, s2_eff, good, ranges, profile, notes={}, dof=dof,
+                                 reserve=budget is None if reserve is None else reserve,
+                                 only={j for j, e in enumerate(bare) if e.issue})
+            except BudgetExhausted:
+                est = bare
+            if on_evals is not None:
+                on_evals(fitter.n_evals - n0)
+            return est
+
+        covariance = ParameterCovariance(space=fitter.space, u=np.array(u, dtype=float), matrix=matrix,
+                                         estimates=pending.part(0))
+        return GlobalFit(u=u, chi2=c, mu=fit.mu, model=fit.model, contact=fit.contact,
+                         estimates=_bare_estimates(fitter, u, ranges), jacobian=J, n_starts=fit.n_starts,
+                         n_good=len(good), n_evals=fitter.n_evals, notes=tuple(notes), optima=fit.optima,
+                         covariance=covariance, pending=pending, credibility=Deferred(credibility))
+    est, out, ok = estimates_and_notes()
+    covariance = (ParameterCovariance(space=fitter.space, u=np.array(u, dtype=float), matrix=matrix, estimates=est)
+                  if ok else None)
+    est, out = finished(est, out)
+    return GlobalFit(u=u, chi2=c, mu=fit.mu, model=fit.model, contact=fit.contact, estimates=est,
                      jacobian=J, n_starts=fit.n_starts, n_good=len(good), n_evals=fitter.n_evals,
-                     notes=tuple(notes), optima=fit.optima, covariance=covariance)
+                     notes=out, optima=fit.optima, covariance=covariance)
 
 
 # ==========================================================================================================
@@ -474,9 +555,12 @@ def issues_at(fitter: Fitter, u, ranges: DataRange | None = None) -> tuple:
 
 
 def _estimates(fitter, u, chi2, J, s2, good, ranges, profile, notes=None, dof=math.inf,
-               reserve: bool = False) -> tuple:
+               reserve: bool = False, only=None, defer95: bool = False, on_evals=None) -> tuple:
     """The estimates of every parameter at the optimum ``u`` (module docstring, items 2-4); ``reserve``: each
-    side of each profile gets :data:`PROFILE_EVALS` model evaluations per parameter beyond the fitter's budget."""
+    side of each profile gets :data:`PROFILE_EVALS` model evaluations per parameter beyond the fitter's budget;
+    ``only`` (a set of indices): the 68 % intervals of those parameters alone, the others bare, no 95 % ones;
+    ``defer95``: the 95 % intervals computed when first read (with the budget left now; ``on_evals`` is told what
+    they spent), their notes in each estimate's ``note95`` only."""
     w = fitter.w
     Jw = J * w[:, None]
     H = Jw.T @ Jw / s2
@@ -490,6 +574,9 @@ def _estimates(fitter, u, chi2, J, s2, good, ranges, profile, notes=None, dof=ma
     norms = np.linalg.norm(Jw, axis=0)
     for j, p in enumerate(fitter.space.params):
         x = p.from_u(u[j])
+        if only is not None and j not in only:
+            out.append(_bare_estimates(fitter, u, ranges)[j])
+            continue
         if norms[j] <= 1e-10 * max(float(norms.max()), 1e-300):
             # the parameter changes no prediction here: neither determined nor judged
             out.append(Estimate(key=p.key, value=float(x), std=math.inf, interval=(p.lo, p.hi),
@@ -516,19 +603,42 @@ def _estimates(fitter, u, chi2, J, s2, good, ranges, profile, notes=None, dof=ma
         std = abs(p.dx_du(x)) * sd_u if math.isfinite(sd_u) else math.inf
         out.append(_estimate(p, x, std, (p.from_u(lo_u), p.from_u(hi_u)), method, u[j], ranges))
         pending.append((j, p, sd_u, method, lo_u, hi_u, len(out) - 1))
+    if only is not None:
+        return tuple(out)
     # the 95 % intervals after every 68 % one, so that their profiles never take the evaluations a 68 % profile
     # (and with it the judgement identified / not identified) needs
-    for j, p, sd_u, method, lo_u, hi_u, i in pending:
-        # a 95 % profile with evaluations of its own: the 68 % profiles must not leave it without (it would then
-        # fall back on +- 1.96 standard errors exactly where the likelihood is not quadratic)
-        lo95_u, hi95_u = _interval95(fitter, u, j, chi2, s2, sd_u, k, H, profile, method, memo=memo,
-                                     ends68=(lo_u, hi_u), z=z95, z68=z68,
-                                     reserve=PROFILE_EVALS * k if reserve else 0)
-        if memo.pop(("extrapolated", j), False) and notes is not None:
-            notes[f"the 95 % interval of {p.key} is extrapolated from its profile (the profile ran out of model "
-                  "evaluations)"] = None
-        lo95_u, hi95_u = min(lo95_u, lo_u), max(hi95_u, hi_u)  # never narrower than the 68 % interval
-        out[i] = replace(out[i], interval95=(p.from_u(lo95_u), p.from_u(hi95_u)))
+    left = fitter.max_evals - fitter.n_evals
+
+    def intervals95() -> dict:
+        if defer95:
+            fitter.max_evals = fitter.n_evals + left    # the budget they would have had at once
+        n0 = fitter.n_evals
+        found = {}
+        for j, p, sd_u, method, lo_u, hi_u, i in pending:
+            # a 95 % profile with evaluations of its own: the 68 % profiles must not leave it without (it would
+            # then fall back on +- 1.96 standard errors exactly where the likelihood is not quadratic)
+            lo95_u, hi95_u = _interval95(fitter, u, j, chi2, s2, sd_u, k, H, profile, method, memo=memo,
+                                         ends68=(lo_u, hi_u), z=z95, z68=z68,
+                                         reserve=PROFILE_EVALS * k if reserve else 0)
+            note = ""
+            if memo.pop(("extrapolated", j), False):
+                note = "extrapolated from its profile (the profile ran out of model evaluations)"
+                if notes is not None and not defer95:
+                    notes[f"the 95 % interval of {p.key} is {note}"] = None
+            lo95_u, hi95_u = min(lo95_u, lo_u), max(hi95_u, hi_u)  # never narrower than the 68 % interval
+            found[i] = ((p.from_u(lo95_u), p.from_u(hi95_u)), note)
+        if defer95 and on_evals is not None:
+            on_evals(fitter.n_evals - n0)
+        return found
+
+    if defer95:
+        later = Deferred(intervals95)
+        for *_, i in pending:
+            out[i] = replace(out[i], interval95=Deferred(lambda i=i: later()[i][0]),
+                             note95=Deferred(lambda i=i: later()[i][1]))
+        return tuple(out)
+    for i, (interval95, note) in intervals95().items():
+        out[i] = replace(out[i], interval95=interval95, note95=note)
     return tuple(out)
 
 

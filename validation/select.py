@@ -65,6 +65,12 @@ the free parameters of every effect in :math:`S` -- are refitted jointly from gl
    fits better than the answer by more than :data:`STAY` replaces it (a step ``"reduced"``); the others count for
    the equally supported sets. Done under the conditions of item 6.
 
+The intervals of a set fitted here (its profile likelihoods, often costlier than the fit) are computed when first
+read (:class:`EffectSet`): for the sets reported, and for a set whose credibility depends on them (a parameter on a
+search bound or outside its plausible range: the 68 % profiles of those parameters alone); the diagnoses of the
+steps after the first compute their 95 % intervals when read as well. The evaluations they spend are counted then
+(:meth:`SetSearch.spent`), so the budgets above count the fits and the intervals that were read.
+
 The search stops when the verdict on the current set says stop, and a final pass applies the rule to every effect:
 **an effect stays only if dropping it from the final joint model costs more than** :data:`STAY` **BIC units**
 ("very strong" evidence, Kass & Raftery, J. Am. Stat. Assoc. 90, 773 (1995)). The result names the best set and
@@ -90,6 +96,7 @@ from .band import SEBER_WILD_1989
 from .calibration import SetFit, check_calibration
 from .candidates import KASS_RAFTERY_1995, SCHWARZ_1978, bic, fit_baseline
 from .fitting import BudgetExhausted, Fitter, ParameterSpace, halton
+from .deferred import Lazy, is_ready
 from .refit import BUDGET_NOTE
 
 __all__ = ["EffectSet", "Selection", "SetSearch", "STAY", "EQUAL"]
@@ -127,6 +134,21 @@ class EffectSet:
         The joint covariance of the fitted parameters (None when none were fitted).
     jacobian : ndarray (rows, parameters) or None
         d mu / d u of the prediction at the optimum, in the coordinates of :attr:`covariance` (unweighted).
+    fit_notes : tuple of str or None
+        The notes of the fit itself, before its uncertainties (None: as :attr:`notes`).
+    fitted : dict or None
+        ``"effect.parameter" -> value`` of every fitted parameter (None: from :attr:`estimates`).
+    clean : bool
+        Every fitted parameter lies off its search bounds and inside its plausible range, so that no interval can
+        make the set implausible (:attr:`issues` is then empty without the intervals being computed).
+    credibility : validation.deferred.Deferred or None
+        The estimates with the 68 % intervals of the parameters that may make the set implausible, the others bare
+        (:attr:`validation.refit.GlobalFit.credibility`): :attr:`issues` reads them until :attr:`estimates` are
+        computed.
+
+    The joint refits of a :class:`SetSearch` give :attr:`estimates` and :attr:`notes` as a
+    :class:`validation.deferred.Deferred`: their profile-likelihood intervals are computed when first read (for the
+    sets reported, and for those whose credibility depends on an interval), not for every set fitted.
     """
 
     effects: tuple
@@ -137,13 +159,17 @@ class EffectSet:
     bic: float
     rmse: float
     n_params: int
-    estimates: tuple
+    estimates: tuple = Lazy()
     lack: object
     pattern: object
     source: str = ""
-    notes: tuple = ()
+    notes: tuple = Lazy(default=())
     covariance: object = field(default=None, repr=False)
     jacobian: object = field(default=None, repr=False)
+    fit_notes: tuple | None = field(default=None, repr=False)
+    fitted: dict | None = field(default=None, repr=False)
+    clean: bool = field(default=False, repr=False)
+    credibility: object = field(default=None, repr=False)
 
     @property
     def key(self) -> frozenset:
@@ -158,7 +184,11 @@ class EffectSet:
     @property
     def issues(self) -> tuple:
         """Why the fit is not credible (parameters on search bounds or outside their plausible ranges)."""
-        return tuple(f"{e.key} = {e.value:.3g}: {e.issue}" for e in self.estimates if e.issue)
+        if self.clean:
+            return ()
+        # before the intervals are computed, those that judge credibility are enough (see ``credibility``)
+        est = self.estimates if self.credibility is None or is_ready(self, "estimates") else self.credibility()
+        return tuple(f"{e.key} = {e.value:.3g}: {e.issue}" for e in est if e.issue)
 
     @property
     def plausible(self) -> bool:
@@ -169,7 +199,7 @@ class EffectSet:
     def budget_stopped(self) -> bool:
         """Whether its fit stopped at its budget of model evaluations (its BIC is then an upper bound: the optimum
         may lie further on)."""
-        return BUDGET_NOTE in self.notes
+        return BUDGET_NOTE in (self.notes if self.fit_notes is None else self.fit_notes)
 
     @property
     def not_identified(self) -> tuple:
@@ -178,6 +208,8 @@ class EffectSet:
 
     def parameters(self) -> dict:
         """``"effect.parameter" -> value`` of every fitted parameter."""
+        if self.fitted is not None:
+            return dict(self.fitted)
         return {e.key: e.value for e in self.estimates}
 
     def as_dict(self, best_bic: float | None = None) -> dict:
@@ -208,9 +240,11 @@ class EffectSet:
                 "source": self.source, "notes": list(self.notes)}
 
     def describe(self) -> str:
-        """One line: the label, BIC, RMSE and every fitted parameter with its uncertainty."""
+        """One line: the label, BIC, RMSE and every fitted parameter with its uncertainty (and how a 95 % interval
+        was found where it was extrapolated)."""
         par = ", ".join(e.describe() for e in self.estimates) or "no fitted parameters"
-        return f"{self.label}: BIC {self.bic:.1f}, RMSE {self.rmse:.4g}; {par}"
+        extrapolated = "".join(f" (the 95 % interval of {e.key} is {e.note95})" for e in self.estimates if e.note95)
+        return f"{self.label}: BIC {self.bic:.1f}, RMSE {self.rmse:.4g}; {par}{extrapolated}"
 
 
 @dataclass(frozen=True, eq=False)
@@ -433,12 +467,23 @@ class SetSearch:
         fit and pattern, as the set ``effects``; its model evaluations are counted."""
         base = fit_baseline(model, space, settings, global_search=True, extra_starts=starts)
         self.n_evals += base.n_evals
-        b = self.ctx.finish(base)
+        # the intervals (profiles: often more evaluations than the fit) when first read, and counted then
+        b = self.ctx.finish(base, defer=True, on_evals=self.spent)
         self.n_evals += (b.fit.n_evals - base.fit.n_evals) if b.fit is not None and base.fit is not None else 0
+        pending = None if b.fit is None else b.fit.pending
+        estimates, notes = (b.estimates, tuple(b.notes)) if pending is None else (pending.part(0), pending.part(1))
         return EffectSet(effects=effects, model=b.model, contact=b.contact, predicted=b.predicted, rss=b.rss,
-                         bic=b.bic, rmse=b.rmse, n_params=b.n_params, estimates=b.estimates, lack=b.lack,
-                         pattern=b.pattern, source=source, notes=tuple(b.notes), covariance=_covariance_of(b),
-                         jacobian=_jacobian_of(b))
+                         bic=b.bic, rmse=b.rmse, n_params=b.n_params, estimates=estimates, lack=b.lack,
+                         pattern=b.pattern, source=source, notes=notes, covariance=_covariance_of(b),
+                         jacobian=_jacobian_of(b), fit_notes=tuple(b.notes),
+                         fitted={e.key: e.value for e in b.estimates},
+                         # without intervals the estimates flag every parameter on a bound or out of its range
+                         clean=pending is not None and not any(e.issue for e in b.estimates),
+                         credibility=None if pending is None else b.fit.credibility)
+
+    def spent(self, n: int) -> None:
+        """Count ``n`` model evaluations spent by deferred intervals (a set's, or those of a step's diagnosis)."""
+        self.n_evals += int(n)
 
     # ---- the search steps ------------------------------------------------------------------------------
     def prune(self, current: tuple, progress=None) -> list[tuple]:
@@ -802,6 +847,12 @@ class SetSearch:
                                         refits={s.key: r for s in visited if (r := SetFit.of(
                                             s.model, s.contact or self.ctx.settings.contact, s.covariance,
                                             s.jacobian)) is not None})
+        # what the selection reports, computed now (so that its model evaluations are counted with the search's):
+        # the intervals of the sets it names, and the credibility of every set fitted
+        for s in (best, *supported):
+            _ = s.notes, [e.interval95 for e in s.estimates]
+        for s in visited:
+            _ = s.plausible
         return Selection(best=best, supported=tuple(supported), drop_costs=costs, separations=tuple(seps),
                          separations_in_range=tuple(seps_in), visited=tuple(visited), removed=tuple(self.removed),
                          explored=tuple(self.explored), resumed=tuple(self.resumed), reduced=tuple(self.reduced),
@@ -825,8 +876,9 @@ def _changes_nothing(c) -> bool:
 def _better(fitted, now: EffectSet) -> EffectSet | None:
     """The best credible set of ``fitted`` when it fits better than ``now`` by more than :data:`STAY` BIC units (the
     evidence an effect needs to stay), else None."""
-    best = min((t for t in fitted if t.plausible), key=lambda t: t.bic, default=None)
-    return best if best is not None and best.bic < now.bic - STAY else None
+    # credibility last: it may need the intervals of a set
+    best = min((t for t in fitted if t.bic < now.bic - STAY and t.plausible), key=lambda t: t.bic, default=None)
+    return best
 
 
 def _covariance_of(baseline):
