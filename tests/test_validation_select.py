@@ -27,6 +27,7 @@ named as equally supported) or fits better by more than 10 BIC units (h = 0.015,
 linear in their parameters, so every chi2 is checked against numpy's least squares.
 """
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -699,3 +700,34 @@ def test_a_better_subset_of_a_larger_set_within_reach_replaces_an_answer_that_mi
     common = dict(index=3, effects=("a", "b"), parameters={}, fitted=(), rmse=0.1, bic=1.0, delta_bic=-20.0,
                   model=None, diagnosis=None)
     assert Step(added="b", removed="c", action="reduced", **common).describe() == "c -> b (reduced)"
+
+
+def test_a_step_diagnosis_computes_its_baseline_intervals_and_explanation_when_read(effects):
+    """The diagnoses of a search's later steps refit the set the search fitted already (their baseline): its
+    intervals, and the explanation that shows them, are computed when first read, with the model evaluations they
+    spend reported then, and equal those of the same diagnosis computed at once."""
+    from validation.deferred import is_ready
+    from validation.diagnose import diagnose_single
+
+    base = persson.Model(SURFACE, TREAD).with_effect(effects["texture"](a=0.04))
+    truth = persson.Model(SURFACE, TREAD).with_effect(effects["texture"](a=0.05)).with_effect(effects["heat"](h=0.15))
+    m = _data(truth, 3)
+
+    def run(defer):
+        told = []
+        dx = diagnose_single(base, m, [effects["heat"]()], fit=["test_texture.a"], refit_baseline=False,
+                             defer95=defer, defer_baseline=defer, on_evals=told.append)
+        return dx, told
+
+    now, told_now = run(False)
+    later, told = run(True)
+    assert told_now == [] and told == []
+    assert not is_ready(later, "explanation") and not is_ready(later.baseline, "estimates")
+    assert later.verdict.verdict == now.verdict.verdict and later.baseline.bic == now.baseline.bic
+    assert later.explanation == now.explanation
+    assert later.baseline.estimates == now.baseline.estimates and later.baseline.notes == now.baseline.notes
+    assert told and all(n >= 0 for n in told)
+    (a,) = later.baseline.estimates
+    assert a.key == "test_texture.a" and math.isfinite(a.std) and a.std > 0
+    assert [e.interval95 for c in later.candidates for e in c.estimates] == \
+        [e.interval95 for c in now.candidates for e in c.estimates]

@@ -36,6 +36,7 @@ import numpy as np
 from frictioncite import doi
 
 from . import distributions
+from .deferred import Lazy
 from .errors import InputError
 from .fitting import Fitter, ParameterSpace, free_parameters, halton
 from .refit import GlobalFit, global_fit, with_uncertainty
@@ -81,10 +82,12 @@ class Baseline:
     contact : persson.slip.Contact or None
         The brush model's contact (refitted when ``contact.*`` parameters are fitted).
     estimates : tuple of validation.refit.Estimate
-        The fitted parameters with their uncertainties.
+        The fitted parameters with their uncertainties (computed when first read where the fit deferred them:
+        :func:`validation.refit.with_uncertainty` with ``defer=True``).
     lack : validation.noise.LackOfFit or None
     pattern : validation.noise.Pattern or None
     notes : tuple of str
+        The fit's notes, those of its intervals included (computed with them).
     """
 
     model: object
@@ -99,10 +102,10 @@ class Baseline:
     sigma: float
     rmse_given: float
     contact: object = None
-    estimates: tuple = ()
+    estimates: tuple = Lazy(default=())
     lack: object = None
     pattern: object = None
-    notes: tuple = ()
+    notes: tuple = Lazy(default=())
     fit: GlobalFit | None = field(default=None, repr=False)
 
 

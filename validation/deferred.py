@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from dataclasses import MISSING
 
-__all__ = ["Deferred", "Lazy", "is_ready"]
+__all__ = ["Deferred", "Lazy", "is_ready", "raw"]
 
 
 class Deferred:
@@ -86,3 +86,10 @@ def is_ready(obj, name: str) -> bool:
     """Whether the field ``name`` of ``obj`` (a :class:`Lazy` one, or any attribute) holds its value already."""
     slot = "_lazy_" + name
     return not isinstance(obj.__dict__.get(slot), Deferred)
+
+
+def raw(obj, name: str):
+    """The value of the field ``name`` of ``obj`` as stored: a :class:`Deferred` not computed yet stays one (to hand
+    it on to another object without computing it)."""
+    slot = "_lazy_" + name
+    return obj.__dict__[slot] if slot in obj.__dict__ else getattr(obj, name)

@@ -33,6 +33,7 @@ from .calibration import SetFit, check_calibration
 from .candidates import (DELTA_BIC_THRESHOLD, P_THRESHOLD, SIGNIFICANCE_RULE, Baseline, BaselineFit, Candidate,
                          FitSettings, bic, finish_candidate, fit_baseline, fit_candidate, note_kind)
 from .compare import json_text
+from .deferred import Deferred, Lazy
 from .errors import InputError
 from .fitting import CONTACT, FreeParameter, ParameterSpace, contact_parameters, free_parameters
 from .measurements import Measurements
@@ -60,7 +61,8 @@ class Diagnosis:
         Best first (by delta_BIC).
     clusters : tuple of Ambiguity
     explanation : str
-        Plain language: the verdict first, then the failure pattern and why the top effect fits it.
+        Plain language: the verdict first, then the failure pattern and why the top effect fits it (written when
+        first read where the baseline's intervals are deferred: a set search's later steps).
     rule : str
         The significance rule.
     sigma_known : bool
@@ -92,7 +94,7 @@ class Diagnosis:
     baseline: Baseline
     candidates: tuple
     clusters: tuple
-    explanation: str
+    explanation: str = Lazy()
     rule: str
     sigma_known: bool
     noise: float
@@ -289,13 +291,15 @@ def diagnose_single(model, measurements: Measurements | None = None, candidates=
                     parameters: dict | None = None, n_starts: int = 3, seed: int = 0, probe: bool = True,
                     name: str = "", max_evals: int | None = None, noise: NoiseEstimate | None = None,
                     refit_baseline: bool = True, progress=None, predictor=None,
-                    check_conditions: bool = True, defer95: bool = False, on_evals=None) -> Diagnosis:
+                    check_conditions: bool = True, defer95: bool = False, defer_baseline: bool = False,
+                    on_evals=None) -> Diagnosis:
     """Each candidate effect added alone to ``model``, ranked, and the verdict: :func:`validation.diagnose` with
     ``search="single"`` (its parameters, less ``search``). ``check_conditions=False`` leaves out the fits of a
     temperature offset and a speed factor in the calibration check (:mod:`validation.calibration`), for a diagnosis
     whose answer a set search judges again. ``defer95``: the 95 % intervals are computed when first read, and
     ``on_evals`` is told the model evaluations they spend then (they are not in ``n_evaluations``), for the
-    diagnoses of a set search's steps, which report 68 % intervals only."""
+    diagnoses of a set search's steps, which report 68 % intervals only; ``defer_baseline``: the baseline's
+    intervals too, and the explanation that shows them (a step's baseline is the set the search fitted already)."""
     t_start = time.perf_counter()
     model, measurements, contact, fit, name = _unpack(model, measurements, contact, fit, name)
     from persson.effects import Effect, available
@@ -329,7 +333,7 @@ def diagnose_single(model, measurements: Measurements | None = None, candidates=
                                                  base.rss / max(m.n - base.k_eff, 1)),
                      dof=math.inf if sigma_known else (noise.dof if noise.known else max(m.n - base.k_eff, 1)))
     s2, lof, pattern = ctx.s2, ctx.lack_of_fit, ctx.pattern
-    baseline = ctx.finish(base, defer95=defer95, on_evals=on_evals)
+    baseline = ctx.finish(base, defer=defer_baseline, defer95=defer95, on_evals=on_evals)
     n_eval += baseline.fit.n_evals - base.fit.n_evals if base.fit is not None else 0
     bic0 = baseline.bic
     results = []
@@ -358,7 +362,10 @@ def diagnose_single(model, measurements: Measurements | None = None, candidates=
     verdict = with_outliers(verdict, outliers)
     # the baseline at its optimum again, in full: its solutions are kept by the predictor, so this costs no solve
     extrapolated = predictor.predict(baseline.model, full=True).modulus_extrapolated_share
-    explanation = explain(verdict, m, baseline, results, clusters, noise, extrapolated_share=extrapolated)
+    explanation = Deferred(lambda: explain(verdict, m, baseline, results, clusters, noise,
+                                           extrapolated_share=extrapolated))
+    if not defer_baseline:
+        explanation = explanation()
     if progress is not None:
         progress(f"{len(effects)} candidates fitted", len(effects), len(effects))
     return Diagnosis(measurements=m, contact=contact, baseline=baseline, candidates=tuple(results),
@@ -459,9 +466,9 @@ class FitContext:
     def finish(self, base: BaselineFit, *, defer: bool = False, defer95: bool = False, on_evals=None) -> Baseline:
         """Uncertainties, lack of fit and pattern of a fitted model (a baseline, or a set of effects).
 
-        ``defer``: the parameters' intervals are computed when first asked for (``fit.pending``, see
-        :func:`validation.refit.with_uncertainty`; the baseline's ``estimates`` are then bare values); ``defer95``:
-        only the 95 % ones; ``on_evals`` is called with the model evaluations they spent."""
+        ``defer``: the parameters' intervals are computed when first read (the baseline's ``estimates`` and
+        ``notes``; ``fit.pending``, see :func:`validation.refit.with_uncertainty`); ``defer95``: only the 95 % ones;
+        ``on_evals`` is called with the model evaluations they spent."""
         return _finish_baseline(base, self.settings, self.s2, self.ranges, self.lack_of_fit, self.pattern,
                                 dof=self.dof, defer=defer, defer95=defer95, on_evals=on_evals)
 
@@ -496,14 +503,18 @@ def _finish_baseline(base: BaselineFit, settings: FitSettings, s2, ranges, lof, 
                                dof=dof, defer=defer, defer95=defer95, on_evals=on_evals)
     sigma_hat = math.sqrt(base.rss / max(n - base.k_eff, 1))
     sigma_mu = sigma_hat * float(np.sqrt(np.mean(1.0 / w ** 2))) if settings.sigma_known else sigma_hat
-    notes = tuple(fit.notes) if fit is not None else ()
+    pending = None if fit is None else fit.pending
+    if pending is not None:
+        # deferred: the estimates and the notes their intervals add, when first read
+        estimates, notes = pending.part(0), pending.part(1)
+    else:
+        estimates, notes = (fit.estimates, tuple(fit.notes)) if fit is not None else ((), ())
     return Baseline(model=base.model, effects=tuple(base.model.effect_names),
                     fitted=base.space.values(base.model, base.contact) if len(base.space) else {}, predicted=f0,
                     residual=r0, rmse=float(np.sqrt(np.mean(r0 ** 2))), rss=base.rss,
                     bic=bic(base.rss, n, base.k_eff, settings.sigma_known), n_params=base.k_eff, sigma=sigma_mu,
                     rmse_given=float(np.sqrt(np.mean((y - base.given) ** 2))), contact=base.contact,
-                    estimates=fit.estimates if fit is not None else (), lack=lack,
-                    pattern=pattern(r0), notes=notes, fit=fit)
+                    estimates=estimates, lack=lack, pattern=pattern(r0), notes=notes, fit=fit)
 
 
 def _noise_level(noise: NoiseEstimate) -> float:

@@ -96,7 +96,7 @@ from .band import SEBER_WILD_1989
 from .calibration import SetFit, check_calibration
 from .candidates import KASS_RAFTERY_1995, SCHWARZ_1978, bic, fit_baseline
 from .fitting import BudgetExhausted, Fitter, ParameterSpace, halton
-from .deferred import Lazy, is_ready
+from .deferred import Lazy, is_ready, raw
 from .refit import BUDGET_NOTE
 
 __all__ = ["EffectSet", "Selection", "SetSearch", "STAY", "EQUAL"]
@@ -409,10 +409,7 @@ class SetSearch:
     def record(self, dx, effects: tuple, step: int) -> None:
         """The sets a diagnosis of the set ``effects`` fitted: that set, and it plus each fitted candidate."""
         b = dx.baseline
-        self._keep(EffectSet(effects=tuple(effects), model=b.model, contact=b.contact, predicted=b.predicted,
-                             rss=b.rss, bic=b.bic, rmse=b.rmse, n_params=b.n_params, estimates=b.estimates,
-                             lack=b.lack, pattern=b.pattern, source=f"diagnosis of step {step}",
-                             notes=tuple(b.notes), covariance=_covariance_of(b), jacobian=_jacobian_of(b)))
+        self._keep(_from_baseline(tuple(effects), b, f"diagnosis of step {step}"))
         for c in dx.candidates:
             if c.status != "ok":
                 continue
@@ -470,16 +467,7 @@ class SetSearch:
         # the intervals (profiles: often more evaluations than the fit) when first read, and counted then
         b = self.ctx.finish(base, defer=True, on_evals=self.spent)
         self.n_evals += (b.fit.n_evals - base.fit.n_evals) if b.fit is not None and base.fit is not None else 0
-        pending = None if b.fit is None else b.fit.pending
-        estimates, notes = (b.estimates, tuple(b.notes)) if pending is None else (pending.part(0), pending.part(1))
-        return EffectSet(effects=effects, model=b.model, contact=b.contact, predicted=b.predicted, rss=b.rss,
-                         bic=b.bic, rmse=b.rmse, n_params=b.n_params, estimates=estimates, lack=b.lack,
-                         pattern=b.pattern, source=source, notes=notes, covariance=_covariance_of(b),
-                         jacobian=_jacobian_of(b), fit_notes=tuple(b.notes),
-                         fitted={e.key: e.value for e in b.estimates},
-                         # without intervals the estimates flag every parameter on a bound or out of its range
-                         clean=pending is not None and not any(e.issue for e in b.estimates),
-                         credibility=None if pending is None else b.fit.credibility)
+        return _from_baseline(effects, b, source)
 
     def spent(self, n: int) -> None:
         """Count ``n`` model evaluations spent by deferred intervals (a set's, or those of a step's diagnosis)."""
@@ -879,6 +867,22 @@ def _better(fitted, now: EffectSet) -> EffectSet | None:
     # credibility last: it may need the intervals of a set
     best = min((t for t in fitted if t.bic < now.bic - STAY and t.plausible), key=lambda t: t.bic, default=None)
     return best
+
+
+def _from_baseline(effects: tuple, b, source: str) -> EffectSet:
+    """The set ``effects`` as the refitted baseline ``b`` (a :class:`validation.candidates.Baseline`); its intervals
+    stay deferred where ``b``'s are (:func:`validation.refit.with_uncertainty` with ``defer=True``)."""
+    fit = b.fit
+    pending = None if fit is None else fit.pending
+    extra = {}
+    if pending is not None:
+        extra = dict(fit_notes=tuple(fit.notes), fitted={e.key: e.value for e in fit.estimates},
+                     # without intervals the estimates flag every parameter on a bound or out of its range
+                     clean=not any(e.issue for e in fit.estimates), credibility=fit.credibility)
+    return EffectSet(effects=tuple(effects), model=b.model, contact=b.contact, predicted=b.predicted, rss=b.rss,
+                     bic=b.bic, rmse=b.rmse, n_params=b.n_params, estimates=raw(b, "estimates"), lack=b.lack,
+                     pattern=b.pattern, source=source, notes=raw(b, "notes"), covariance=_covariance_of(b),
+                     jacobian=_jacobian_of(b), **extra)
 
 
 def _covariance_of(baseline):
