@@ -95,8 +95,8 @@ from frictioncite import doi
 from .band import SEBER_WILD_1989
 from .calibration import SetFit, check_calibration
 from .candidates import KASS_RAFTERY_1995, SCHWARZ_1978, bic, fit_baseline
-from .fitting import BudgetExhausted, Fitter, ParameterSpace, halton
 from .deferred import Lazy, is_ready, raw
+from .fitting import BudgetExhausted, Fitter, ParameterSpace, halton
 from .refit import BUDGET_NOTE
 
 __all__ = ["EffectSet", "Selection", "SetSearch", "STAY", "EQUAL"]
