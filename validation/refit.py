@@ -572,10 +572,11 @@ def _estimates(fitter, u, chi2, J, s2, good, ranges, profile, notes=None, dof=ma
     memo: dict = {}
     z68, z95 = t_quantiles(dof)
     norms = np.linalg.norm(Jw, axis=0)
+    bare = _bare_estimates(fitter, u, ranges) if only is not None else ()
     for j, p in enumerate(fitter.space.params):
         x = p.from_u(u[j])
         if only is not None and j not in only:
-            out.append(_bare_estimates(fitter, u, ranges)[j])
+            out.append(bare[j])
             continue
         if norms[j] <= 1e-10 * max(float(norms.max()), 1e-300):
             # the parameter changes no prediction here: neither determined nor judged
