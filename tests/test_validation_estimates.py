@@ -423,3 +423,26 @@ def test_a_set_reads_its_intervals_only_when_they_are_needed():
     assert not s.plausible and calls == [] and doubtful.ready
     assert s.estimates[0].interval == (0.9, 1.1) and s.estimates is s.estimates and calls == [1]
     assert s.issues == ()          # once computed, the intervals themselves judge the set
+
+
+def test_a_pickled_set_carries_its_intervals_computed():
+    """Pickling (or copying) an object whose intervals are deferred computes them: a pickle cannot hold the
+    computation, and the copy has the same values as the original once read."""
+    import copy
+    import pickle
+
+    from validation.deferred import Deferred, is_ready
+    from validation.refit import Estimate
+    from validation.select import EffectSet
+
+    calls = []
+
+    def intervals():
+        calls.append(1)
+        return (Estimate(key="a.x", value=1.0, std=0.1, interval=(0.9, 1.1), method="quadratic"),)
+
+    s = EffectSet(effects=("a",), model=None, contact=None, predicted=np.zeros(3), rss=1.0, bic=0.0, rmse=1.0,
+                  n_params=1, estimates=Deferred(intervals), lack=None, pattern=None, clean=True)
+    back = pickle.loads(pickle.dumps(s))
+    assert calls == [1] and is_ready(back, "estimates") and back.estimates[0].interval == (0.9, 1.1)
+    assert copy.deepcopy(s).estimates == s.estimates and calls == [1]

@@ -731,3 +731,60 @@ def test_a_step_diagnosis_computes_its_baseline_intervals_and_explanation_when_r
     assert a.key == "test_texture.a" and math.isfinite(a.std) and a.std > 0
     assert [e.interval95 for c in later.candidates for e in c.estimates] == \
         [e.interval95 for c in now.candidates for e in c.estimates]
+
+
+def test_a_step_diagnosis_computes_a_candidates_intervals_when_read(effects):
+    """In a step's diagnosis a candidate's intervals are computed when first read: those of the candidate the
+    verdict names at once (its identification decides the verdict), those of a plausible contender only when read,
+    those of a candidate with a parameter out of its plausible range at once (they judge its plausibility); every
+    judgement, and every interval once read, is that of the same diagnosis computed at once, and the set search
+    records the contender as a set whose intervals are still deferred."""
+    from validation.deferred import is_ready
+    from validation.diagnose import diagnose_single
+    from validation.select import SetSearch
+
+    @dataclass(frozen=True)
+    class Capped(Effect):
+        """The heat's rise, searched up to a third of the truth's."""
+
+        name = "test_capped"
+        parameters = (Parameter("h", 0.02, (0.0, 0.05), "1", "rise over the speeds", physical_limits=(0.0,)),)
+        h: float = 0.02
+
+        def friction_term(self, state):
+            return self.h * _x(state) ** 2
+
+    base = persson.Model(SURFACE, TREAD).with_effect(effects["texture"](a=0.04))
+    truth = persson.Model(SURFACE, TREAD).with_effect(effects["texture"](a=0.05)).with_effect(effects["heat"](h=0.15))
+    m = _data(truth, 3)
+
+    def run(defer):
+        told = []
+        dx = diagnose_single(base, m, [effects["heat"](), effects["slope"](), Capped()], fit=["test_texture.a"],
+                             refit_baseline=False, defer95=True, defer_baseline=True, defer_candidates=defer,
+                             on_evals=told.append)
+        return dx, told
+
+    now, _ = run(False)
+    later, told = run(True)
+    by = {c.effect: c for c in later.candidates}
+    heat, slope, capped = by["test_heat"], by["test_slope"], by["test_capped"]
+    assert later.verdict.effect == "test_heat" and slope.significant and slope.plausible and slope.fit is not None
+    assert is_ready(heat, "estimates") and not is_ready(slope, "estimates") and not slope.fit.pending.ready
+    # pushed against its search bound: judged on its intervals, computed at once
+    assert any(e.issue for e in capped.fit.estimates) and capped.fit.pending.ready and not capped.plausible
+    spent = sum(told)
+    search = SetSearch(base, ["test_texture.a"], later.context)
+    search.record(later, (), 1)
+    recorded = search.sets[frozenset(["test_slope"])]
+    assert recorded.clean and recorded.plausible and not is_ready(recorded, "estimates")
+    assert not slope.fit.pending.ready and sum(told) == spent
+    assert later.n_evaluations <= now.n_evaluations
+    for a, b in zip(later.candidates, now.candidates):
+        assert (a.effect, a.plausible, a.issues, a.bic, a.significant) == (b.effect, b.plausible, b.issues, b.bic,
+                                                                          b.significant)
+        assert a.estimates == b.estimates and a.baseline_estimates == b.baseline_estimates and a.notes == b.notes
+        assert [e.interval95 for e in a.estimates] == [e.interval95 for e in b.estimates]
+    assert slope.fit.pending.ready and sum(told) >= spent
+    assert recorded.estimates == slope.baseline_estimates + slope.estimates
+    assert later.verdict == now.verdict and later.explanation == now.explanation

@@ -36,7 +36,7 @@ import numpy as np
 from frictioncite import doi
 
 from . import distributions
-from .deferred import Lazy
+from .deferred import Deferred, Lazy
 from .errors import InputError
 from .fitting import Fitter, ParameterSpace, free_parameters, halton
 from .refit import GlobalFit, global_fit, with_uncertainty
@@ -162,6 +162,10 @@ class Candidate:
         model's curves.
     jacobian : ndarray (rows, parameters) or None
         d mu / d u of the prediction at the optimum, in the coordinates of :attr:`covariance` (unweighted).
+    fit : validation.refit.GlobalFit or None
+        The joint fit with its uncertainty. In the diagnoses of a set search's steps
+        (:func:`finish_candidate` with ``defer``) ``estimates``, ``baseline_estimates`` and ``notes`` may be computed
+        when first read, from this fit's ``pending`` intervals.
     """
 
     effect: str
@@ -187,9 +191,9 @@ class Candidate:
     predicted: np.ndarray | None = None
     n_params: int = 0
     n_evals: int = 0
-    notes: tuple = ()
-    estimates: tuple = ()
-    baseline_estimates: tuple = ()
+    notes: tuple = Lazy(default=())
+    estimates: tuple = Lazy(default=())
+    baseline_estimates: tuple = Lazy(default=())
     plausible: bool = True
     issues: tuple = ()
     lack: object = None
@@ -199,6 +203,7 @@ class Candidate:
     n_good: int = 0
     covariance: object = field(default=None, repr=False)
     jacobian: object = field(default=None, repr=False)
+    fit: GlobalFit | None = field(default=None, repr=False)
 
     @property
     def credible(self) -> bool:
@@ -438,12 +443,15 @@ def fit_candidate(eff, base: BaselineFit, settings: FitSettings, names=None) -> 
 
 def finish_candidate(trial: Trial, base: BaselineFit, settings: FitSettings, *, s2: float, ranges,
                      profile: bool, lack_of_fit, pattern_of, budget: int | None = None,
-                     dof: float = math.inf, defer95: bool = False, on_evals=None) -> Candidate:
+                     dof: float = math.inf, defer95: bool = False, defer: bool = False,
+                     on_evals=None) -> Candidate:
     """Statistics, uncertainty and plausibility of a fitted candidate (module docstring, items 5-7).
 
     ``lack_of_fit(residual, k)`` and ``pattern_of(residual)`` test a residual against the noise; ``dof``: the
     degrees of freedom of ``s2``; ``defer95``, ``on_evals``: the 95 % intervals computed when first read
-    (:func:`validation.refit.with_uncertainty`).
+    (:func:`validation.refit.with_uncertainty`); ``defer``: all the intervals (the candidate's ``estimates``,
+    ``baseline_estimates`` and ``notes``) of a candidate with no parameter on a search bound or outside its
+    plausible range; one with such a parameter has them computed at once, for its plausibility.
     """
     if trial.failed is not None:
         return trial.failed
@@ -453,7 +461,7 @@ def finish_candidate(trial: Trial, base: BaselineFit, settings: FitSettings, *, 
     kb = len(base.space)
     misfit = not lack_of_fit(s.y - trial.fit.mu, base.k_eff + len(trial.free)).consistent
     fit = with_uncertainty(trial.fitter, trial.fit, s2=s2, ranges=ranges, profile=profile, misfit=misfit,
-                           budget=budget, dof=dof, defer95=defer95, on_evals=on_evals)
+                           budget=budget, dof=dof, defer95=defer95, defer=defer, on_evals=on_evals)
     f1 = fit.mu
     r1 = s.y - f1
     rss0, rss1 = base.rss, float(np.sum((r1 * s.w) ** 2))
@@ -470,10 +478,19 @@ def finish_candidate(trial: Trial, base: BaselineFit, settings: FitSettings, *, 
     dbic = bic1 - bic0
     significant = bool(dbic < DELTA_BIC_THRESHOLD and p < P_THRESHOLD)
     inst = fit.model.effect(name)
-    issues = fit.issues
-    notes = dict.fromkeys(trial.notes)
-    notes.update(dict.fromkeys(fit.notes))
     lack = lack_of_fit(r1, k1)
+    if fit.pending is None:
+        issues = fit.issues
+        notes = tuple(dict.fromkeys(trial.notes + fit.notes))
+        estimates, baseline_estimates = fit.estimates[kb:], fit.estimates[:kb]
+    else:
+        pending = fit.pending
+        # bare estimates flag every parameter on a bound or outside its range, a superset of the issues the intervals
+        # leave: without any, the candidate is plausible; with one, all its intervals are computed now, so that the
+        # judgement is that of the full estimates (the same profiles, within the same budget)
+        issues = fit.issues_of(pending()[0]) if any(e.issue for e in fit.estimates) else ()
+        notes = Deferred(lambda: tuple(dict.fromkeys(trial.notes + pending()[1])))
+        estimates, baseline_estimates = Deferred(lambda: pending()[0][kb:]), Deferred(lambda: pending()[0][:kb])
     return Candidate(effect=name, instance=inst, model=fit.model, parameters=_effect_params(inst),
                      free=trial.free, baseline_parameters=base.space.values(fit.model, fit.contact) if kb else {},
                      rmse=float(np.sqrt(np.mean(r1 ** 2))), rss=rss1, bic=bic1, delta_bic=float(dbic), p_value=p,
@@ -481,11 +498,11 @@ def finish_candidate(trial: Trial, base: BaselineFit, settings: FitSettings, *, 
                      score_p=float(2 * distributions.norm_sf(abs(trial.score_z))), cosine=trial.cosine,
                      explained=float(1.0 - rss1 / rss0) if rss0 > 0 else 0.0, significant=significant, status="ok",
                      signature=trial.signature, change=f1 - base.predicted, predicted=f1, n_params=k_eff_c,
-                     n_evals=trial.n_evals + fit.n_evals - trial.fit.n_evals, notes=tuple(notes),
-                     estimates=fit.estimates[kb:], baseline_estimates=fit.estimates[:kb], plausible=not issues,
+                     n_evals=trial.n_evals + fit.n_evals - trial.fit.n_evals, notes=notes,
+                     estimates=estimates, baseline_estimates=baseline_estimates, plausible=not issues,
                      issues=issues, lack=lack, pattern=pattern_of(r1), contact=fit.contact,
                      n_starts=fit.n_starts, n_good=fit.n_good, covariance=fit.covariance,
-                     jacobian=fit.jacobian if fit.covariance is not None else None)
+                     jacobian=fit.jacobian if fit.covariance is not None else None, fit=fit)
 
 
 # ==========================================================================================================

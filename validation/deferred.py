@@ -47,6 +47,17 @@ class Deferred:
         """A :class:`Deferred` of ``value[index]`` (computing this one when first asked for)."""
         return Deferred(lambda: self()[index])
 
+    def __reduce__(self):
+        # pickling (or deep-copying) reads the value: the computation is a closure, which no pickle can hold
+        return _computed, (self(),)
+
+
+def _computed(value) -> Deferred:
+    """A :class:`Deferred` that holds ``value`` already (how a pickled one is restored)."""
+    d = Deferred(None)
+    d._value = value
+    return d
+
 
 class Lazy:
     """Descriptor of a frozen dataclass's field whose value may be given as a :class:`Deferred`: the first read
@@ -84,8 +95,8 @@ class Lazy:
 
 def is_ready(obj, name: str) -> bool:
     """Whether the field ``name`` of ``obj`` (a :class:`Lazy` one, or any attribute) holds its value already."""
-    slot = "_lazy_" + name
-    return not isinstance(obj.__dict__.get(slot), Deferred)
+    value = obj.__dict__.get("_lazy_" + name)
+    return not isinstance(value, Deferred) or value.ready
 
 
 def raw(obj, name: str):

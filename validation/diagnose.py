@@ -292,14 +292,17 @@ def diagnose_single(model, measurements: Measurements | None = None, candidates=
                     name: str = "", max_evals: int | None = None, noise: NoiseEstimate | None = None,
                     refit_baseline: bool = True, progress=None, predictor=None,
                     check_conditions: bool = True, defer95: bool = False, defer_baseline: bool = False,
-                    on_evals=None) -> Diagnosis:
+                    defer_candidates: bool = False, on_evals=None) -> Diagnosis:
     """Each candidate effect added alone to ``model``, ranked, and the verdict: :func:`validation.diagnose` with
     ``search="single"`` (its parameters, less ``search``). ``check_conditions=False`` leaves out the fits of a
     temperature offset and a speed factor in the calibration check (:mod:`validation.calibration`), for a diagnosis
     whose answer a set search judges again. ``defer95``: the 95 % intervals are computed when first read, and
     ``on_evals`` is told the model evaluations they spend then (they are not in ``n_evaluations``), for the
     diagnoses of a set search's steps, which report 68 % intervals only; ``defer_baseline``: the baseline's
-    intervals too, and the explanation that shows them (a step's baseline is the set the search fitted already)."""
+    intervals too, and the explanation that shows them (a step's baseline is the set the search fitted already);
+    ``defer_candidates``: the candidates' intervals too (:func:`validation.candidates.finish_candidate` with
+    ``defer``), computed when read: the verdict reads those of the candidate it names, a set search those of the
+    sets it reports."""
     t_start = time.perf_counter()
     model, measurements, contact, fit, name = _unpack(model, measurements, contact, fit, name)
     from persson.effects import Effect, available
@@ -345,7 +348,8 @@ def diagnose_single(model, measurements: Measurements | None = None, candidates=
         k = len(t.fitter.space) if t.fitter is not None else 0
         budget = 14 * k if profile and issues_at(t.fitter, t.fit.u, ranges) else None
         c = finish_candidate(t, base, settings, s2=s2, ranges=ranges, profile=profile, lack_of_fit=lof, dof=ctx.dof,
-                             pattern_of=pattern, budget=budget, defer95=defer95, on_evals=on_evals)
+                             pattern_of=pattern, budget=budget, defer95=defer95, defer=defer_candidates,
+                             on_evals=on_evals)
         n_eval += c.n_evals - t.n_evals
         results.append(c)
     results.sort(key=lambda c: (_rank_group(c.status), c.delta_bic if math.isfinite(c.delta_bic) else math.inf))

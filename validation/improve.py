@@ -565,7 +565,8 @@ def _diagnose_set(search, current, measurements, cands, contact, base_fit, name,
     return diagnose_single(s.model, measurements, remaining, s.contact or contact,
                            fit=_fit_names(base_fit, current, search), name=name, refit_baseline=False, noise=noise,
                            predictor=predictor, progress=_sub(progress, f"step {step}"), check_conditions=False,
-                           defer95=True, defer_baseline=True, on_evals=search.spent, **options)
+                           defer95=True, defer_baseline=True, defer_candidates=True, on_evals=search.spent,
+                           **options)
 
 
 def _step(index, action, added, removed, s, previous, base_fit, search, alternatives=(), estimates=None) -> Step:

@@ -313,8 +313,13 @@ class GlobalFit:
     @property
     def issues(self) -> tuple:
         """Why the fit is not credible (one phrase per implausible parameter); empty when it is."""
+        return self.issues_of(self.estimates)
+
+    @staticmethod
+    def issues_of(estimates) -> tuple:
+        """The phrases of :attr:`issues` for the estimates ``estimates`` (e.g. those of ``credibility``)."""
         return tuple(f"{e.key} = {e.value:.3g}{(' ' + e.unit) if e.unit and e.unit != '1' else ''}: {e.issue}"
-                     for e in self.estimates if e.issue)
+                     for e in estimates if e.issue)
 
     @property
     def n_effective(self) -> int:

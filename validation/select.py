@@ -68,7 +68,10 @@ the free parameters of every effect in :math:`S` -- are refitted jointly from gl
 The intervals of a set fitted here (its profile likelihoods, often costlier than the fit) are computed when first
 read (:class:`EffectSet`): for the sets reported, and for a set whose credibility depends on them (a parameter on a
 search bound or outside its plausible range: the 68 % profiles of those parameters alone); the diagnoses of the
-steps after the first compute their 95 % intervals when read as well. The evaluations they spend are counted then
+steps after the first compute their 95 % intervals when read as well, and the 68 % ones of every candidate but
+the one their verdict names and those with a parameter on a bound or out of its range, whose intervals decide
+their credibility (:func:`validation.candidates.finish_candidate` with ``defer``). The evaluations they spend are
+counted then
 (:meth:`SetSearch.spent`), so the budgets above count the fits and the intervals that were read.
 
 The search stops when the verdict on the current set says stop, and a final pass applies the rule to every effect:
@@ -95,7 +98,7 @@ from frictioncite import doi
 from .band import SEBER_WILD_1989
 from .calibration import SetFit, check_calibration
 from .candidates import KASS_RAFTERY_1995, SCHWARZ_1978, bic, fit_baseline
-from .deferred import Lazy, is_ready, raw
+from .deferred import Deferred, Lazy, is_ready, raw
 from .fitting import BudgetExhausted, Fitter, ParameterSpace, halton
 from .refit import BUDGET_NOTE
 
@@ -415,11 +418,7 @@ class SetSearch:
                 continue
             self.free.setdefault(c.effect, tuple(c.free))
             self.instances.setdefault(c.effect, c.instance)
-            self._keep(EffectSet(effects=tuple(effects) + (c.effect,), model=c.model, contact=c.contact,
-                                 predicted=c.predicted, rss=c.rss, bic=c.bic, rmse=c.rmse,
-                                 n_params=b.n_params + c.n_params, estimates=c.baseline_estimates + c.estimates,
-                                 lack=c.lack, pattern=c.pattern, source=f"diagnosis of step {step}",
-                                 notes=tuple(c.notes), covariance=c.covariance, jacobian=c.jacobian))
+            self._keep(_from_candidate(tuple(effects) + (c.effect,), c, b.n_params, f"diagnosis of step {step}"))
 
     def _keep(self, s: EffectSet) -> EffectSet:
         old = self.sets.get(s.key)
@@ -883,6 +882,26 @@ def _from_baseline(effects: tuple, b, source: str) -> EffectSet:
                      bic=b.bic, rmse=b.rmse, n_params=b.n_params, estimates=raw(b, "estimates"), lack=b.lack,
                      pattern=b.pattern, source=source, notes=raw(b, "notes"), covariance=_covariance_of(b),
                      jacobian=_jacobian_of(b), **extra)
+
+
+def _from_candidate(effects: tuple, c, n_base: int, source: str) -> EffectSet:
+    """The set ``effects`` as the fitted candidate ``c`` of a diagnosis (a :class:`validation.candidates.Candidate`,
+    ``n_base`` the parameters of that diagnosis' baseline); its intervals stay deferred where ``c``'s are
+    (:func:`validation.candidates.finish_candidate` with ``defer``)."""
+    fit = c.fit
+    extra = {}
+    if fit is not None and fit.pending is not None and not fit.pending.ready:
+        # the fit's notes before its intervals hold the budget note (the intervals add their own, not that one);
+        # a candidate with a bare issue has its intervals already (finish_candidate), so a deferred one is clean
+        extra = dict(fit_notes=tuple(fit.notes), fitted={e.key: e.value for e in fit.estimates}, clean=True)
+        estimates = Deferred(lambda: c.baseline_estimates + c.estimates)
+        notes = Deferred(lambda: tuple(c.notes))
+    else:
+        estimates, notes = c.baseline_estimates + c.estimates, tuple(c.notes)
+    return EffectSet(effects=tuple(effects), model=c.model, contact=c.contact, predicted=c.predicted, rss=c.rss,
+                     bic=c.bic, rmse=c.rmse, n_params=n_base + c.n_params, estimates=estimates, lack=c.lack,
+                     pattern=c.pattern, source=source, notes=notes, covariance=c.covariance, jacobian=c.jacobian,
+                     **extra)
 
 
 def _covariance_of(baseline):
