@@ -71,8 +71,7 @@ search bound or outside its plausible range: the 68 % profiles of those paramete
 steps after the first compute their 95 % intervals when read as well, and the 68 % ones of every candidate but
 the one their verdict names and those with a parameter on a bound or out of its range, whose intervals decide
 their credibility (:func:`validation.candidates.finish_candidate` with ``defer``). The evaluations they spend are
-counted then
-(:meth:`SetSearch.spent`), so the budgets above count the fits and the intervals that were read.
+counted then (:meth:`SetSearch.spent`), so the budgets above count the fits and the intervals that were read.
 
 The search stops when the verdict on the current set says stop, and a final pass applies the rule to every effect:
 **an effect stays only if dropping it from the final joint model costs more than** :data:`STAY` **BIC units**
