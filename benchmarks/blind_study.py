@@ -337,7 +337,7 @@ def run(case: BlindCase) -> dict:
            "ratio": case.ratio, "distinguishable": case.distinguishable, "separable": case.separable,
            "closest": list(case.closest), "sigma": case.sigma,
            "noise": case.noise_kind, "rows": case.measurements.n,
-           "noise_estimate": imp.noise, "seconds": time.perf_counter() - t0,
+           "noise_estimate": imp.noise, "seconds": time.perf_counter() - t0, "n_evaluations": imp.n_evaluations,
            "supported": [list(s.effects) for s in imp.selection.supported] if imp.selection else [],
            "resumed": list(imp.selection.resumed) if imp.selection else [],
            "calibration_rivals": [f"{f.describe()} on {f.on}" for f in imp.selection.calibration.rivals]
@@ -464,6 +464,11 @@ def summarize(results: list) -> str:
                      f"{100 * np.mean([c.get('in95_gauss', c['in95']) for c in cov]):.0f} %)")
     secs = [r["seconds"] for r in results]
     lines.append(f"Time per case: median {np.median(secs):.0f} s, max {max(secs):.0f} s ({len(results)} cases)")
+    # model evaluations do not depend on the machine or its load: the figure to compare between versions
+    evals = [r["n_evaluations"] for r in results if "n_evaluations" in r]
+    if evals:
+        lines.append(f"Model evaluations per case: median {np.median(evals):.0f}, max {max(evals)}, "
+                     f"{sum(evals)} in all")
     return "\n".join(lines)
 
 
