@@ -190,8 +190,19 @@ def effects():
         def friction_term(self, state):
             return self.m * (0.3 + _x(state))
 
+    @dataclass(frozen=True)
+    class Capped(Effect):
+        """A rise h x^2 on any surface, searched only up to 0.05 (a third of the heat's in the deferral test)."""
+
+        name = "test_capped"
+        parameters = (Parameter("h", 0.02, (0.0, 0.05), "1", "rise over the speeds", physical_limits=(0.0,)),)
+        h: float = 0.02
+
+        def friction_term(self, state):
+            return self.h * _x(state) ** 2
+
     yield {"texture": Texture, "heat": Heat, "slope": Slope, "line": Line, "bend": Bend, "mimic": Mimic,
-           "marker": Marker, "swing": Swing, "floor": Floor, "ramp": Ramp, "lean": Lean}
+           "marker": Marker, "swing": Swing, "floor": Floor, "ramp": Ramp, "lean": Lean, "capped": Capped}
     base._REGISTRY = saved
 
 
@@ -743,26 +754,15 @@ def test_a_step_diagnosis_computes_a_candidates_intervals_when_read(effects):
     from validation.diagnose import diagnose_single
     from validation.select import SetSearch
 
-    @dataclass(frozen=True)
-    class Capped(Effect):
-        """The heat's rise, searched up to a third of the truth's."""
-
-        name = "test_capped"
-        parameters = (Parameter("h", 0.02, (0.0, 0.05), "1", "rise over the speeds", physical_limits=(0.0,)),)
-        h: float = 0.02
-
-        def friction_term(self, state):
-            return self.h * _x(state) ** 2
-
     base = persson.Model(SURFACE, TREAD).with_effect(effects["texture"](a=0.04))
     truth = persson.Model(SURFACE, TREAD).with_effect(effects["texture"](a=0.05)).with_effect(effects["heat"](h=0.15))
     m = _data(truth, 3)
 
     def run(defer):
         told = []
-        dx = diagnose_single(base, m, [effects["heat"](), effects["slope"](), Capped()], fit=["test_texture.a"],
-                             refit_baseline=False, defer95=True, defer_baseline=True, defer_candidates=defer,
-                             on_evals=told.append)
+        dx = diagnose_single(base, m, [effects["heat"](), effects["slope"](), effects["capped"]()],
+                             fit=["test_texture.a"], refit_baseline=False, defer95=True, defer_baseline=True,
+                             defer_candidates=defer, on_evals=told.append)
         return dx, told
 
     now, _ = run(False)
