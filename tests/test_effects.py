@@ -100,6 +100,19 @@ def test_adhesion_peak_equals_tau_f0_times_area_over_pressure():
     assert r2.mu_adhesion == pytest.approx(3e6 * math.exp(-0.2) * r2.contact_area / SIGMA0, rel=1e-12)
 
 
+def test_the_adhesive_peak_is_plausible_within_a_decade_of_the_shifted_speeds_and_pickles():
+    """v_ref's plausible range follows the data (the measured sliding speeds shifted to T_ref, a decade wider on
+    each side), and the parameters survive pickling (sent to a process pool with a fitted effect)."""
+    import pickle
+    from types import SimpleNamespace
+
+    ranges = SimpleNamespace(shifted_speed=(1e-4, 3.0))
+    (v_ref,) = [p for p in Adhesion.parameters if p.name == "v_ref"]
+    assert v_ref.plausible_range(ranges) == pytest.approx((1e-5, 30.0), rel=1e-12)
+    back = pickle.loads(pickle.dumps(Adhesion.parameters))
+    assert [p.plausible_range(ranges) for p in back] == [p.plausible_range(ranges) for p in Adhesion.parameters]
+
+
 def test_wet_removes_adhesion():
     model = persson.Model(ROAD, TREAD, effects=[Adhesion()])
     dry = model.friction([1e-3, 1.0], pressure=SIGMA0)

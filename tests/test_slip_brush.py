@@ -228,6 +228,18 @@ def test_custom_distribution_and_sakai_two_is_parabolic():
     assert ps.SAKAI_1981 not in a.citations and ps.PACEJKA_BOOK in a.citations
 
 
+@pytest.mark.parametrize("dist", ["uniform", "parabolic", {"sakai_n": 4}])
+def test_a_contact_survives_pickling(dist):
+    """A contact sent to another process (a process pool, a pickled result) keeps its pressure law exactly."""
+    import pickle
+
+    c = contact(dist)
+    back = pickle.loads(pickle.dumps(c))
+    x = np.linspace(0, L, 101)
+    assert back.pressure_distribution == c.pressure_distribution
+    assert np.array_equal(back.pressure(x, SIGMA0), c.pressure(x, SIGMA0)) and back.citations == c.citations
+
+
 def test_two_coefficient_brush_and_map():
     n2 = 20.0
     s = np.geomspace(1e-4, 1, 20001)

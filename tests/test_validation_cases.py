@@ -136,6 +136,18 @@ def test_improvement_loop_on_the_example(example_loop):
     assert cmp.rmse > 10 * again.rmse
 
 
+def test_an_improvement_survives_pickling(example_loop):
+    """The record of the loop (its diagnoses, sets, fits and contact included) can be pickled, e.g. to come back
+    from a process pool or to be kept for later: the copy reports exactly what the original does."""
+    import pickle
+
+    _, _, imp = example_loop
+    back = pickle.loads(pickle.dumps(imp))
+    assert back.to_json() == imp.to_json() and back.table_text() == imp.table_text()
+    assert back.steps[0].diagnosis.to_json() == imp.steps[0].diagnosis.to_json()
+    assert back.contact.pressure_distribution == imp.contact.pressure_distribution
+
+
 def test_user_defined_effect_is_diagnosed_like_a_builtin(monkeypatch):
     from persson.effects import base
 

@@ -176,6 +176,13 @@ def _rolloff(surface):
     return None
 
 
+def _within_a_decade_of_the_shifted_speeds(ranges) -> tuple:
+    """The plausible range of the adhesive peak's speed: the measured sliding speeds shifted to the reference
+    temperature (``ranges.shifted_speed``, m/s), widened by a decade on each side (a module-level function, not a
+    lambda, so that the effect's parameters can be pickled)."""
+    return ranges.shifted_speed[0] / 10.0, ranges.shifted_speed[1] * 10.0
+
+
 @doi("10.1088/0953-8984/17/1/R01")
 @dataclass(frozen=True)
 class Adhesion(Effect):
@@ -219,7 +226,7 @@ class Adhesion(Effect):
                   plausible=(0.0, 0.5), physical_limits=(0.0,)),
         Parameter("v_ref", 1.0e-2, (1e-12, 1e6), "m/s", "speed of the shear-stress peak at T_ref",
                   log_scale=True,
-                  plausible=lambda r: (r.shifted_speed[0] / 10.0, r.shifted_speed[1] * 10.0)),
+                  plausible=_within_a_decade_of_the_shifted_speeds),
     )
     tau_f0: float = 2.0e6
     c: float = 0.1

@@ -3,6 +3,7 @@ and the tread geometry that gives the stiffness from the compound (:class:`Tread
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field
 
@@ -357,9 +358,9 @@ def _parse_distribution(spec):
     if isinstance(spec, str):
         key = spec.strip().lower()
         if key == "uniform":
-            return "uniform", float("nan"), lambda xi: np.ones_like(np.asarray(xi, dtype=float))
+            return "uniform", float("nan"), _uniform_pressure
         if key == "parabolic":
-            return "parabolic", float("nan"), lambda xi: 6.0 * np.asarray(xi) * (1.0 - np.asarray(xi))
+            return "parabolic", float("nan"), _parabolic_pressure
         raise InputError(f"contact.pressure_distribution: expected \"uniform\", \"parabolic\", "
                          f"{{\"sakai_n\": n}} or a callable, got {spec!r}")
     if isinstance(spec, dict):
@@ -368,12 +369,7 @@ def _parse_distribution(spec):
         n = number(spec["sakai_n"], "contact.pressure_distribution.sakai_n")
         if n <= 0:
             raise InputError(f"contact.pressure_distribution.sakai_n: expected n > 0, got {n:g}")
-
-        def sakai(xi, n=n):
-            xi = np.asarray(xi, dtype=float)
-            return (n + 1.0) / n * (1.0 - np.abs(2.0 * xi - 1.0) ** n)
-
-        return "sakai", n, sakai
+        return "sakai", n, functools.partial(_sakai_pressure, n=n)
     if callable(spec):
         xi = np.linspace(0.0, 1.0, 2001)
         try:
@@ -394,3 +390,22 @@ def _parse_distribution(spec):
         return "custom", float("nan"), spec
     raise InputError(f"contact.pressure_distribution: expected \"uniform\", \"parabolic\", {{\"sakai_n\": n}} or "
                      f"a callable, got {spec!r}")
+
+
+# the shapes p / sigma0 of x / l are module-level functions, not closures, so that a Contact can be pickled (sent
+# to a process pool, kept with a case or a result)
+def _uniform_pressure(xi):
+    """A uniform pressure: 1 along the patch."""
+    return np.ones_like(np.asarray(xi, dtype=float))
+
+
+def _parabolic_pressure(xi):
+    """The parabolic pressure 6 x (1 - x) of x = x/l (mean 1)."""
+    return 6.0 * np.asarray(xi) * (1.0 - np.asarray(xi))
+
+
+def _sakai_pressure(xi, n):
+    """Sakai's n-power pressure (n + 1) / n (1 - |2 x - 1|^n) of x = x/l (mean 1): H. Sakai, Int. J. Vehicle
+    Design 2 (1981), as in :class:`Contact`."""
+    xi = np.asarray(xi, dtype=float)
+    return (n + 1.0) / n * (1.0 - np.abs(2.0 * xi - 1.0) ** n)

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import functools
 import math
+import warnings
 
 import numpy as np
 
@@ -35,8 +36,6 @@ class _Tables:
     """
 
     def __init__(self, model, keys, vnodes, voff, gnodes, V_lo, heating, adhesion_scale=None, adhesion=None):
-        import warnings
-
         self.model = model
         # With ``adhesion_scale`` (the model's adhesion tau_f0, > 0) every value is kept as rest + tau_f0 * unit as
         # well (the adhesive term is proportional to tau_f0 and nothing else in the engine depends on it): the
@@ -71,7 +70,6 @@ class _Tables:
         # the table's history. It is left out here, and every node keeps the coldest and hottest rubber
         # temperature of its evaluation instead (background and flash), from which patch_friction notes the range
         # of the nodes its own solution interpolates (:meth:`rubber_range`).
-        self._warnings = warnings
         self.parts = None
         nc = keys.shape[0]
         ng = gnodes.size
@@ -251,7 +249,6 @@ class _Tables:
     def _separable_units(self, adhesion, model):
         """tau_f(v, T_q1) / tau_f0 * A/A0 / sigma0 of ``adhesion`` at every filled node (zeros elsewhere), per sweep;
         None where it is not finite."""
-        import warnings
 
         units = []
         for c, area in enumerate(self.parts[2]):
@@ -277,8 +274,8 @@ class _Tables:
         index of the call's outcome in ``fills``."""
         from .._checks import UnitWarning
 
-        with self._warnings.catch_warnings(record=True) as caught:
-            self._warnings.simplefilter("always")
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
             r = self.model.friction(v, temperature=T, pressure=p)
         notes = [note for note in tuple(getattr(r, "notes", ()) or ()) if SHIFT_RANGE_NOTE not in note]
         warned: dict[tuple, None] = {}
@@ -329,7 +326,6 @@ class _Tables:
         """(A/A0 / sigma0, T_q1) at the points of an engine result, when the model's adhesion times them gives the
         engine's adhesive term back (to rounding) at every point and that term is not zero everywhere (so that the
         check means something); else None."""
-        import warnings
 
         area = getattr(r, "contact_area", None)
         tq = getattr(r, "temperature_q", None)
@@ -424,7 +420,6 @@ def _shift_coordinate(log10_aT, T0: float, T: np.ndarray) -> np.ndarray:
     """y(T) = log10 a_T(T0) - log10 a_T(T) on the increasing temperatures ``T`` (from T0), or (T - T0)/10 when the
     material has no usable shift factor (none, or not finite and increasing in y over the table's first half).
     Beyond the first half (above the cap) a y that stops increasing is continued linearly."""
-    import warnings
 
     half = (T.size + 1) // 2
     y = None
