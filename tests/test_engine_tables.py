@@ -110,3 +110,38 @@ def test_a_temperature_table_halved_in_step_is_exact_for_a_quadratic():
     rows = np.vstack([T**2, -T])                                           # per-node rows: along the last axis
     np.testing.assert_allclose(_halved(rows), np.vstack([Th**2, -Th]), rtol=0, atol=1e-10)
     np.testing.assert_array_equal(_halved(np.array([1.0, 3.0])), [1.0, 2.0, 3.0])
+
+
+@pytest.mark.parametrize("surface", [
+    surfaces.PSD(np.geomspace(1e3, 1e6, 9), 1e-20 * np.geomspace(1e3, 1e6, 9) ** -3.2
+                 * np.array([1.0, 1.3, 0.7, 1.0, 2.0, 0.5, 1.0, 1.1, 0.9])),
+    surfaces.SelfAffine(hurst=0.8, q0=1e3, q1=1e6, hrms=1e-4)])
+def test_the_quadrature_rule_integrates_the_psd_exactly_between_its_breakpoints(surface):
+    """The rule's weights are the integrals of each interval's quadratic Lagrange basis times q^4 C in ln q: on
+    nodes that do not fall on the breakpoints of a tabulated PSD (a power law between its rows), a quadratic
+    K(ln q) weighted by them gives int c K d ln q to the accuracy of an adaptive quadrature between the
+    breakpoints, and the partial weights reach the whole interval at the end of its last piece."""
+    from scipy.integrate import quad
+
+    from persson.engine.quadrature import psd_breakpoints, quadrature_rule
+
+    q0, q1 = surface.q_range
+    x = np.sort(np.concatenate([np.linspace(np.log(q0), np.log(q1), 12), [np.log(q0) + 0.013]]))
+    rule = quadrature_rule(surface, x)
+
+    def c(t):
+        q = math.exp(t)
+        return q ** 4 * float(np.asarray(surface.C(np.array([q])))[0])
+
+    br = np.log(psd_breakpoints(surface))
+    for i in range(x.size - 1):
+        a = rule.stencil[i]
+        coeffs = np.polyfit(x[a:a + 3], [1.0, -2.0, 0.5], 2)       # a quadratic K through the stencil nodes
+        cuts = np.unique(np.concatenate([[x[i], x[i + 1]], br[(br > x[i]) & (br < x[i + 1])]]))
+        exact = sum(quad(lambda t: c(t) * np.polyval(coeffs, t), lo, hi, epsabs=0, epsrel=1e-12)[0]
+                    for lo, hi in zip(cuts[:-1], cuts[1:]))
+        assert rule.W[i] @ [1.0, -2.0, 0.5] == pytest.approx(exact, rel=1e-9)
+        last = rule.piece_start[i + 1] - 1
+        assert np.allclose(rule.partial[last, 2], rule.W[i], rtol=1e-13, atol=0)
+        assert np.all(rule.partial[rule.piece_start[i], 0] == 0.0)
+    assert np.allclose(rule.basis.sum(axis=2), 1.0, rtol=0, atol=1e-12)

@@ -12,6 +12,7 @@ import numpy as np
 
 from .kernel_arrays import QuadratureRule
 from .memo import per_object
+from .quadrature_kernels import assemble_rule
 
 __all__ = ["quadrature_rule", "psd_moment", "cumulative_moment", "moments_at_nodes", "separation_moments",
            "psd_breakpoints"]
@@ -50,36 +51,18 @@ def _quadrature_rule(surface, x: np.ndarray, n_gauss: int = 6) -> QuadratureRule
     edges = edges[np.concatenate([[True], np.diff(edges) > 1e-12 * np.abs(edges[1:]).clip(1.0)])]
     lo, hi = edges[:-1], edges[1:]
     mid = 0.5 * (lo + hi)
-    interval = np.clip(np.searchsorted(x, mid) - 1, 0, n - 2)
-    a = st[interval]
-    x0, x1, x2 = x[a], x[a + 1], x[a + 2]
-
-    def basis(pts):  # (..., 3): the quadratic's Lagrange basis of each piece's interval at pts
-        b0 = (pts - x1[..., None]) * (pts - x2[..., None]) / ((x0 - x1) * (x0 - x2))[..., None]
-        b1 = (pts - x0[..., None]) * (pts - x2[..., None]) / ((x1 - x0) * (x1 - x2))[..., None]
-        b2 = (pts - x0[..., None]) * (pts - x1[..., None]) / ((x2 - x0) * (x2 - x1))[..., None]
-        return np.stack([b0, b1, b2], axis=-1)
-
+    interval = np.clip(np.searchsorted(x, mid) - 1, 0, n - 2).astype(np.int64)
     g, w = _gauss_legendre(n_gauss)
     seg = np.stack([np.stack([lo, mid], -1), np.stack([mid, hi], -1)], axis=1)  # (np, 2 halves, [from, to])
     pts = 0.5 * (seg[..., 0] + seg[..., 1])[..., None] + 0.5 * (seg[..., 1] - seg[..., 0])[..., None] * g
     wts = 0.5 * (seg[..., 1] - seg[..., 0])[..., None] * w                 # (np, 2, n_gauss)
     qq = np.exp(pts)
     c = qq**4 * np.asarray(surface.C(qq.ravel()), dtype=float).reshape(qq.shape)
-    # integral of l_m c over each half piece, (np, 2, 3)
-    half = np.stack([np.sum((wts[:, k, :] * c[:, k, :])[..., None] * basis(pts[:, k, :]), axis=1)
-                     for k in range(2)], axis=1)
-    piece = half.sum(axis=1)                                                # (np, 3)
-    cum = np.cumsum(piece, axis=0) - piece                                  # before each piece, all intervals
-    start = np.searchsorted(interval, np.arange(n))                         # first piece of each interval
-    before = cum - cum[start[interval]]                                     # before each piece, its interval
-    Wp = np.stack([before, before + half[:, 0], before + piece], axis=1)    # (np, 3 points, 3)
-    Lb = basis(np.stack([lo, mid, hi], axis=-1))                            # (np, 3 points, 3)
-    W = np.zeros((n - 1, 3))
-    np.add.at(W, interval, piece)
-    return QuadratureRule(W=np.ascontiguousarray(W), stencil=st,
-                                   piece_start=np.ascontiguousarray(start, dtype=np.int64),
-                                   basis=np.ascontiguousarray(Lb), partial=np.ascontiguousarray(Wp))
+    start = np.searchsorted(interval, np.arange(n)).astype(np.int64)     # first piece of each interval
+    # the integrals of each piece's quadratic Lagrange basis l_m against c, summed piece by piece
+    W, Lb, Wp = assemble_rule(np.ascontiguousarray(x, dtype=float), st, interval, start, lo, mid, hi,
+                              np.ascontiguousarray(pts), np.ascontiguousarray(wts), np.ascontiguousarray(c))
+    return QuadratureRule(W=W, stencil=st, piece_start=start, basis=Lb, partial=Wp)
 
 
 def psd_moment(surface, q: np.ndarray, n: int) -> float:
