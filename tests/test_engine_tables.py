@@ -145,3 +145,21 @@ def test_the_quadrature_rule_integrates_the_psd_exactly_between_its_breakpoints(
         assert np.allclose(rule.partial[last, 2], rule.W[i], rtol=1e-13, atol=0)
         assert np.all(rule.partial[rule.piece_start[i], 0] == 0.0)
     assert np.allclose(rule.basis.sum(axis=2), 1.0, rtol=0, atol=1e-12)
+
+
+@pytest.mark.parametrize("power", [0, 1])
+@pytest.mark.parametrize("n", [1, 7, 200, tabulate._max_weights(32)])
+def test_the_angular_convolution_weights_reproduce_the_angular_integrals_of_a_power_law(power, n):
+    """With cos(phi) = 10^-t the angular integral of F(omega cos phi) is a convolution in log10 omega: for
+    F = omega^s it is omega^s 4 int_0^(pi/2) cos^(s+p) phi dphi = omega^s 2 sqrt(pi) Gamma((s+p+1)/2) / Gamma((s+p)/2
+    + 1). The weights, for any number of cells (the tail beyond them in closed form, on the clamped end value), give
+    it to the cubic interpolation of F between the table's nodes (20 decades of cells, the tail 1e-20 of the
+    whole); for s = 0 (F = 1) exactly."""
+    per_decade = 32
+    c = tabulate.convolution_weights(per_decade, n, power)
+    exact = lambda s: 2.0 * math.sqrt(math.pi) * math.gamma((s + power + 1) / 2) / math.gamma((s + power) / 2 + 1)  # noqa: E731
+    assert c.sum() == pytest.approx(exact(0.0), rel=1e-12)
+    if n == tabulate._max_weights(32):
+        s = 0.4
+        d = np.arange(-1, n + 2)                   # c[d + 1] weighs F at ell - d Delta (ell = 0 here)
+        assert c @ 10.0 ** (-s * d / per_decade) == pytest.approx(exact(s), rel=1e-7)  # 1e-8 off: F is not cubic

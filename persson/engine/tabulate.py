@@ -232,9 +232,28 @@ def convolution_weights(per_decade: int, n: int, power: int) -> np.ndarray:
 
     Cell m covers :math:`t \in [m\Delta, (m+1)\Delta]`, where F is the cubic through the nodes
     :math:`\ell - (m+2)\Delta, ..., \ell - (m-1)\Delta`; each basis polynomial is integrated against K by 12-point
-    Gauss-Legendre (in :math:`\sqrt{t}` on the first cell, where :math:`K \sim t^{-1/2}`). Pure function of its
-    arguments, cached; read-only result.
+    Gauss-Legendre (in :math:`\sqrt{t}` on the first cell, where :math:`K \sim t^{-1/2}`). A cell's integrals do not
+    depend on n: they are computed once for the most cells a table uses (:func:`_cell_weights`) and summed here
+    over the first n. Pure function of its arguments, cached; read-only result.
     """
+    dlw = 1.0 / per_decade
+    cells = _cell_weights(per_decade, max(n, _max_weights(per_decade)), power)
+    c = np.zeros(n + 3)
+    for k, r in enumerate((-1, 0, 1, 2)):
+        d = np.arange(n) + 1 - r  # the stencil node r of cell m is F_{j - (m + 1 - r)}
+        np.add.at(c, d + 1, cells[k, :n])
+    # K beyond the last cell, in closed form (y = 10^-t): 4 arcsin(Y) for p = 0, 4 (1 - sqrt(1 - Y^2)) for p = 1;
+    # it multiplies values further down than any node, i.e. the clamped F_0
+    Y = 10.0 ** (-n * dlw)
+    c[-1] += 4.0 * math.asin(Y) if power == 0 else 4.0 * (1.0 - math.sqrt(1.0 - Y * Y))
+    c.setflags(write=False)
+    return c
+
+
+@functools.lru_cache(maxsize=8)
+def _cell_weights(per_decade: int, n: int, power: int) -> np.ndarray:
+    """(4, n): the integral against K of each of the four Lagrange basis polynomials of cells 0 .. n-1 (see
+    :func:`convolution_weights`); read-only."""
     dlw = 1.0 / per_decade
     xg, wg = np.polynomial.legendre.leggauss(12)
     xg = 0.5 * (xg + 1.0)
@@ -249,13 +268,6 @@ def convolution_weights(per_decade: int, n: int, power: int) -> np.ndarray:
     tau = 1.0 - sig  # position in the cell [node m+1 below, node m below] of the 4-point stencil
     basis = (-tau * (tau - 1) * (tau - 2) / 6, (tau + 1) * (tau - 1) * (tau - 2) / 2,
              -(tau + 1) * tau * (tau - 2) / 2, (tau + 1) * tau * (tau - 1) / 6)
-    c = np.zeros(n + 3)
-    for r, b in zip((-1, 0, 1, 2), basis):
-        d = np.arange(n) + 1 - r  # the stencil node r of cell m is F_{j - (m + 1 - r)}
-        np.add.at(c, d + 1, (b * kw).sum(axis=1))
-    # K beyond the last cell, in closed form (y = 10^-t): 4 arcsin(Y) for p = 0, 4 (1 - sqrt(1 - Y^2)) for p = 1;
-    # it multiplies values further down than any node, i.e. the clamped F_0
-    Y = 10.0 ** (-n * dlw)
-    c[-1] += 4.0 * math.asin(Y) if power == 0 else 4.0 * (1.0 - math.sqrt(1.0 - Y * Y))
-    c.setflags(write=False)
-    return c
+    out = np.stack([(b * kw).sum(axis=1) for b in basis])
+    out.setflags(write=False)
+    return out
