@@ -51,6 +51,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+import frictionerrors
 import materials
 import persson
 import surfaces
@@ -220,14 +221,31 @@ def _closest_other_set(kind, hidden, base, truth_rows, contact, fit, known) -> t
             if set(names) == set(hidden):
                 continue
             if names not in known:
-                model, free = base, tuple(fit)
-                for n in names:
-                    e = fx.get(n)
-                    model = model.with_effect(e)
-                    free += tuple(f"{n}.{q.name}" for q in e.parameters if q.fittable)
-                known[names] = _unabsorbed_rms(model, truth_rows, contact, free)
+                try:
+                    known[names] = _set_rms(base, names, truth_rows, contact, fit, release=False)
+                except frictionerrors.InputError:
+                    # a placeholder the case cannot compute (Microtexture.hurst on a PSD table that ends at its
+                    # roll-off): fitted instead, as the diagnosis does (validation.fitting.release_placeholders)
+                    known[names] = _set_rms(base, names, truth_rows, contact, fit, release=True)
             best = min(best, (known[names], names))
     return best
+
+
+def _set_rms(base, names, truth_rows, contact, fit, release: bool) -> float:
+    """:func:`_unabsorbed_rms` of the baseline ``base`` with the candidates ``names`` added, their parameters free
+    (with ``release``, those holding a placeholder as well, from the middle of their plausible range)."""
+    from validation.fitting import release_placeholders
+
+    model, free = base, tuple(fit)
+    for n in names:
+        e = fx.get(n)
+        own = [q.name for q in e.parameters if q.fittable]
+        released = release_placeholders(e) if release else None
+        if released is not None:
+            e, own, _ = released
+        model = model.with_effect(e)
+        free += tuple(f"{n}.{q}" for q in own)
+    return _unabsorbed_rms(model, truth_rows, contact, free)
 
 
 def _unabsorbed_rms(without, truth_rows, contact, names) -> float:

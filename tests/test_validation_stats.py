@@ -424,3 +424,71 @@ def test_placeholders_are_not_free_parameters():
     assert [p.name for p in free_parameters(persson.effects.Microtexture())] == ["q1"]
     (h,) = free_parameters(persson.effects.Microtexture(), names=["hurst"])
     assert (h.lo, h.hi) == (0.5, 1.0)       # the plausible range, which excludes the placeholder 0
+
+
+def test_release_placeholders_starts_each_in_the_middle_of_its_plausible_range():
+    from validation.fitting import release_placeholders
+
+    eff, names, starts = release_placeholders(persson.effects.Microtexture(q1=3e5))
+    assert starts == {"hurst": 0.75} and eff.hurst == 0.75 and eff.q1 == 3e5 and names == ["q1", "hurst"]
+    assert release_placeholders(persson.effects.Microtexture(hurst=0.8)) is None      # no placeholder held
+    assert release_placeholders(persson.effects.Adhesion()) is None                   # none declared
+
+
+def test_a_placeholder_the_case_cannot_compute_is_fitted_over_its_plausible_range(registry):
+    """A slope in log speed whose placeholder 0 ("from the data's own trend") cannot be computed on these rows:
+    the candidate is fitted with the slope free over its plausible range, not reported as failed, and recovers
+    the linear least-squares slope (closed form, computed here with numpy)."""
+
+    @dataclass(frozen=True)
+    class AutoSlope(Effect):
+        name = "test_auto_slope"
+        parameters = (Parameter("k", 0.0, (0.0, 0.2), "1", "mu per decade of speed", plausible=(0.001, 0.2),
+                                sentinel=0.0, sentinel_doc="from the data's own trend"),)
+        k: float = 0.0
+
+        def friction_term(self, state):
+            if self.k == 0.0:
+                raise validation.InputError("test_auto_slope: no trend to read on these rows; give k= explicitly")
+            return self.k * (np.log10(state.conditions.speed) + 3.0)
+
+    model = persson.Model(SURFACE, TREAD)
+    m0 = _linear_rows()
+    f0 = validation.predict(model, m0).mu
+    x = np.log10(m0.speed) + 3.0
+    y = f0 + 0.03 * x + np.random.default_rng(26).normal(0.0, 0.002, f0.size)
+    dx = validation.diagnose(model, m0.with_mu(y), candidates=[AutoSlope()], probe=False)
+    c = dx.top
+    assert c.status == "ok" and c.free == ("k",) and not c.placeholders
+    assert any("test_auto_slope.k: its placeholder (from the data's own trend) cannot be computed" in n
+               and "plausible range 0.001 - 0.2" in n for n in c.notes)
+    k_lsq = float(np.sum(x * (y - f0)) / np.sum(x * x))   # least squares through the origin in x
+    assert c.parameters["k"] == pytest.approx(k_lsq, rel=1e-4)
+    assert dx.verdict.verdict == "explained" and dx.verdict.effect == "test_auto_slope"
+
+
+def test_microtexture_on_a_psd_table_that_ends_at_its_roll_off_fits_the_tails_hurst_exponent():
+    """The measured table stops just above the roll-off, so no self-affine tail is left to fit H on (the
+    placeholder fails); the data, computed on the analytic self-affine surface that continues to q1 = 3e5 rad/m
+    on a finer grid, still identify the tail: the candidate fits q1 and H, and the truth lies in their intervals."""
+    H, q0, q_r = 0.8, 2.9e4, 3.2e4
+    truth_surface = surfaces.SelfAffine(hurst=H, q0=q0, q1=3e5, hrms=2e-5, qL=q0 / 8)
+    table = truth_surface.with_cutoff(q1=q_r).tabulate(n_per_decade=16)
+    case_surface = surfaces.PSD(table.q, table.C_values, q_r=float(table.q[-1]), qL=table.qL,
+                                q_rolloff=table.q_rolloff, source="measured to its roll-off")
+    with pytest.raises(surfaces.InputError, match="need >= 3 points"):
+        case_surface.extrapolate(3e5)
+    speed, temperature = np.tile(np.geomspace(1e-5, 1.0, 6), 3), np.repeat([-10.0, 10.0, 30.0], 6)
+    fine = persson.GridSettings(q_per_decade=48, omega_per_decade=80)
+    mu = persson.Model(truth_surface, TREAD, grid=fine).friction(speed, temperature=temperature, pressure=3e5).mu
+    y = np.clip(mu + np.random.default_rng(27).normal(0.0, 0.003, mu.size), 0.0, None)
+    rows = validation.Measurements.from_arrays(slip=1.0, speed=speed, temperature=temperature, pressure=3e5, mu=y,
+                                               mu_std=np.full(mu.size, 0.003))
+    dx = validation.diagnose(persson.Model(case_surface, TREAD), rows, candidates=["microtexture"], probe=False)
+    c = dx.top
+    assert c.status == "ok" and c.free == ("q1", "hurst") and c.significant
+    est = {e.name: e for e in c.estimates}
+    for name, true in (("q1", 3e5), ("hurst", H)):
+        lo, hi = est[name].interval95
+        assert lo <= true <= hi, (name, est[name])
+    assert dx.verdict.verdict == "explained"

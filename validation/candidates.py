@@ -38,7 +38,7 @@ from frictioncite import doi
 from . import distributions
 from .deferred import Deferred, Lazy
 from .errors import InputError
-from .fitting import Fitter, ParameterSpace, free_parameters, halton
+from .fitting import Fitter, ParameterSpace, free_parameters, halton, release_placeholders
 from .refit import GlobalFit, global_fit, with_uncertainty
 
 __all__ = ["Baseline", "Candidate", "SIGNIFICANCE_RULE", "DELTA_BIC_THRESHOLD", "P_THRESHOLD", "bic",
@@ -403,10 +403,23 @@ def fit_candidate(eff, base: BaselineFit, settings: FitSettings, names=None) -> 
     probe = Fitter(s.predictor, s.y, s.w, model_c, ParameterSpace(cand), max_evals=8, contact=base.contact)
     u_c0 = probe.space.u_of(model_c, base.contact)
     f_sig = probe.mu(u_c0)
+    spent = 0   # evaluations of a probe given up for another
+    if f_sig is None and names is None:
+        # a placeholder this case cannot compute (Microtexture.hurst on a PSD table that ends at its roll-off):
+        # the parameter is fitted over its plausible range instead
+        released = _released_probe(eff, base, s)
+        if released is not None:
+            error = "; ".join(list(probe.errors)[:1]) or "evaluation failed"
+            spent = probe.n_evals
+            if released[5] is None:     # it fails there too: the first failure is the one to report
+                spent += released[3].n_evals
+            else:
+                eff, model_c, cand, probe, u_c0, f_sig, starts = released
+                notes.update(dict.fromkeys(_released_notes(eff, starts, error)))
     if f_sig is None:
-        return Trial(effect=eff, free=(), n_evals=probe.n_evals,
+        return Trial(effect=eff, free=(), n_evals=spent + probe.n_evals,
                      failed=_failed(name, "; ".join(list(probe.errors)[:2]) or "evaluation failed", bic0,
-                                    probe.n_evals))
+                                    spent + probe.n_evals))
     d = f_sig - f0
     if np.max(np.abs(d)) <= tiny and names is None:
         released = free_parameters(eff, release=True)
@@ -421,9 +434,9 @@ def fit_candidate(eff, base: BaselineFit, settings: FitSettings, names=None) -> 
     if kc:
         probe.screen(list(halton(kc, 2, seed=s.seed)))
     if (probe.max_change(f0) if kc else float(np.max(np.abs(d)))) <= tiny:
-        return Trial(effect=eff, free=tuple(q.name for q in cand), n_evals=probe.n_evals,
+        return Trial(effect=eff, free=tuple(q.name for q in cand), n_evals=spent + probe.n_evals,
                      failed=_no_signature(name, model_c, cand, d, f0, s, bic0, base.rss, probe.n_evals))
-    evals = probe.n_evals
+    evals = spent + probe.n_evals
     space = base.space + ParameterSpace(cand)
     fitter = Fitter(s.predictor, s.y, s.w, model_c, space, max_evals=s.budget(len(space)), contact=base.contact)
     fitter.adopt(probe, base.u)
@@ -439,6 +452,38 @@ def fit_candidate(eff, base: BaselineFit, settings: FitSettings, names=None) -> 
     notes.update(dict.fromkeys(fit.notes))
     return Trial(effect=eff, free=tuple(q.name for q in cand), fitter=fitter, fit=fit, signature=d, score_z=z,
                  cosine=cos, n_evals=evals + fitter.n_evals, notes=tuple(notes))
+
+
+def _released_probe(eff, base: BaselineFit, settings: FitSettings):
+    """The first evaluation of :func:`fit_candidate` again with the placeholders of ``eff`` released
+    (:func:`validation.fitting.release_placeholders`): ``(effect, model, free parameters, probe, u, mu, starts)``,
+    ``mu`` None where the model fails there too; None where ``eff`` holds no placeholder it can leave."""
+    s = settings
+    released = release_placeholders(eff)
+    if released is None:
+        return None
+    eff_r, names_r, starts = released
+    try:
+        model_r = base.model.with_effect(eff_r)
+        cand_r = free_parameters(eff_r, names=names_r)
+    except Exception:  # noqa: BLE001  (a user effect may refuse the value)
+        return None
+    probe = Fitter(s.predictor, s.y, s.w, model_r, ParameterSpace(cand_r), max_evals=8, contact=base.contact)
+    u0 = probe.space.u_of(model_r, base.contact)
+    return eff_r, model_r, cand_r, probe, u0, probe.mu(u0), starts
+
+
+def _released_notes(eff, starts: dict, error: str) -> list[str]:
+    """What a candidate's notes say of the placeholders :func:`_released_probe` released."""
+    specs = {p.name: p for p in eff.parameters}
+    out = []
+    for name in starts:
+        p = specs[name]
+        lo, hi = p.plausible_range()
+        lo, hi = max(lo, float(p.bounds[0])), min(hi, float(p.bounds[1]))
+        out.append(f"{eff.name}.{name}: its placeholder ({p.sentinel_doc or 'computed'}) cannot be computed on these "
+                   f"data ({error}); fitted over its plausible range {lo:g} - {hi:g} instead")
+    return out
 
 
 def finish_candidate(trial: Trial, base: BaselineFit, settings: FitSettings, *, s2: float, ranges,

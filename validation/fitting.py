@@ -21,8 +21,8 @@ from scipy import optimize
 from . import distributions
 from .errors import InputError
 
-__all__ = ["FreeParameter", "ParameterSpace", "free_parameters", "contact_parameters", "contact_value", "Fitter",
-           "BudgetExhausted", "halton", "CONTACT", "CONTACT_PARAMETERS"]
+__all__ = ["FreeParameter", "ParameterSpace", "free_parameters", "release_placeholders", "contact_parameters",
+           "contact_value", "Fitter", "BudgetExhausted", "halton", "CONTACT", "CONTACT_PARAMETERS"]
 
 #: Pseudo-effect name of the brush model's contact parameters (``"contact.stiffness"`` ...).
 CONTACT = "contact"
@@ -279,6 +279,45 @@ def free_parameters(effect, names=None, release: bool = False) -> list[FreeParam
                                  physical_limits=tuple(getattr(p, "physical_limits", ())),
                                  plausible=getattr(p, "plausible", None)))
     return out
+
+
+def release_placeholders(effect):
+    """``effect`` with every fittable parameter that holds its placeholder set to a value to fit instead: for a
+    candidate whose placeholder cannot be computed on a case (e.g. ``Microtexture.hurst = 0``, "fitted on the
+    PSD's last decade", on a PSD table that ends at its roll-off, with no self-affine tail to fit).
+
+    Each such parameter starts at the middle of its plausible range (the geometric middle for a ``log_scale``
+    one) and is varied over that range (:func:`free_parameters` with explicit names).
+
+    Parameters
+    ----------
+    effect : persson.effects.Effect
+
+    Returns
+    -------
+    (effect, names, released) or None
+        The effect with the placeholders replaced, the names of the parameters to vary (those
+        :func:`free_parameters` varies by default, and the released ones), and ``{name: start value}`` of the
+        released ones; None when no parameter holds a placeholder it could leave.
+    """
+    import dataclasses
+
+    released = {}
+    for p in getattr(effect, "parameters", ()):
+        sentinel = getattr(p, "sentinel", None)
+        if sentinel is None or not getattr(p, "fittable", True) or getattr(effect, p.name, None) != sentinel:
+            continue
+        lo, hi = (float(b) for b in p.bounds)
+        plo, phi = p.plausible_range()
+        lo, hi = max(lo, plo), min(hi, phi)
+        if not (lo < hi) or lo <= sentinel <= hi:
+            continue
+        log = bool(getattr(p, "log_scale", False)) and lo > 0
+        released[p.name] = math.sqrt(lo * hi) if log else 0.5 * (lo + hi)
+    if not released:
+        return None
+    names = [q.name for q in free_parameters(effect)] + list(released)
+    return dataclasses.replace(effect, **released), names, released
 
 
 class BudgetExhausted(Exception):
