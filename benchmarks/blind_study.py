@@ -175,7 +175,8 @@ def draw(index: int, seed: int) -> BlindCase:
         effect_rms = min(float(np.sqrt(np.mean((mu_true - validation.predict(w, skeleton, contact_truth).mu) ** 2)))
                          for w in withouts)
         unabsorbed, known = math.nan, {}
-        baseline = persson.Model(case_surface, material, effects=base_true)   # the sets are added to this (tau_f0 refitted)
+        # the sets are added to this (tau_f0 refitted)
+        baseline = persson.Model(case_surface, material, effects=base_true)
         truth_rows = validation.Measurements.from_arrays(slip=slip, speed=V, temperature=T, pressure=p, mu=mu_true,
                                                          wet=wet.astype(bool), contact=contact_case)
         if kind in ("single", "pair"):
