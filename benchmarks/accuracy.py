@@ -3,7 +3,8 @@
 For every combination of compound (soft to glassy), surface (sandpaper to road, a PSD table that starts
 abruptly at q0), sliding speed (1e-8..30 m/s), temperature (-20..80 C) and nominal pressure (0.02..2 MPa) it
 computes mu_hysteresis with the default :class:`persson.GridSettings` and with a converged setting (256 q nodes
-and 160 modulus nodes per decade, the temperature-shift table every 0.01 K instead of 0.25 K), with and without the flash temperature, and prints
+and 160 modulus nodes per decade, the temperature-shift table every 0.01 K instead of 0.25 K), with and without
+the flash temperature, and prints
 
 * the worst relative error of the defaults, per compound and surface, and overall;
 * how the built-in ``error_estimate`` compares with the true error (ratio estimate / true where the true error

@@ -5,7 +5,8 @@ Run ``python benchmarks/bench_contact.py``. Prints the median wall time (after w
 * an elastic 100-pressure curve (E* = 4 MPa, 1e3 .. 1e7 Pa) on ``surfaces.example_road()``, uncorrected and with
   the ``xu2024`` area correction;
 * a viscoelastic 100-pressure curve (``materials.example_tread()`` at 1 m/s, 20 C), which runs the friction engine;
-* ``persson.contact.separation.mean_separation`` alone for 100 rows of G on 161 nodes (the part every friction call pays).
+* ``persson.contact.separation.mean_separation`` alone for 100 rows of G on 161 nodes (the part every friction call
+  pays).
 """
 
 from __future__ import annotations
