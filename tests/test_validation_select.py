@@ -201,8 +201,23 @@ def effects():
         def friction_term(self, state):
             return self.h * _x(state) ** 2
 
+    @dataclass(frozen=True)
+    class Ember(Effect):
+        """-h x^2 where the texture exceeds 0.05, a fixed -0.01 x that h does not change where it is below 0.03
+        (like a flash temperature beside a microtexture cut off too early to reach the scales it heats), linearly
+        from one to the other in between."""
+
+        name = "test_ember"
+        parameters = (Parameter("h", 0.05, (0.0, 1.0), "1", "fall over the speeds", physical_limits=(0.0,)),)
+        h: float = 0.05
+
+        def friction_term(self, state):
+            s = min(max((state.conditions.extra.get("texture", 0.0) - 0.03) / 0.02, 0.0), 1.0)
+            return -s * self.h * _x(state) ** 2 - (1.0 - s) * 0.01 * _x(state)
+
     yield {"texture": Texture, "heat": Heat, "slope": Slope, "line": Line, "bend": Bend, "mimic": Mimic,
-           "marker": Marker, "swing": Swing, "floor": Floor, "ramp": Ramp, "lean": Lean, "capped": Capped}
+           "marker": Marker, "swing": Swing, "floor": Floor, "ramp": Ramp, "lean": Lean, "capped": Capped,
+           "ember": Ember}
     base._REGISTRY = saved
 
 
@@ -300,6 +315,31 @@ def test_a_pair_the_stepwise_path_passed_over_is_found_by_exploring_pairs(passed
     from validation.report import _selection_html
 
     assert "exploring pairs" in _selection_html(sel).lower()
+
+
+def test_a_pair_whose_partner_acts_only_far_from_the_first_ones_single_fit_is_fitted_when_exploring(effects):
+    """Texture (a = 0.055) + ember (h = 0.09): mu = baseline + 0.055 - 0.09 x^2. The texture alone fits the mean, a
+    of about 0.025, below the 0.03 where the ember starts to act, so the ember's own fit changes the predictions by a fixed amount
+    and identifies nothing. The mimic (a line) takes the path and leaves a curvature the noise cannot hide. The pair
+    texture + ember is out of reach of the gain rule (the two single fits gain far less than half of what the mimic
+    gained) and of the screen (linearized at the texture's single fit, where the ember does nothing): it is fitted
+    jointly, from a global search, and replaces the mimic."""
+    base = persson.Model(SURFACE, TREAD)
+    truth = base.with_effect(effects["texture"](a=0.055)).with_effect(effects["ember"](h=0.09))
+    m = _data(truth, 5)
+    imp = validation.improve(base, m, candidates=[effects["mimic"](), effects["texture"](), effects["ember"]()])
+    dx0 = imp.steps[0].diagnosis
+    texture, ember, mimic = (dx0.candidate(n) for n in ("test_texture", "test_ember", "test_mimic"))
+    assert texture.significant and texture.parameters["a"] < 0.03 and dx0.verdict.effect == "test_mimic"
+    assert ember.status == "ok" and not ember.significant and not ember.identified
+    gain = dx0.baseline.bic - texture.bic + max(dx0.baseline.bic - ember.bic, 0.0)
+    assert gain < 0.5 * (dx0.baseline.bic - mimic.bic)          # out of reach of the gain rule
+    explored = [s for s in imp.steps if s.action == "explored"]
+    assert len(explored) == 1 and set(explored[0].effects) == {"test_texture", "test_ember"}, imp.table_text()
+    assert set(imp.added) == {"test_texture", "test_ember"} and imp.verdict == "explained", imp.table_text()
+    est = {e.key: e for e in imp.selection.best.estimates}
+    for key, true in (("test_texture.a", 0.055), ("test_ember.h", 0.09)):
+        assert abs(est[key].value - true) <= 3 * est[key].std, est[key]
 
 
 def test_a_path_ending_at_the_noise_stays_when_no_pair_fits_better(hidden_pair, parallel):

@@ -23,7 +23,11 @@ the free parameters of every effect in :math:`S` -- are refitted jointly from gl
    where the two single fits together gain at least half of what the path gained (BIC) over the baseline --, the
    pairs of the better single fits first, within as many model evaluations as the path took. When no candidate
    was significant alone, every pair of credible candidates that changed the predictions alone is screened as in
-   item 5 (two effects that each fit too little alone may fit together). The best credible pair continues the
+   item 5 (two effects that each fit too little alone may fit together). Last, within the same budget, each of
+   those significant candidates with every candidate whose parameters the data do not identify alone: such a
+   partner may act only once the first moves far from its own single fit (a flash temperature beside a
+   microtexture whose cut-off must reach several times past where it fitted alone), where neither the gain rule
+   nor a screen linearized at that single fit can see it. The best credible pair continues the
    search when it fits better than the path's set by more than :data:`STAY` BIC units (a step ``"explored"``),
    at most once.
 5. **pairs that tie**: a path that ends at the noise may have taken a look-alike of a pair whose second member
@@ -606,6 +610,21 @@ class SetSearch:
                     pairs[key] = ((a.effect, b.effect), reached)
                     screened.append(((a.effect, b.effect), reached))
         order += sorted(screened, key=lambda t: t[1])
+        if not at_noise:
+            # a significant candidate with one whose parameters the data do not identify alone: the partner may act
+            # only once the first moves far from its own single fit (a flash temperature on a PSD that stops short,
+            # beside a microtexture whose cut-off must reach several times past where it fitted alone), which
+            # neither the gain rule nor a screen linearized at that single fit can see; fitted jointly last, within
+            # the budget
+            late = []
+            for a in significant:
+                for b in quiet:
+                    key = frozenset({a.effect, b.effect})
+                    if key in self.sets or key in pairs or a.effect == b.effect or (b.status == "ok" and b.identified):
+                        continue
+                    pairs[key] = ((a.effect, b.effect), a.bic)
+                    late.append(pairs[key])
+            order += sorted(late, key=lambda t: t[1])
         todo = [((a, b), tuple(self.sets[k] for k in (frozenset({a}), frozenset({b})) if k in self.sets),
                  f"exploring: {a} with {b}") for (a, b), _ in order]
         fitted, stopped = self._fit_in_turn(todo, budget, start, progress)
