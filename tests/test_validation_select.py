@@ -319,11 +319,11 @@ def test_a_pair_the_stepwise_path_passed_over_is_found_by_exploring_pairs(passed
 
 def test_a_pair_whose_partner_acts_only_far_from_the_first_ones_single_fit_is_fitted_when_exploring(effects):
     """Texture (a = 0.055) + ember (h = 0.09): mu = baseline + 0.055 - 0.09 x^2. The texture alone fits the mean, a
-    of about 0.025, below the 0.03 where the ember starts to act, so the ember's own fit changes the predictions by a fixed amount
-    and identifies nothing. The mimic (a line) takes the path and leaves a curvature the noise cannot hide. The pair
-    texture + ember is out of reach of the gain rule (the two single fits gain far less than half of what the mimic
-    gained) and of the screen (linearized at the texture's single fit, where the ember does nothing): it is fitted
-    jointly, from a global search, and replaces the mimic."""
+    of about 0.025, below the 0.03 where the ember starts to act, so the ember's own fit changes the predictions by a
+    fixed amount and identifies nothing. The mimic (a line) takes the path and leaves a curvature the noise cannot
+    hide. The pair texture + ember is out of reach of the gain rule (the two single fits gain far less than half of
+    what the mimic gained) and of the screen (linearized at the texture's single fit, where the ember does nothing):
+    it is fitted jointly, from a global search, and replaces the mimic."""
     base = persson.Model(SURFACE, TREAD)
     truth = base.with_effect(effects["texture"](a=0.055)).with_effect(effects["ember"](h=0.09))
     m = _data(truth, 5)
