@@ -21,6 +21,10 @@ texture's place on the stepwise path; with it in, the texture adds nothing (its 
 stays invisible (no texture), so the path ends short of the noise. The pairs it did not reach are then explored:
 texture + heat is found, fits at the noise, and replaces the mimic.
 
+An ``test_ember`` (-h x^2) acts only where the texture exceeds 0.03: with texture 0.055 + ember 0.09 the texture
+alone fits about 0.025, where the ember does nothing, and the mimic takes the path; the pair is out of reach of the
+gain rule and of a screen linearized at the texture's single fit, and is fitted all the same when exploring.
+
 With a weaker heat the mimic fits at the noise and the path stops there; texture + heat, never on the path, is
 screened (a linearized joint fit, exact for these linear effects) and fitted: it ties with the mimic (h = 0.008,
 named as equally supported) or fits better by more than 10 BIC units (h = 0.015, replaces it). Both effects are
