@@ -435,7 +435,8 @@ def fit_candidate(eff, base: BaselineFit, settings: FitSettings, names=None) -> 
         probe.screen(list(halton(kc, 2, seed=s.seed)))
     if (probe.max_change(f0) if kc else float(np.max(np.abs(d)))) <= tiny:
         return Trial(effect=eff, free=tuple(q.name for q in cand), n_evals=spent + probe.n_evals,
-                     failed=_no_signature(name, model_c, cand, d, f0, s, bic0, base.rss, probe.n_evals))
+                     failed=_no_signature(name, model_c, cand, d, f0, s, bic0, base.rss,
+                                          spent + probe.n_evals))
     evals = spent + probe.n_evals
     space = base.space + ParameterSpace(cand)
     fitter = Fitter(s.predictor, s.y, s.w, model_c, space, max_evals=s.budget(len(space)), contact=base.contact)
