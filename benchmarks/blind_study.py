@@ -36,6 +36,10 @@ found), the misses named among the equally supported sets, false alarms on null 
 the rig named as rivals (none of the cases has one), physics outside the candidates called ``explained``, detection
 against the effect-to-noise and the distinguishable ratios, and the coverage of the reported 68 % and 95 %
 intervals of the parameters of a hidden effect found alone.
+
+A case that raises (in its drawing or its diagnosis) is printed and recorded with its error and traceback, the study
+goes on, the summary lists it first and leaves it out of every figure, and a later run on the same ``--out`` file
+tries it again.
 """
 
 from __future__ import annotations
@@ -46,6 +50,7 @@ import json
 import math
 import sys
 import time
+import traceback
 import warnings
 from dataclasses import dataclass, field
 
@@ -410,6 +415,11 @@ def _value(r: dict, key: str) -> float:
 
 def summarize(results: list) -> str:
     lines = []
+    failed = [r for r in results if "error" in r]
+    results = [r for r in results if "error" not in r]
+    if failed:
+        lines.append("Cases that raised (left out of every figure below; a later run on the same --out retries them): "
+                     + "; ".join(f"case {r['index']} ({r['kind']}): {r['error']}" for r in failed))
     rows = sorted({"+".join(r["hidden"]) or r["kind"] for r in results})
     cols = ["(none)"] + list(SINGLES) + ["two or more"]
     short = {"(none)": "none", "adhesion": "adh", "flash_temperature": "flash", "microtexture": "micro",
@@ -506,12 +516,23 @@ def main(argv=None) -> int:
 
         if Path(args.out).is_file():
             results = json.loads(Path(args.out).read_text())
+    # a case that raised is tried again by the next run on the same file
+    results = [r for r in results if "error" not in r]
     done = {(r["index"]) for r in results}
     for i in range(args.start, args.start + args.n):
         if i in done or (kinds and SCHEDULE[i % len(SCHEDULE)] not in kinds):
             continue
-        case = draw(i, args.seed)
-        r = run(case)
+        try:
+            case = draw(i, args.seed)
+            r = run(case)
+        except Exception as exc:  # noqa: BLE001  (one case's failure must not end a study of hours)
+            # recorded and reported, not hidden: the summary lists it, and a later run retries it
+            results.append({"index": i, "kind": SCHEDULE[i % len(SCHEDULE)], "error": f"{type(exc).__name__}: {exc}",
+                            "traceback": traceback.format_exc()})
+            print(f"case {i:>3} {SCHEDULE[i % len(SCHEDULE)]:<8} RAISED {type(exc).__name__}: {exc}", flush=True)
+            if args.out:
+                json_text(results, args.out, overwrite=True)
+            continue
         results.append(r)
         print(f"case {i:>3} {case.kind:<8} hidden {'+'.join(r['hidden']) or '-':<36} ratio {r['ratio']:6.2f} "
               f"({r['distinguishable']:6.2f}, {_value(r, 'separable'):6.2f}) "
