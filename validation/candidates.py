@@ -415,7 +415,7 @@ def fit_candidate(eff, base: BaselineFit, settings: FitSettings, names=None) -> 
                 spent += released[3].n_evals
             else:
                 eff, model_c, cand, probe, u_c0, f_sig, starts = released
-                notes.update(dict.fromkeys(_released_notes(eff, starts, error)))
+                notes.update(dict.fromkeys(_released_notes(eff, cand, starts, error)))
     if f_sig is None:
         return Trial(effect=eff, free=(), n_evals=spent + probe.n_evals,
                      failed=_failed(name, "; ".join(list(probe.errors)[:2]) or "evaluation failed", bic0,
@@ -474,17 +474,14 @@ def _released_probe(eff, base: BaselineFit, settings: FitSettings):
     return eff_r, model_r, cand_r, probe, u0, probe.mu(u0), starts
 
 
-def _released_notes(eff, starts: dict, error: str) -> list[str]:
-    """What a candidate's notes say of the placeholders :func:`_released_probe` released."""
+def _released_notes(eff, free, starts: dict, error: str) -> list[str]:
+    """What a candidate's notes say of the placeholders :func:`_released_probe` released (``free``: its free
+    parameters, which carry the ranges searched)."""
     specs = {p.name: p for p in eff.parameters}
-    out = []
-    for name in starts:
-        p = specs[name]
-        lo, hi = p.plausible_range()
-        lo, hi = max(lo, float(p.bounds[0])), min(hi, float(p.bounds[1]))
-        out.append(f"{eff.name}.{name}: its placeholder ({p.sentinel_doc or 'computed'}) cannot be computed on these "
-                   f"data ({error}); fitted over its plausible range {lo:g} - {hi:g} instead")
-    return out
+    ranges = {q.name: (q.lo, q.hi) for q in free}
+    return [f"{eff.name}.{name}: its placeholder ({specs[name].sentinel_doc or 'computed'}) cannot be computed on "
+            f"these data ({error}); fitted over its plausible range {ranges[name][0]:g} - {ranges[name][1]:g} "
+            "instead" for name in starts]
 
 
 def finish_candidate(trial: Trial, base: BaselineFit, settings: FitSettings, *, s2: float, ranges,

@@ -307,13 +307,12 @@ def release_placeholders(effect):
         sentinel = getattr(p, "sentinel", None)
         if sentinel is None or not getattr(p, "fittable", True) or getattr(effect, p.name, None) != sentinel:
             continue
-        lo, hi = (float(b) for b in p.bounds)
-        plo, phi = p.plausible_range()
-        lo, hi = max(lo, plo), min(hi, phi)
-        if not (lo < hi) or lo <= sentinel <= hi:
+        try:
+            # the range a fit that names the parameter varies it over: its plausible range, without the placeholder
+            (fp,) = free_parameters(effect, names=[p.name])
+        except InputError:
             continue
-        log = bool(getattr(p, "log_scale", False)) and lo > 0
-        released[p.name] = math.sqrt(lo * hi) if log else 0.5 * (lo + hi)
+        released[p.name] = math.sqrt(fp.lo * fp.hi) if fp.log else 0.5 * (fp.lo + fp.hi)
     if not released:
         return None
     names = [q.name for q in free_parameters(effect)] + list(released)
