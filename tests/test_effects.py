@@ -152,6 +152,17 @@ def test_microtexture_extends_tail_with_fitted_hurst():
     assert any("extrapolated" in n for n in r.notes)
 
 
+def test_microtexture_cut_below_the_first_wavevector_is_refused_not_ignored():
+    """q1 <= q0 would remove every length scale: an error naming both, never the surface returned unchanged (which
+    made mu jump from the bare surface's value to 0 as q1 crossed q0)."""
+    measured = surfaces.PSD(np.geomspace(1e3, 1e5, 81), 1e-20 * np.geomspace(1e3, 1e5, 81) ** -3.6, q_r=1e5)
+    for q1 in (9e2, 1e3):
+        with pytest.raises(persson.InputError, match=r"q1 = (900|1000) rad/m lies at or below .* q0 = 1000"):
+            Microtexture(q1=q1).transform_surface(measured, None)
+    cut = Microtexture(q1=2e3).transform_surface(measured, None)
+    assert cut.q_range == pytest.approx((1e3, 2e3))
+
+
 def test_strain_softening_scales_the_modulus():
     e = StrainSoftening(storage_factor=0.4, loss_factor=0.6)
     m = e.transform_material(TREAD, None)

@@ -5,6 +5,7 @@ chi2(u) = a^2 (u - 0.2)^2 (u - 0.8)^2 sum x_i^2 + offset; the offsets of two loc
 """
 
 import numpy as np
+import pytest
 
 from validation.fitting import FreeParameter, ParameterSpace
 from validation.refit import GlobalFit, with_uncertainty
@@ -57,3 +58,32 @@ def test_a_far_worse_or_an_equal_optimum_is_not_called_almost_as_good():
     assert not any("another local optimum" in n for n in equal.notes)
     est = equal.estimates[0]
     assert est.interval[0] <= 0.2 and est.interval[1] >= 0.8 and "starts" in est.method
+
+
+def test_a_joint_fit_starts_with_parameters_a_member_fit_pushed_away_in_the_middle_of_their_plausible_range():
+    """The members of a set fitted alone may push a parameter onto a search bound or out of its plausible range to
+    stand in for the partner they lack; the joint fit's extra start puts each such parameter at the middle of its
+    plausible range (geometric for a log parameter) and leaves the others, a physical limit included, alone."""
+    from validation.refit import plausible_start
+
+    space = ParameterSpace([
+        FreeParameter("adhesion", "v_ref", 1e-12, 1e6, log=True, plausible=(1e-6, 1e2)),   # on the upper bound
+        FreeParameter("adhesion", "tau_f0", 0.0, 5e7, log=False, physical_limits=(0.0,),
+                      plausible=(0.0, 2e7)),                                               # on its physical limit
+        FreeParameter("micro", "hurst", 0.5, 1.0, log=False, plausible=(0.5, 1.0)),        # on the lower bound
+        FreeParameter("soft", "f", 0.05, 1.0, log=False, plausible=(0.1, 1.0)),            # outside plausible
+        FreeParameter("soft", "g", 0.05, 1.5, log=False, plausible=(0.1, 1.5)),            # fine
+    ])
+    u = np.array([1.0, 0.0, 0.0, space.params[3].to_u(0.07), space.params[4].to_u(0.8)])
+    out = plausible_start(space, u)
+    vals = space.values_from_u(out)
+    assert vals["adhesion.v_ref"] == pytest.approx(1e-2, rel=1e-9)          # sqrt(1e-6 * 1e2)
+    assert vals["adhesion.tau_f0"] == 0.0
+    assert vals["micro.hurst"] == pytest.approx(0.75)
+    assert vals["soft.f"] == pytest.approx(0.55)
+    assert out[4] == u[4]
+    # nothing to move: no extra start
+    assert plausible_start(space, np.array([0.5, 0.0, 0.5, 0.5, 0.5])) is None
+    # a plausible range given as a function of the data is evaluated on it
+    ranged = ParameterSpace([FreeParameter("a", "v", 1e-12, 1e6, log=True, plausible=lambda r: (r, 1e2 * r))])
+    assert ranged.params[0].from_u(plausible_start(ranged, np.array([1.0]), 1e-3)[0]) == pytest.approx(1e-2)

@@ -219,9 +219,24 @@ def effects():
             s = min(max((state.conditions.extra.get("texture", 0.0) - 0.03) / 0.02, 0.0), 1.0)
             return -s * self.h * _x(state) ** 2 - (1.0 - s) * 0.01 * _x(state)
 
+    @dataclass(frozen=True)
+    class Bump(Effect):
+        """A narrow peak b exp(-(x - c)^2 / (2 0.05^2)) at c, plausible over the speeds measured (0 <= c <= 1) and
+        searched far beyond: placed off the rows, it does nothing (an adhesion whose peak speed a fit has pushed
+        past every measured speed)."""
+
+        name = "test_bump"
+        parameters = (Parameter("b", 0.05, (0.0, 0.3), "1", "height", physical_limits=(0.0,)),
+                      Parameter("c", 0.5, (-10.0, 10.0), "1", "position", plausible=(0.0, 1.0)))
+        b: float = 0.05
+        c: float = 0.5
+
+        def friction_term(self, state):
+            return self.b * np.exp(-0.5 * ((_x(state) - self.c) / 0.05) ** 2)
+
     yield {"texture": Texture, "heat": Heat, "slope": Slope, "line": Line, "bend": Bend, "mimic": Mimic,
            "marker": Marker, "swing": Swing, "floor": Floor, "ramp": Ramp, "lean": Lean, "capped": Capped,
-           "ember": Ember}
+           "ember": Ember, "bump": Bump}
     base._REGISTRY = saved
 
 
@@ -832,3 +847,31 @@ def test_a_step_diagnosis_computes_a_candidates_intervals_when_read(effects):
     assert slope.fit.pending.ready and sum(told) >= spent
     assert recorded.estimates == slope.baseline_estimates + slope.estimates
     assert later.verdict == now.verdict and later.explanation == now.explanation
+
+
+def test_a_joint_refit_leaves_the_basin_where_a_members_own_fit_pushed_it_out_of_its_plausible_range(effects):
+    """Texture (a = 0.05) + bump (b = 0.08 at c = 0.5). The bump's own fit, made without the texture, left its
+    peak at c = 8, far past the speeds measured, where it does nothing: a local fit of the pair from the members'
+    values cannot move it (no gradient), and a design over the box of the three parameters rarely lands within a
+    peak's width of the truth. The joint refit also starts with every parameter a member pushed onto a search bound
+    or out of its plausible range at the middle of that range (c = 0.5), and reaches the least-squares optimum of
+    the pair (closed form at the true peak position: both effects are then linear in their heights)."""
+    from validation.diagnose import diagnose_single
+    from validation.select import SetSearch
+
+    base = persson.Model(SURFACE, TREAD)
+    texture, bump = effects["texture"], effects["bump"]
+    m = _data(base.with_effect(texture(a=0.05)).with_effect(bump(b=0.08, c=0.5)), 1)
+    dx = diagnose_single(base, m, [texture()])
+    search = SetSearch(base, (), dx.context)
+    search.record(dx, (), 0)
+    search.instances["test_bump"] = bump(b=0.2, c=8.0)
+    search.free["test_bump"] = ("b", "c")
+    pair = search.get(("test_texture", "test_bump"))
+    est = {e.key: e.value for e in pair.estimates}
+    assert est["test_bump.c"] == pytest.approx(0.5, abs=0.01)
+    x = np.log10(m.sliding_speed / 1e-3) / 3.0
+    chi2, (a, b) = _linear_chi2(m, base, [np.ones(m.n), np.exp(-0.5 * ((x - est["test_bump.c"]) / 0.05) ** 2)])
+    assert pair.rss == pytest.approx(chi2, rel=1e-3)
+    assert est["test_texture.a"] == pytest.approx(a, rel=1e-2) and est["test_bump.b"] == pytest.approx(b, rel=1e-2)
+    assert pair.plausible and validation.select.fits_at_noise(pair)

@@ -48,7 +48,7 @@ from .distributions import t_isf
 from .fitting import BudgetExhausted, Fitter, halton
 
 __all__ = ["BUDGET_NOTE", "Estimate", "GlobalFit", "ParameterCovariance", "global_fit", "with_uncertainty",
-           "issues_at", "DataRange", "data_range", "t_quantiles", "PROFILE_EVALS"]
+           "issues_at", "plausible_start", "DataRange", "data_range", "t_quantiles", "PROFILE_EVALS"]
 
 #: The note of a fit that stopped at its budget of model evaluations: its optimum may lie further on (a set search
 #: continues such fits where they could change the answer, :meth:`validation.select.SetSearch.resume`).
@@ -557,6 +557,38 @@ def with_uncertainty(fitter: Fitter, fit: GlobalFit, *, s2: float, ranges: DataR
 def issues_at(fitter: Fitter, u, ranges: DataRange | None = None) -> tuple:
     """Why the point ``u`` is implausible (search bounds, plausible ranges), before any uncertainty is computed."""
     return tuple(e.issue for e in _bare_estimates(fitter, np.asarray(u, dtype=float), ranges) if e.issue)
+
+
+def plausible_start(space, u, ranges: DataRange | None = None):
+    """``u`` with every coordinate that sits on a search bound (not a physical limit) or outside its parameter's
+    plausible range moved to the middle of that range (the geometric middle for a parameter varied in log10), or
+    None when no coordinate needs it.
+
+    A start for a joint fit whose values come from fits of its members alone: a parameter a member drove onto a
+    bound or out of its plausible range stood in for something the member could not fit, often its partner's work,
+    and a local fit from there may stay in that basin.
+
+    Parameters
+    ----------
+    space : validation.fitting.ParameterSpace
+    u : array_like
+        A point of the unit box (one coordinate per parameter of ``space``).
+    ranges : DataRange, optional
+        For plausible ranges given as functions of the data.
+    """
+    u = np.clip(np.asarray(u, dtype=float), 0.0, 1.0)
+    out = u.copy()
+    for j, p in enumerate(space.params):
+        x = p.from_u(u[j])
+        lo, hi = p.plausible_range(ranges)
+        lo, hi = max(lo, p.lo), min(hi, p.hi)
+        if not lo < hi:
+            continue
+        on_bound = (u[j] < BOUND_TOL or u[j] > 1 - BOUND_TOL) and not p.is_physical_limit(x)
+        outside = not (lo * (1 - 1e-9) - 1e-300 <= x <= hi * (1 + 1e-9) + 1e-300)
+        if on_bound or outside:
+            out[j] = p.to_u(math.sqrt(lo * hi) if p.log and lo > 0 else 0.5 * (lo + hi))
+    return None if np.array_equal(out, u) else out
 
 
 def _estimates(fitter, u, chi2, J, s2, good, ranges, profile, notes=None, dof=math.inf,

@@ -2,7 +2,11 @@ r"""Selection over sets of effects: which combination of candidate effects the d
 
 A set :math:`S` of effects added to the baseline is a model whose parameters -- the baseline's fitted ones and
 the free parameters of every effect in :math:`S` -- are refitted jointly from global starts
-(:func:`validation.refit.global_fit`), and judged by its BIC (Schwarz, Ann. Stat. 6, 461 (1978)). The search
+(:func:`validation.refit.global_fit`), and judged by its BIC (Schwarz, Ann. Stat. 6, 461 (1978)). A set fitted
+for the first time starts from its members' fitted values and, first among the others, from the same values with
+every parameter a member pushed onto a search bound or out of its plausible range moved to the middle of that range
+(:func:`validation.refit.plausible_start`): fitted alone, a member may stand in for the partner it lacks, and the
+joint fit from there can stay in that basin. The search
 (:func:`validation.improve`) is stepwise:
 
 1. **forward**: the diagnosis of the current set names the credible candidate that helps most (its joint refit is
@@ -103,7 +107,7 @@ from .calibration import SetFit, check_calibration
 from .candidates import KASS_RAFTERY_1995, SCHWARZ_1978, bic, fit_baseline
 from .deferred import Deferred, Lazy, is_ready, raw
 from .fitting import BudgetExhausted, Fitter, ParameterSpace, halton
-from .refit import BUDGET_NOTE
+from .refit import BUDGET_NOTE, plausible_start
 
 __all__ = ["EffectSet", "Selection", "SetSearch", "STAY", "EQUAL"]
 
@@ -459,6 +463,13 @@ class SetSearch:
                 if p.key in vals:
                     u[j] = p.to_u(vals[p.key])
             starts.append(u)
+        # the members' values come from fits without each other: a parameter one of them drove onto a search bound
+        # or out of its plausible range was standing in for its partner, and the joint fit from there can stay in
+        # that basin (an adhesion pushed to v_ref = 1e6 m/s by a microtexture's work): a start with those
+        # parameters in the middle of their plausible ranges comes first
+        fresh = plausible_start(space, space.u_of(model, ctx.settings.contact), ctx.ranges)
+        if fresh is not None:
+            starts.insert(0, fresh)
         return self._global_refit(effects, model, space, ctx.settings, starts, "joint refit")
 
     def _global_refit(self, effects: tuple, model, space, settings, starts, source: str) -> EffectSet:

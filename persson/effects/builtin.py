@@ -290,8 +290,14 @@ class Microtexture(Effect):
 
     def transform_surface(self, surface, conditions):
         lo, hi = (float(x) for x in surface.q_range)
+        if not self.q1 > lo:
+            # a cut-off below the roughness's first wavevector would leave no roughness at all, not the surface
+            # as it is
+            raise InputError(f"microtexture: q1 = {self.q1:.6g} rad/m lies at or below the surface's first "
+                             f"wavevector q0 = {lo:.6g} rad/m: it would remove every length scale of the roughness; "
+                             "expected q1 > q0")
         if self.q1 <= hi * (1 + 1e-12):
-            return surface.with_cutoff(q1=self.q1) if self.q1 > lo else surface
+            return surface.with_cutoff(q1=self.q1)
         if not hasattr(surface, "extrapolate"):
             raise InputError(f"microtexture: the surface {type(surface).__name__} cannot extrapolate its tail")
         try:

@@ -86,9 +86,10 @@ class GridSettings:
 
         Log-uniform with an odd number of nodes (so that every other node forms the uniform coarse grid of the
         error estimate; every fourth, the coarser grid, keeps the last node and may end with a shorter interval),
-        plus ``extra_q`` inside the range.
+        at least 9 (the coarser grid's quadratic rule needs three nodes: a surface cut to a fraction of a decade,
+        such as a microtexture cut-off just above q0), plus ``extra_q`` inside the range.
         """
-        n = max(3, int(math.ceil(self.q_per_decade * math.log10(q_end / q_start))) + 1)
+        n = max(9, int(math.ceil(self.q_per_decade * math.log10(q_end / q_start))) + 1)
         n += 1 - n % 2
         q = np.geomspace(q_start, q_end, n)
         q[0], q[-1] = q_start, q_end
