@@ -234,9 +234,33 @@ def effects():
         def friction_term(self, state):
             return self.b * np.exp(-0.5 * ((_x(state) - self.c) / 0.05) ** 2)
 
+    @dataclass(frozen=True)
+    class Level(Effect):
+        """A constant a, plausible from 0.03 to 0.06 (searched 0 - 0.3)."""
+
+        name = "test_level"
+        parameters = (Parameter("a", 0.04, (0.0, 0.3), "1", "constant", physical_limits=(0.0,),
+                                plausible=(0.03, 0.06)),)
+        a: float = 0.04
+
+        def friction_term(self, state):
+            return np.full_like(state.conditions.speed, self.a)
+
+    @dataclass(frozen=True)
+    class Tilt(Effect):
+        """k x, plausible from 0.03 to 0.1 (searched 0 - 1)."""
+
+        name = "test_tilt"
+        parameters = (Parameter("k", 0.05, (0.0, 1.0), "1", "slope", physical_limits=(0.0,),
+                                plausible=(0.03, 0.1)),)
+        k: float = 0.05
+
+        def friction_term(self, state):
+            return self.k * _x(state)
+
     yield {"texture": Texture, "heat": Heat, "slope": Slope, "line": Line, "bend": Bend, "mimic": Mimic,
            "marker": Marker, "swing": Swing, "floor": Floor, "ramp": Ramp, "lean": Lean, "capped": Capped,
-           "ember": Ember, "bump": Bump}
+           "ember": Ember, "bump": Bump, "level": Level, "tilt": Tilt}
     base._REGISTRY = saved
 
 
@@ -875,3 +899,28 @@ def test_a_joint_refit_leaves_the_basin_where_a_members_own_fit_pushed_it_out_of
     assert pair.rss == pytest.approx(chi2, rel=1e-3)
     assert est["test_texture.a"] == pytest.approx(a, rel=1e-2) and est["test_bump.b"] == pytest.approx(b, rel=1e-2)
     assert pair.plausible and validation.select.fits_at_noise(pair)
+
+
+def test_two_candidates_each_implausible_alone_are_fitted_together(effects):
+    """Level (a = 0.045, plausible 0.03 - 0.06) + tilt (k = 0.06, plausible 0.03 - 0.1). Alone, each takes the
+    other's part and leaves its plausible range (the level fits the mean, about 0.075; the tilt, forced through the
+    origin, about 0.13): both are significant, neither is credible, and the stepwise path adds nothing. The pair of
+    the significant candidates that are implausible alone is fitted jointly; it is credible, fits at the noise, and
+    its parameters are numpy's least squares."""
+    base = persson.Model(SURFACE, TREAD)
+    level, tilt = effects["level"], effects["tilt"]
+    m = _data(base.with_effect(level(a=0.045)).with_effect(tilt(k=0.06)), 1)
+    imp = validation.improve(base, m, candidates=[level(), tilt()])
+    dx0 = imp.steps[0].diagnosis
+    for name in ("test_level", "test_tilt"):
+        c = dx0.candidate(name)
+        assert c.significant and not c.plausible, imp.table_text()
+    assert dx0.verdict.verdict == "unexplained"
+    assert set(imp.added) == {"test_level", "test_tilt"} and imp.verdict == "explained", imp.table_text()
+    assert imp.steps[1].action == "explored"
+    x = np.log10(m.sliding_speed / 1e-3) / 3.0
+    chi2, (a, k) = _linear_chi2(m, base, [np.ones(m.n), x])
+    best = imp.selection.best
+    assert best.rss == pytest.approx(chi2, rel=1e-4)
+    est = {e.key: e.value for e in best.estimates}
+    assert est["test_level.a"] == pytest.approx(a, rel=1e-3) and est["test_tilt.k"] == pytest.approx(k, rel=1e-3)

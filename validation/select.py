@@ -27,11 +27,14 @@ joint fit from there can stay in that basin. The search
    where the two single fits together gain at least half of what the path gained (BIC) over the baseline --, the
    pairs of the better single fits first, within as many model evaluations as the path took. When no candidate
    was significant alone, every pair of credible candidates that changed the predictions alone is screened as in
-   item 5 (two effects that each fit too little alone may fit together). Last, within the same budget, each of
-   those significant candidates with every candidate whose parameters the data do not identify alone: such a
-   partner may act only once the first moves far from its own single fit (a flash temperature beside a
-   microtexture whose cut-off must reach several times past where it fitted alone), where neither the gain rule
-   nor a screen linearized at that single fit can see it. The best credible pair continues the
+   item 5 (two effects that each fit too little alone may fit together); when candidates were significant alone
+   but none credible, the pairs of the three best of them are fitted jointly first (each may stand in for the
+   partner it lacks: an adhesion whose peak speed runs off to 1e6 m/s beside a microtexture whose H sits on 1).
+   Last, within the same budget, each of the credible significant candidates with every candidate whose
+   parameters the data do not identify alone: such a partner may act only once the first moves far from its own
+   single fit (a flash temperature beside a microtexture whose cut-off must reach several times past where it
+   fitted alone), where neither the gain rule nor a screen linearized at that single fit can see it. The best
+   credible pair continues the
    search when it fits better than the path's set by more than :data:`STAY` BIC units (a step ``"explored"``),
    at most once.
 5. **pairs that tie**: a path that ends at the noise may have taken a look-alike of a pair whose second member
@@ -580,6 +583,18 @@ class SetSearch:
                     key = frozenset({a.effect, b.effect})
                     if key not in self.sets and key not in pairs and gain(a) + gain(b) >= need:
                         pairs[key] = ((a.effect, b.effect), min(a.bic, b.bic if b.status == "ok" else math.inf))
+            if not significant:
+                # every significant candidate is implausible alone, so the path added nothing: each may be standing
+                # in for a partner it lacks (an adhesion whose peak speed runs off to 1e6 m/s, a microtexture whose
+                # H sits on 1, while together they fit at the noise), and a partner may make it credible, as in
+                # the swaps; the pairs of the three best are fitted jointly, the better single fits first
+                aside = sorted((c for c in ok if c.significant and not self.sets[frozenset({c.effect})].plausible),
+                               key=lambda c: c.bic)[:top]
+                for i, a in enumerate(aside):
+                    for b in aside[i + 1:]:
+                        key = frozenset({a.effect, b.effect})
+                        if key not in self.sets and key not in pairs:
+                            pairs[key] = ((a.effect, b.effect), min(a.bic, b.bic))
         start = self.n_evals
         order = sorted(pairs.values(), key=lambda t: t[1])
         # superadditive pairs the gain rule cannot see: screened by a linearized joint fit; a candidate that changed
