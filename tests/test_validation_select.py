@@ -924,3 +924,36 @@ def test_two_candidates_each_implausible_alone_are_fitted_together(effects):
     assert best.rss == pytest.approx(chi2, rel=1e-4)
     est = {e.key: e.value for e in best.estimates}
     assert est["test_level.a"] == pytest.approx(a, rel=1e-3) and est["test_tilt.k"] == pytest.approx(k, rel=1e-3)
+
+
+def _mimic_not_credible(monkeypatch):
+    """Make the set {mimic} report a parameter on a search bound, as a set does whose own profiles, computed when
+    read, put a parameter out of the range searched where its step's quicker intervals had not (on a blind case an
+    adhesion whose peak speed ran off to 1e6 m/s while it stood in for a flash temperature + microtexture pair)."""
+    from validation.select import EffectSet
+
+    issues = EffectSet.issues.fget
+    monkeypatch.setattr(EffectSet, "issues", property(
+        lambda s: ("test_mimic.k = 1: on the upper search bound 1: the data push it out of the range searched",)
+        if s.effects == ("test_mimic",) else issues(s)))
+
+
+def test_a_path_whose_set_is_not_credible_explores_the_pairs_it_did_not_reach(effects, monkeypatch):
+    """Texture + heat (h = 0.015) fits better than the mimic the path took by more than 10 BIC units. With the
+    mimic's set not credible, the pairs are explored as for a path that ends short of the noise, the pair replaces
+    it, and the text says why."""
+    _mimic_not_credible(monkeypatch)
+    base, m, cands, imp = _weak_heat(effects, 0.015)
+    assert set(imp.added) == {"test_texture", "test_heat"} and imp.verdict == "explained", imp.table_text()
+    assert any(s.action == "explored" for s in imp.steps)
+    assert "test_mimic is not credible" in imp.stopped
+
+
+def test_a_best_set_that_is_not_credible_is_not_called_explained(effects, monkeypatch):
+    """h = 0.008: texture + heat only ties with the mimic, which stays the best set; not credible, it explains
+    nothing, and the verdict says so."""
+    _mimic_not_credible(monkeypatch)
+    base, m, cands, imp = _weak_heat(effects, 0.008)
+    assert imp.added == ("test_mimic",), imp.table_text()
+    assert imp.verdict == "unexplained" and imp.final.effect is None
+    assert "test_mimic is the best set the search found, but it is not credible" in imp.final.reason

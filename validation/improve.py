@@ -476,6 +476,21 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
         n_evals += dx.n_evaluations
         search.record(dx, current, len(steps) - 1)
         steps[-1] = replace(steps[-1], diagnosis=dx)
+    if current and not explored and not search.get(current).plausible:
+        # the set the path reached was judged credible on the intervals of its step's quick fits; its own profiles
+        # put a parameter on a search bound or out of its plausible range (an adhesion whose peak speed runs off
+        # past every measured speed while it stands in for a flash temperature + microtexture pair): the pairs
+        # the path did not reach are explored as for a path that ends short of the noise
+        explored = True
+        better = search.explore(current, steps[0].diagnosis, budget=n_evals + search.n_evals,
+                                progress=_sub(progress, "exploring pairs"))
+        if better is not None:
+            previous = current
+            current = _take("explored", current, better, steps, base_fit, search,
+                            _sub(progress, "checking the effects of the pair"))
+            stopped = (f"{' + '.join(previous)} is not credible (a parameter on a search bound or outside its "
+                       f"plausible range); {search.get(current).label}, found by exploring pairs, fits better by "
+                       "more than 10 BIC units")
     if stopped.startswith("explained") and not explored:
         # the path ended at the noise: a pair it never fitted may fit as well (its look-alike took the path) or
         # better; the screened pairs that may are fitted, and named among the equally supported sets
@@ -601,6 +616,14 @@ def _final_verdict(dx0: Diagnosis, selection: Selection, noise) -> Verdict:
         alts = tuple(s.label for s in selection.supported)
         v = judge(best.effects[0], best.effects, best.lack, best.pattern, best.not_identified, share,
                   best.bic - b.bic, noise_txt, (), alts)
+        if not best.plausible and v.verdict in ("explained", "partly_explained"):
+            # a set that fits only with a parameter pushed out of the range searched or of its plausible range
+            # explains nothing: as for a single candidate, the missing physics may not be in the list
+            v = replace(v, verdict="unexplained", effect=None, closest=None, effects=(),
+                        reason=(f"{best.label} is the best set the search found, but it is not credible: "
+                                f"{'; '.join(best.issues)}. It stands in for something else: the missing physics "
+                                "may not be in the candidate list, or an effect acts beyond the range its "
+                                f"parameters were searched in. ({v.reason})"))
     return with_calibration(v, selection.calibration)
 
 
