@@ -84,6 +84,9 @@ the one their verdict names and those with a parameter on a bound or out of its 
 their credibility (:func:`validation.candidates.finish_candidate` with ``defer``). The evaluations they spend are
 counted then (:meth:`SetSearch.spent`), so the budgets above count the fits and the intervals that were read.
 
+A set the path reached that turns out not credible once its own intervals are computed (its step judged it on
+quicker ones) has the pairs the path did not reach explored as in item 4 (:func:`validation.improve`).
+
 The search stops when the verdict on the current set says stop, and a final pass applies the rule to every effect:
 **an effect stays only if dropping it from the final joint model costs more than** :data:`STAY` **BIC units**
 ("very strong" evidence, Kass & Raftery, J. Am. Stat. Assoc. 90, 773 (1995)). The result names the best set and

@@ -15,7 +15,8 @@ Verdicts (the noise and the lack-of-fit test are those of :mod:`validation.noise
     interval spans the range searched): the effect is indicated, not established;
 ``"unexplained"``
     the baseline fails beyond the noise and no candidate is both significant and plausible, or the best one
-    removes less than :data:`PARTLY_SHARE` of the misfit above the noise (it is named as the closest);
+    removes less than :data:`PARTLY_SHARE` of the misfit above the noise (it is named as the closest); after
+    :func:`validation.improve`, also when the best set found is not credible;
 ``"undetermined"``
     there is no independent noise estimate (no ``mu_std``, no replicates, too few rows along series): the data
     cannot say whether anything is missing beyond the noise. Significant, plausible candidates are named as
