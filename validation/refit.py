@@ -575,6 +575,12 @@ def plausible_start(space, u, ranges: DataRange | None = None):
         A point of the unit box (one coordinate per parameter of ``space``).
     ranges : DataRange, optional
         For plausible ranges given as functions of the data.
+
+    Returns
+    -------
+    ndarray or None
+        The new point in the unit box, or None when every coordinate is on a physical limit or inside its
+        plausible range and off the search bounds.
     """
     u = np.clip(np.asarray(u, dtype=float), 0.0, 1.0)
     out = u.copy()
