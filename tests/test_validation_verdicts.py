@@ -209,3 +209,27 @@ def test_inside_the_measured_conditions_is_judged_on_the_combination():
     assert d[0] > 1 and d[2] > 1       # each value inside the measured ranges, the combinations not
     wet = validation.Measurements.from_arrays(slip=1.0, speed=2e-4, temperature=0.0, pressure=3e5, mu=0.0, wet=True)
     assert scaled_distance(wet, m)[0] == math.inf     # no wet row was measured
+
+
+@pytest.mark.parametrize("seed, marginal", [(2, True), (8, False)])
+def test_an_unexplained_verdict_on_a_marginal_misfit_without_pattern_says_to_check_the_noise(seed, marginal):
+    """The rows are the baseline itself plus noise 1.36 times the stated ``mu_std``: nothing is missing but the
+    noise is underestimated. The lack-of-fit test then fails (p = 0.006 with one draw, below 1e-3 with another)
+    with no pattern and no candidate taking the misfit up. A verdict that rests on a marginal misfit alone
+    (1e-3 < p < 0.01) says the noise estimate may be low; a strong misfit keeps the plain sentence."""
+    from validation.verdict import MARGINAL_P
+
+    v = np.geomspace(1e-2, 1.0, 12)
+    n = 3 * v.size
+    rows = validation.Measurements.from_arrays(slip=1.0, speed=np.tile(v, 3), temperature=np.repeat([0.0, 10.0, 20.0],
+                                               v.size), pressure=3e5, mu=np.full(n, 0.5), mu_std=np.full(n, 0.005))
+    base = persson.Model(SURFACE, TREAD)
+    mu = validation.predict(base, rows).mu + np.random.default_rng(seed).normal(0.0, 0.0068, n)
+    dx = validation.diagnose(base, rows.with_mu(np.round(mu, 6), mu_std=np.full(n, 0.005)), candidates=["adhesion"])
+    lack = dx.baseline.lack
+    assert dx.verdict.verdict == "unexplained" and not dx.baseline.pattern.found
+    assert (lack.p_value > MARGINAL_P) == marginal and lack.p_value < 0.01
+    assert ("the noise is underestimated" in dx.verdict.reason) == marginal
+    assert ("check the noise estimate first" in dx.verdict.reason) == marginal
+    assert dx.verdict.reason.endswith("check the noise estimate first." if marginal
+                                      else "Something outside the candidate list is missing.")

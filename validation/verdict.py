@@ -16,7 +16,9 @@ Verdicts (the noise and the lack-of-fit test are those of :mod:`validation.noise
 ``"unexplained"``
     the baseline fails beyond the noise and no candidate is both significant and plausible, or the best one
     removes less than :data:`PARTLY_SHARE` of the misfit above the noise (it is named as the closest); after
-    :func:`validation.improve`, also when the best set found is not credible;
+    :func:`validation.improve`, also when the best set found is not credible. A verdict that rests on a marginal
+    misfit alone (:data:`MARGINAL_P` < p < 0.01, no pattern, no candidate significant) says that the noise may be
+    underestimated;
 ``"undetermined"``
     there is no independent noise estimate (no ``mu_std``, no replicates, too few rows along series): the data
     cannot say whether anything is missing beyond the noise. Significant, plausible candidates are named as
@@ -44,6 +46,10 @@ from .predict import mostly_extrapolated
 
 __all__ = ["Verdict", "decide", "explain", "VERDICTS", "CLOSE_CALL", "PARTLY_SHARE", "misfit_share",
            "with_calibration", "with_outliers"]
+
+#: Lack-of-fit p-values above this (and below the test's 0.01) are marginal: an ``unexplained`` verdict that rests
+#: on such a misfit alone, with no pattern and no candidate taking it up, says the noise estimate may be low.
+MARGINAL_P = 1e-3
 
 VERDICTS = ("nothing_missing", "explained", "partly_explained", "unexplained", "undetermined")
 #: Delta BIC below which the top two candidates are a close call.
@@ -209,7 +215,14 @@ def decide(baseline, candidates, noise) -> Verdict:
         if implausible:
             reason += (" (significant only with implausible parameters: "
                        + "; ".join(f"{c.effect}: {', '.join(c.issues)}" for c in implausible[:3]) + ")")
-        reason += ". Something outside the candidate list is missing."
+        if not base_pat.found and not implausible and base_lack.p_value > MARGINAL_P:
+            # a small misfit with no shape, which no candidate takes up: as likely a noise estimate a little low
+            # as missing physics (a chance of the test's size on a null case)
+            reason += (f". Something outside the candidate list is missing, or the noise is underestimated: the "
+                       f"misfit is marginal (p = {base_lack.p_value:.2g}, residual / noise = {base_lack.ratio:.2f}) "
+                       "and shows no systematic pattern; check the noise estimate first.")
+        else:
+            reason += ". Something outside the candidate list is missing."
         return Verdict("unexplained", None, base_lack.p_value, base_pat.describe(), reason, close)
     reason = (f"The baseline is consistent with the noise ({base_lack.describe()}; {noise_txt}) and no candidate "
               "effect is both significant and plausible.")
