@@ -156,13 +156,15 @@ def test_band_of_the_first_decade_matches_the_reference_in_the_stiff_corner():
 
 
 @pytest.mark.parametrize("q1", [2.2e3, 2.6e3])
-def test_a_surface_spanning_a_fraction_of_a_decade_matches_the_reference(q1):
+@pytest.mark.parametrize("make, v, T, p", [(glassy, 10.0, 0.0, 0.1e6), (glassy, 30.0, -20.0, 0.02e6),
+                                          (soft, 1e-8, 80.0, 2e6)], ids=["glassy", "glassy cold fast", "soft"])
+def test_a_surface_spanning_a_fraction_of_a_decade_matches_the_reference(q1, make, v, T, p):
     """A PSD cut just above q0 (a microtexture's cut-off tried by a fit, a narrow band of a sweep) gets too few nodes
     per decade for three nested grids: the grid keeps at least 9 nodes, so that the coarser level of the error
     estimate still has the three its quadratic rule needs (with 3 or 5 the rule divided by zero)."""
     s = surfaces.SelfAffine(hurst=0.8, q0=2e3, q1=q1, hrms=2e-6)
-    ref = reference_friction(s, glassy(), 10.0, 0.0, 0.1e6)
-    r = persson.Model(s, glassy()).friction(10.0, temperature=0.0, pressure=0.1e6)
+    ref = reference_friction(s, make(), v, T, p)
+    r = persson.Model(s, make()).friction(v, temperature=T, pressure=p)
     assert r.mu_hysteresis == pytest.approx(ref.mu[0], rel=1e-3)
     assert r.contact_area == pytest.approx(ref.contact_area[0], rel=1e-3)
     assert r.error_estimate < persson.GridSettings().tolerance

@@ -85,6 +85,13 @@ class FreeParameter:
             return float(x) * math.log(10.0) * (math.log10(self.hi) - math.log10(self.lo))
         return self.hi - self.lo
 
+    def middle(self, lo: float | None = None, hi: float | None = None) -> float:
+        """The middle of ``[lo, hi]`` (default: the search bounds): geometric for a parameter varied in log10,
+        arithmetic otherwise -- the point of the unit box halfway between them."""
+        lo = self.lo if lo is None else float(lo)
+        hi = self.hi if hi is None else float(hi)
+        return math.sqrt(lo * hi) if self.log else 0.5 * (lo + hi)
+
     def plausible_range(self, data_range=None) -> tuple[float, float]:
         """The plausible (lo, hi) (callables evaluated on ``data_range``); the bounds when none is declared."""
         p = self.plausible
@@ -312,7 +319,7 @@ def release_placeholders(effect):
             (fp,) = free_parameters(effect, names=[p.name])
         except InputError:
             continue
-        released[p.name] = math.sqrt(fp.lo * fp.hi) if fp.log else 0.5 * (fp.lo + fp.hi)
+        released[p.name] = fp.middle()
     if not released:
         return None
     names = [q.name for q in free_parameters(effect)] + list(released)

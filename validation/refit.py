@@ -593,7 +593,7 @@ def plausible_start(space, u, ranges: DataRange | None = None):
         on_bound = (u[j] < BOUND_TOL or u[j] > 1 - BOUND_TOL) and not p.is_physical_limit(x)
         outside = not (lo * (1 - 1e-9) - 1e-300 <= x <= hi * (1 + 1e-9) + 1e-300)
         if on_bound or outside:
-            out[j] = p.to_u(math.sqrt(lo * hi) if p.log and lo > 0 else 0.5 * (lo + hi))
+            out[j] = p.to_u(p.middle(lo, hi))
     return None if np.array_equal(out, u) else out
 
 
