@@ -957,3 +957,6 @@ def test_a_best_set_that_is_not_credible_is_not_called_explained(effects, monkey
     assert imp.added == ("test_mimic",), imp.table_text()
     assert imp.verdict == "unexplained" and imp.final.effect is None
     assert "test_mimic is the best set the search found, but it is not credible" in imp.final.reason
+    # the loop stopped at the noise with the mimic; its stop text names the verdict that overrides that
+    assert imp.stopped.startswith("explained: with test_mimic"), imp.stopped
+    assert "the final verdict is unexplained: test_mimic is the best set the search found" in imp.stopped

@@ -157,7 +157,9 @@ class Improvement:
     noise : float
         Noise level of the first diagnosis (NaN without an independent estimate).
     stopped : str
-        Why the loop stopped.
+        Why the loop stopped; where it stopped at the noise ("explained: ...") but the final verdict says less
+        (``partly_explained``: a parameter not identified, or ``unexplained``: a set not credible), it ends with
+        that verdict and its reason.
     seconds : float
     name : str
     verdict : str
@@ -537,6 +539,10 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
     outliers = outlying_rows(measurements.mu - best.predicted, noise, measurements,
                              "the baseline" + "".join(f" + {e}" for e in best.effects))
     final = with_outliers(final, outliers)
+    if stopped.startswith("explained") and final.verdict != "explained":
+        # the loop stops at the noise; the verdict also weighs identification, credibility and the share of the
+        # misfit removed, and can say less: the stop text names it, so that the two never read as a contradiction
+        stopped = f"{stopped}; the final verdict is {final.verdict}: {final.reason}"
     # counted last: a set's intervals are computed when first read (validation.select.EffectSet)
     n_evals += search.n_evals
     return Improvement(steps=tuple(steps), model=selection.best.model, measurements=measurements, contact=contact,
