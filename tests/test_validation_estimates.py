@@ -61,6 +61,22 @@ def test_a_value_outside_its_plausible_range_is_not_credible_unless_the_data_lea
     assert e.issue == "" and not e.identified
 
 
+def test_a_value_outside_its_plausible_range_stays_credible_when_its_interval_reaches_into_the_range():
+    """As for a bound beyond the plausible range: a best value of 0.6 whose 68 % interval runs down to 0.45 has
+    plausible values (c <= 0.5) within one unit of chi^2 of the best, so the data do not demand c = 0.6. The fit
+    stays credible, the parameter identified, and the value carries a caveat; an interval that stops short of the
+    range (0.55 - 0.65) keeps the issue."""
+    e = _estimate(C, 0.6, 0.15, (0.45, 0.75), "quadratic", 0.3, None)
+    assert e.issue == "" and e.identified and e.one_sided == ""
+    assert e.caveat == "best value outside the plausible range 0 - 0.5; its 68 % interval reaches into it"
+    assert f"[{e.caveat}]" in e.describe() and e.as_dict()["caveat"] == e.caveat
+    e = _estimate(C, 0.6, 0.05, (0.55, 0.65), "quadratic", 0.3, None)
+    assert e.issue == "outside the plausible range 0 - 0.5" and e.caveat == ""
+    # a value without an interval yet (the bare estimate that decides which intervals to compute) keeps the issue
+    e = _estimate(C, 0.6, math.nan, (math.nan, math.nan), "none", 0.3, None)
+    assert e.issue == "outside the plausible range 0 - 0.5"
+
+
 @pytest.mark.parametrize("u", [0.0, 1.0])
 def test_a_physical_limit_is_no_issue(u):
     tau = FreeParameter(effect="adhesion", name="tau_f0", lo=0.0, hi=50e6, log=False, unit="Pa",

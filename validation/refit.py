@@ -128,6 +128,10 @@ class Estimate:
     note95 : str
         How the 95 % interval was found where that is not as described above (``""`` else): extrapolated from a
         profile that ran out of model evaluations.
+    caveat : str
+        ``""``, or why a credible value deserves a second look: its best value lies outside the plausible range but
+        its 68 % interval reaches into it (the data do not demand the implausible value, as for :attr:`one_sided`
+        at a search bound).
     """
 
     key: str
@@ -144,6 +148,7 @@ class Estimate:
     one_sided: str = ""
     interval95: tuple = Lazy(default=(math.nan, math.nan))
     note95: str = Lazy(default="")
+    caveat: str = ""
 
     @property
     def name(self) -> str:
@@ -179,6 +184,8 @@ class Estimate:
             txt += " [at its physical limit]"
         if self.issue:
             txt += f" [{self.issue}]"
+        if self.caveat:
+            txt += f" [{self.caveat}]"
         if self.one_sided:
             txt += (f" [not identified: bounded on one side only, the data allow any value {self.one_sided} (plausible "
                     "ones included)]")
@@ -193,12 +200,12 @@ class Estimate:
         -------
         dict
             ``value``, ``std``, ``interval``, ``method``, ``unit``, ``bound``, ``plausible``, ``issue``, ``search``,
-            ``identified``, ``one_sided``, ``interval95`` (the pairs as lists) and ``note95``.
+            ``identified``, ``one_sided``, ``interval95`` (the pairs as lists), ``note95`` and ``caveat``.
         """
         return {"value": self.value, "std": self.std, "interval": list(self.interval), "method": self.method,
                 "unit": self.unit, "bound": self.bound, "plausible": list(self.plausible), "issue": self.issue,
                 "search": list(self.search), "identified": self.identified, "one_sided": self.one_sided,
-                "interval95": list(self.interval95), "note95": self.note95}
+                "interval95": list(self.interval95), "note95": self.note95, "caveat": self.caveat}
 
 
 @dataclass(frozen=True, eq=False)
@@ -783,9 +790,18 @@ def _estimate(p, x, std, interval, method, uj, ranges) -> Estimate:
             elif not flat:
                 issue = (f"on the {'lower' if uj < 0.5 else 'upper'} search bound {b:g}: the data push it out of "
                          "the range searched")
+    caveat = ""
     if not issue and not flat and not one_sided and not (plo * (1 - 1e-9) - 1e-300 <= x <= phi * (1 + 1e-9) + 1e-300):
-        issue = f"outside the plausible range {plo:.3g} - {phi:.3g}"
-    return replace(est, bound=bound, issue=issue, one_sided=one_sided)
+        lo, hi = est.interval
+        if (method != "none" and math.isfinite(lo) and math.isfinite(hi) and lo <= phi * (1 + 1e-9) + 1e-300
+                and hi >= plo * (1 - 1e-9) - 1e-300):
+            # as for a bound beyond the plausible range: plausible values lie within one unit of chi^2 of the best,
+            # so the data do not demand the implausible value (a strain softening whose loss factor comes out at
+            # 0.07 with an interval up to 0.27, against a plausible range from 0.1)
+            caveat = f"best value outside the plausible range {plo:.3g} - {phi:.3g}; its 68 % interval reaches into it"
+        else:
+            issue = f"outside the plausible range {plo:.3g} - {phi:.3g}"
+    return replace(est, bound=bound, issue=issue, one_sided=one_sided, caveat=caveat)
 
 
 def _covariance(H: np.ndarray) -> np.ndarray:
