@@ -87,3 +87,11 @@ def test_a_joint_fit_starts_with_parameters_a_member_fit_pushed_away_in_the_midd
     # a plausible range given as a function of the data is evaluated on it
     ranged = ParameterSpace([FreeParameter("a", "v", 1e-12, 1e6, log=True, plausible=lambda r: (r, 1e2 * r))])
     assert ranged.params[0].from_u(plausible_start(ranged, np.array([1.0]), 1e-3)[0]) == pytest.approx(1e-2)
+    # with limits, a physical limit moves too (to 1e7, the middle of 0 - 2e7); dims restricts the coordinates moved
+    vals = space.values_from_u(plausible_start(space, u, limits=True))
+    assert vals["adhesion.tau_f0"] == pytest.approx(1e7) and vals["adhesion.v_ref"] == pytest.approx(1e-2, rel=1e-9)
+    only = plausible_start(space, u, dims=[1, 3], limits=True)
+    assert np.array_equal(only[[0, 2, 4]], u[[0, 2, 4]])
+    assert space.values_from_u(only)["adhesion.tau_f0"] == pytest.approx(1e7)
+    assert space.values_from_u(only)["soft.f"] == pytest.approx(0.55)
+    assert plausible_start(space, u, dims=[4], limits=True) is None

@@ -960,3 +960,45 @@ def test_a_best_set_that_is_not_credible_is_not_called_explained(effects, monkey
     # the loop stopped at the noise with the mimic; its stop text names the verdict that overrides that
     assert imp.stopped.startswith("explained: with test_mimic"), imp.stopped
     assert "the final verdict is unexplained: test_mimic is the best set the search found" in imp.stopped
+
+
+def test_a_step_candidate_fit_also_starts_with_the_sets_parameters_moved_off_their_limits(effects, monkeypatch):
+    """In a step of the improvement loop the baseline is a set fitted without the candidate, and the candidate's
+    screen varies the candidate's parameters only. A member on a physical limit may be standing in for the
+    candidate (case 9-19 of the blind study: a flash temperature held at q_m = q0 while it did an adhesion's work,
+    30 BIC units behind the basin of the truth): the candidate's fit gets one more start with that parameter in the
+    middle of its range (the texture's a: 0.15, the middle of 0 - 0.3) and the candidate's own values as given. A
+    baseline searched globally in the same diagnosis (the first step) gets no such start."""
+    from validation import candidates as C
+    from validation.diagnose import _baseline_params
+    from validation.fitting import ParameterSpace
+    from validation.predict import Predictor
+
+    plain = persson.Model(SURFACE, TREAD)
+    rows = _data(plain, 5)
+    rows = rows.with_mu(0.9 * rows.mu, mu_std=rows.mu_std)    # below the plain model: the texture's a goes to 0
+    settings = C.FitSettings(predictor=Predictor(rows, None), y=rows.mu, w=1.0 / rows.mu_std, sigma_known=True)
+    model = plain.with_effect(effects["texture"](a=0.0))
+    space = ParameterSpace(_baseline_params(model, ["test_texture.a"], None))
+    seen = []
+    real = C.global_fit
+
+    def spy(fitter, u_given, **kw):
+        seen.append((np.array(u_given), [np.array(s) for s in kw.get("extra_starts", ())]))
+        return real(fitter, u_given, **kw)
+
+    monkeypatch.setattr(C, "global_fit", spy)
+    for searched in (False, True):
+        base = C.fit_baseline(model, space, settings, global_search=searched)
+        assert base.u[0] == 0.0 and base.searched is searched
+        seen.clear()
+        trial = C.fit_candidate(effects["slope"](), base, settings)
+        assert trial.fit is not None
+        (u_given, extra), = seen
+        if searched:
+            assert extra == []
+        else:
+            (start,) = extra
+            values = trial.fitter.space.values_from_u(start)
+            assert values["test_texture.a"] == pytest.approx(0.15)
+            assert start[1] == u_given[1]

@@ -39,7 +39,7 @@ from . import distributions
 from .deferred import Deferred, Lazy
 from .errors import InputError
 from .fitting import Fitter, ParameterSpace, free_parameters, halton, release_placeholders
-from .refit import GlobalFit, global_fit, with_uncertainty
+from .refit import GlobalFit, data_range, global_fit, plausible_start, with_uncertainty
 
 __all__ = ["Baseline", "Candidate", "SIGNIFICANCE_RULE", "DELTA_BIC_THRESHOLD", "P_THRESHOLD", "bic",
            "fit_baseline", "fit_candidate", "finish_candidate", "FitSettings", "not_applicable", "note_kind",
@@ -446,7 +446,16 @@ def fit_candidate(eff, base: BaselineFit, settings: FitSettings, names=None) -> 
         # after a global search of the baseline's parameters, the design varies the candidate's own (the
         # baseline's stay at their optimum in the screen; every local fit is joint)
         dims = None if base.searched else np.arange(len(base.space), len(space))
-        fit = global_fit(fitter, u_given, seed=s.seed, n_local=s.n_local, screen_dims=dims)
+        extra = ()
+        if not base.searched and len(base.space):
+            # the baseline's values come from a fit without this candidate (a set of the improvement loop): one of
+            # them on a bound, a physical limit or out of its plausible range may have stood in for the candidate
+            # (a flash temperature held at q_m = q0 while it did an adhesion's work), and the screen does not move
+            # them; one more start has them in the middle of their plausible ranges
+            fresh = plausible_start(space, u_given, data_range(s.predictor.measurements, base.model.material),
+                                    dims=range(len(base.space)), limits=True)
+            extra = () if fresh is None else (fresh,)
+        fit = global_fit(fitter, u_given, seed=s.seed, n_local=s.n_local, screen_dims=dims, extra_starts=extra)
     except InputError as exc:
         return Trial(effect=eff, free=(), n_evals=evals + fitter.n_evals,
                      failed=_failed(name, str(exc), bic0, evals + fitter.n_evals))

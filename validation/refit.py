@@ -566,14 +566,16 @@ def issues_at(fitter: Fitter, u, ranges: DataRange | None = None) -> tuple:
     return tuple(e.issue for e in _bare_estimates(fitter, np.asarray(u, dtype=float), ranges) if e.issue)
 
 
-def plausible_start(space, u, ranges: DataRange | None = None):
+def plausible_start(space, u, ranges: DataRange | None = None, *, dims=None, limits: bool = False):
     """``u`` with every coordinate that sits on a search bound (not a physical limit) or outside its parameter's
     plausible range moved to the middle of that range (the geometric middle for a parameter varied in log10), or
     None when no coordinate needs it.
 
     A start for a joint fit whose values come from fits of its members alone: a parameter a member drove onto a
     bound or out of its plausible range stood in for something the member could not fit, often its partner's work,
-    and a local fit from there may stay in that basin.
+    and a local fit from there may stay in that basin. With ``limits``, a coordinate on a physical limit is moved
+    too: a legitimate optimum for the member alone (a flash temperature at q_m = q0, its largest heating) can be
+    the same stand-in once a partner joins, and a local fit does not leave a limit its gradient points at.
 
     Parameters
     ----------
@@ -582,22 +584,27 @@ def plausible_start(space, u, ranges: DataRange | None = None):
         A point of the unit box (one coordinate per parameter of ``space``).
     ranges : DataRange, optional
         For plausible ranges given as functions of the data.
+    dims : iterable of int, optional
+        The coordinates that may move (default all).
+    limits : bool
+        Also move the coordinates on a physical limit.
 
     Returns
     -------
     ndarray or None
-        The new point in the unit box, or None when every coordinate is on a physical limit or inside its
-        plausible range and off the search bounds.
+        The new point in the unit box, or None when no coordinate needs moving (every one off the search bounds,
+        or on a physical limit without ``limits``, and inside its plausible range).
     """
     u = np.clip(np.asarray(u, dtype=float), 0.0, 1.0)
     out = u.copy()
-    for j, p in enumerate(space.params):
+    for j in (range(len(space.params)) if dims is None else dims):
+        p = space.params[j]
         x = p.from_u(u[j])
         lo, hi = p.plausible_range(ranges)
         lo, hi = max(lo, p.lo), min(hi, p.hi)
         if not lo < hi:
             continue
-        on_bound = (u[j] < BOUND_TOL or u[j] > 1 - BOUND_TOL) and not p.is_physical_limit(x)
+        on_bound = (u[j] < BOUND_TOL or u[j] > 1 - BOUND_TOL) and (limits or not p.is_physical_limit(x))
         outside = not (lo * (1 - 1e-9) - 1e-300 <= x <= hi * (1 + 1e-9) + 1e-300)
         if on_bound or outside:
             out[j] = p.to_u(p.middle(lo, hi))
