@@ -462,3 +462,56 @@ def test_a_pickled_set_carries_its_intervals_computed():
     back = pickle.loads(pickle.dumps(s))
     assert calls == [1] and is_ready(back, "estimates") and back.estimates[0].interval == (0.9, 1.1)
     assert copy.deepcopy(s).estimates == s.estimates and calls == [1]
+
+
+class _EdgeTrap:
+    r"""A stand-in fitter of two parameters (a, b) whose profile in a is (t / 0.2)^2, t = a - 0.2, along the curved
+    valley b = 0.5 - 3 t + 6 t^2 (always above 0.12): the Gauss-Newton Hessian at the optimum extrapolates b
+    linearly, b = 0.5 - 3 t, which leaves the box beyond t = 1/6. On the edge b = 0 the effect vanishes, as an
+    adhesion's with tau_f0 = 0, and a refit started there has no gradient and stays, far above the profile."""
+
+    def __init__(self):
+        self.n_evals = 0
+        self.max_evals = 10**6
+        self.second = 0             # refits that follow one started on the edge: the profile's second starts
+        self.last_clipped = False
+
+    @staticmethod
+    def profile(a: float) -> float:
+        return ((a - 0.2) / 0.2) ** 2
+
+    @staticmethod
+    def valley(a: float) -> float:
+        t = a - 0.2
+        return 0.5 - 3.0 * t + 6.0 * t * t
+
+    def local(self, v, fixed=(), max_nfev=None):
+        import numpy as np
+
+        self.n_evals += 1
+        a, b = float(v[0]), float(v[1])
+        if self.last_clipped:
+            self.second += 1
+        self.last_clipped = b <= 0.0
+        if b <= 0.0:
+            return np.array([a, 0.0]), self.profile(a) + 1000.0 * self.valley(a) ** 2
+        return np.array([a, self.valley(a)]), self.profile(a)
+
+
+def test_a_profile_refit_whose_linearized_start_leaves_the_box_also_starts_from_the_last_point():
+    """The 95 % end of the stand-in's profile is exactly t = 1.96 x 0.2 (a = 0.592). A refit started where the
+    linearized valley crosses b = 0 (clipped onto the edge) stays on it and reads delta chi^2 more than 15 above the
+    profile; the profile takes the lower of that refit and one from the last point below the level without the
+    extrapolation, and finds the exact end (the refits from the edge alone put it at a = 0.38). The lower side runs
+    into the bound a = 0 below the level. The second refit spends evaluations of its own: the fitter's budget left
+    for the other profiles is what it was."""
+    import numpy as np
+
+    from validation.refit import Z95, _profile
+
+    # Hessian with the valley's slope db/da = -3 at the optimum and the profile's curvature 1 / 0.2^2 (Schur)
+    H = np.array([[25.0 + 9.0, 3.0], [3.0, 1.0]])
+    trap = _EdgeTrap()
+    lo, hi = _profile(trap, np.array([0.2, 0.5]), 0, 0.0, 1.0, 0.2, 2, H=H, level=Z95 ** 2)
+    assert lo == 0.0 and hi == pytest.approx(0.2 + 0.2 * Z95, abs=2e-3)
+    assert trap.second > 0 and trap.max_evals - trap.n_evals == 10**6 - (trap.n_evals - trap.second)

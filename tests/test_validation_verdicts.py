@@ -233,3 +233,28 @@ def test_an_unexplained_verdict_on_a_marginal_misfit_without_pattern_says_to_che
     assert ("check the noise estimate first" in dx.verdict.reason) == marginal
     assert dx.verdict.reason.endswith("check the noise estimate first." if marginal
                                       else "Something outside the candidate list is missing.")
+
+
+def test_an_explained_verdict_names_the_values_that_deserve_a_second_look():
+    """A credible model at the noise whose parameter has a caveat (best value outside its plausible range, with an
+    interval that reaches into it) is explained, and the reason and the JSON name the value; without caveats the
+    reason is the plain one, and a model that misses the noise does not list them (its reason says what is
+    missing)."""
+    from validation.noise import LackOfFit, Pattern
+    from validation.verdict import judge
+
+    lack = LackOfFit(test="chi2", statistic=20.0, dof=(24, math.inf), p_value=0.7, ratio=0.9, consistent=True)
+    flat = Pattern(found=False, findings=(), p_value=1.0, checked="group means")
+    cav = ("strain_softening.loss_factor = 0.074: best value outside the plausible range 0.1 - 1.5; its 68 % "
+           "interval reaches into it",)
+    v = judge("strain_softening", ("strain_softening",), lack, flat, (), 0.99, -40.0, "noise 0.01 from mu_std",
+              caveats=cav)
+    assert v.verdict == "explained" and v.caveats == cav
+    assert v.reason.endswith("A value deserves a second look: " + cav[0] + ".")
+    assert v.as_dict()["caveats"] == list(cav)
+    plain = judge("strain_softening", ("strain_softening",), lack, flat, (), 0.99, -40.0, "noise 0.01 from mu_std")
+    assert plain.caveats == () and "second look" not in plain.reason and plain.as_dict()["caveats"] == []
+    worse = LackOfFit(test="chi2", statistic=80.0, dof=(24, math.inf), p_value=1e-8, ratio=1.8, consistent=False)
+    v = judge("strain_softening", ("strain_softening",), worse, flat, (), 0.9, -40.0, "noise 0.01 from mu_std",
+              caveats=cav)
+    assert v.verdict == "partly_explained" and "second look" not in v.reason

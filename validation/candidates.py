@@ -216,6 +216,12 @@ class Candidate:
         return tuple(e.name for e in self.estimates if not e.identified)
 
     @property
+    def caveats(self) -> tuple:
+        """Credible fitted parameters that deserve a second look, as ``"effect.parameter = value: why"``
+        (:attr:`validation.refit.Estimate.caveat`)."""
+        return tuple(f"{e.key} = {e.value:.3g}: {e.caveat}" for e in self.estimates if e.caveat)
+
+    @property
     def identified(self) -> bool:
         """Whether the data limit every fitted parameter of the effect."""
         return not self.not_identified

@@ -201,7 +201,7 @@ class Diagnosis:
             "verdict_effect": v.effect, "verdict_effects": list(v.effects),
             "verdict_alternatives": list(v.alternatives), "verdict_reason": v.reason,
             "indicated": list(v.indicated), "not_identified": list(v.not_identified), "misfit_share": v.share,
-            "closest": v.closest,
+            "closest": v.closest, "caveats": list(v.caveats),
             "close_call": list(v.close_call[:2]) + [v.close_call[2]] if v.close_call else None,
             "noise_dof": ne.dof, "noise_description": ne.description,
             "citations": list(self.citations), "references": self.references(),

@@ -621,11 +621,11 @@ def _final_verdict(dx0: Diagnosis, selection: Selection, noise) -> Verdict:
         noise_txt = f"noise {noise.sigma:.3g} from {noise.source}"
         alts = tuple(s.label for s in selection.supported)
         v = judge(best.effects[0], best.effects, best.lack, best.pattern, best.not_identified, share,
-                  best.bic - b.bic, noise_txt, (), alts)
+                  best.bic - b.bic, noise_txt, (), alts, caveats=best.caveats)
         if not best.plausible and v.verdict in ("explained", "partly_explained"):
             # a set that fits only with a parameter pushed out of the range searched or of its plausible range
             # explains nothing: as for a single candidate, the missing physics may not be in the list
-            v = replace(v, verdict="unexplained", effect=None, closest=None, effects=(),
+            v = replace(v, verdict="unexplained", effect=None, closest=None, effects=(), caveats=(),
                         reason=(f"{best.label} is the best set the search found, but it is not credible: "
                                 f"{'; '.join(best.issues)}. It stands in for something else: the missing physics "
                                 "may not be in the candidate list, or an effect acts beyond the range its "

@@ -866,9 +866,13 @@ def _profile(fitter, u, j, chi2, s2, sd_u, k, max_steps: int = 4, refine: int = 
     the crossing by regula falsi in sqrt(delta chi2) (exact for a parabola, and converging for the linear rise of a
     profile at a bound). Each refit starts where the Gauss-Newton Hessian ``H`` at the optimum puts the other
     parameters for the new value of parameter j (:math:`\delta u_o = -H_{oo}^{-1} H_{oj}\,\delta u_j`), so that
-    correlated parameters need few iterations. The first step is at most :data:`FIRST_STEP` per unit of
-    :math:`\sqrt{\Delta\chi^2}` and the next ones at most four times the last, each refit starting from the last
-    point below the level; an upper bracket more than 16 times the level is halved in distance, not interpolated.
+    correlated parameters need few iterations; where that linear step leaves the box, the start is clipped onto its
+    edge, where an effect may vanish (an adhesion's tau_f0 = 0) and the refit stay, so a refit so started that reads
+    above ``level`` is repeated from the last point without the step (the lower of the two is the profile, each an
+    upper bound on it; the repeat's model evaluations are not taken from the budget of the other profiles). The
+    first step is at most :data:`FIRST_STEP` per unit of :math:`\sqrt{\Delta\chi^2}` and the next ones at most
+    four times the last, each refit starting from the last point below the level; an upper bracket more than 16
+    times the level is halved in distance, not interpolated.
 
     ``memo`` (a dict shared by the profiles of one fit) keeps every profile point, so that a profile at a higher
     ``level`` starts from the furthest point below it and brackets with the nearest one above. Where the model
@@ -895,10 +899,28 @@ def _profile(fitter, u, j, chi2, s2, sd_u, k, max_steps: int = 4, refine: int = 
         def delta(t, start):
             v = start.copy()
             v[j] = u[j] + sign * t
+            plain = v.copy()
+            clipped = False
             if cond is not None:
-                v[others] = np.clip(start[others] + cond * (v[j] - start[j]), 0.0, 1.0)
+                moved = start[others] + cond * (v[j] - start[j])
+                clipped = bool(np.any((moved < 0.0) | (moved > 1.0)))
+                v[others] = np.clip(moved, 0.0, 1.0)
             if k > 1:
                 v, c = fitter.local(v, fixed=(j,), max_nfev=6 * k)
+                if clipped and (c - chi2) / s2 >= level:
+                    # a linearized start that left the box lands on its edge, where an effect may vanish (an
+                    # adhesion's tau_f0 = 0): the others then have no gradient and the refit stays there, far above
+                    # the profile, and would end the interval. The last point's values without the extrapolation
+                    # are a second start, the lower refit the profile (each is an upper bound on it); its
+                    # evaluations are its own, so that the other profiles keep the budget they had
+                    n0, cap = fitter.n_evals, fitter.max_evals
+                    fitter.max_evals = max(cap, n0) + 6 * k * k
+                    try:
+                        v2, c2 = fitter.local(plain, fixed=(j,), max_nfev=6 * k)
+                    finally:
+                        fitter.max_evals = cap + (fitter.n_evals - n0)
+                    if c2 < c:
+                        v, c = v2, c2
             else:
                 c = fitter.chi2(v)
             d = (c - chi2) / s2

@@ -222,6 +222,13 @@ class EffectSet:
         """Parameters of the added effects whose 68 % interval spans the range searched."""
         return tuple(e.key for e in self.estimates if not e.identified and e.key.partition(".")[0] in self.effects)
 
+    @property
+    def caveats(self) -> tuple:
+        """Credible parameters of the added effects that deserve a second look, as ``"effect.parameter = value:
+        why"`` (:attr:`validation.refit.Estimate.caveat`)."""
+        return tuple(f"{e.key} = {e.value:.3g}: {e.caveat}" for e in self.estimates
+                     if e.caveat and e.key.partition(".")[0] in self.effects)
+
     def parameters(self) -> dict:
         """``"effect.parameter" -> value`` of every fitted parameter."""
         if self.fitted is not None:

@@ -104,6 +104,10 @@ class Verdict:
     outliers : str
         Rows farther from the verdict's model than noise would put any row, in words; empty when there are none
         (:mod:`validation.outliers`).
+    caveats : tuple of str
+        Parameters of the explaining effects that are credible but deserve a second look, each as
+        ``"effect.parameter = value: why"`` (a best value outside the plausible range whose 68 % interval reaches into
+        it, :attr:`validation.refit.Estimate.caveat`); the reason names them too.
     """
 
     verdict: str
@@ -120,6 +124,7 @@ class Verdict:
     effects: tuple = ()
     calibration: str = ""
     outliers: str = ""
+    caveats: tuple = ()
 
     @property
     def headline(self) -> str:
@@ -141,14 +146,14 @@ class Verdict:
         dict
             ``verdict``, ``effect``, ``effects``, ``lack_of_fit_p``, ``remaining_pattern``, ``reason``,
             ``alternatives``, ``indicated``, ``not_identified``, ``share``, ``closest``, ``calibration`` (the rival
-            calibration error in words, empty when none) and ``outliers`` (the outlying rows in words, empty when
-            none).
+            calibration error in words, empty when none), ``outliers`` (the outlying rows in words, empty when
+            none) and ``caveats`` (credible parameters that deserve a second look, empty when none).
         """
         return {"verdict": self.verdict, "effect": self.effect, "effects": list(self.effects),
                 "lack_of_fit_p": self.lack_of_fit_p, "remaining_pattern": self.remaining_pattern,
                 "reason": self.reason, "alternatives": list(self.alternatives), "indicated": list(self.indicated),
                 "not_identified": list(self.not_identified), "share": self.share, "closest": self.closest,
-                "calibration": self.calibration, "outliers": self.outliers}
+                "calibration": self.calibration, "outliers": self.outliers, "caveats": list(self.caveats)}
 
 
 def with_calibration(verdict: Verdict, check) -> Verdict:
@@ -204,7 +209,7 @@ def decide(baseline, candidates, noise) -> Verdict:
         share = misfit_share(baseline.rss, baseline.n_params, best.rss, baseline.n_params + best.n_params, n, noise,
                              sigma_known)
         return judge(best.effect, (best.effect,), best.lack, best.pattern, best.not_identified, share,
-                     best.delta_bic, noise_txt, close, alts)
+                     best.delta_bic, noise_txt, close, alts, caveats=best.caveats)
     if base_fails:
         why = []
         if not base_lack.consistent:
@@ -229,17 +234,23 @@ def decide(baseline, candidates, noise) -> Verdict:
     return Verdict("nothing_missing", None, base_lack.p_value, base_pat.describe(), reason, close)
 
 
-def judge(name, effects, lack, pattern, not_identified, share, delta_bic, noise_txt, close=(), alts=()) -> Verdict:
+def judge(name, effects, lack, pattern, not_identified, share, delta_bic, noise_txt, close=(), alts=(), *,
+          caveats=()) -> Verdict:
     """The verdict on a credible model (a candidate, or a set of effects): ``explained`` when it fits the noise
     and the data identify its parameters, else ``partly_explained`` or ``unexplained`` by the share of the misfit
-    above the noise it removes (module docstring)."""
+    above the noise it removes (module docstring). ``caveats``: its credible parameters that deserve a second look
+    (``"effect.parameter = value: why"``), named in an ``explained`` verdict's reason."""
     fits = lack.consistent and not pattern.found
     words = " + ".join(effects)
     if fits and not not_identified:
         reason = (f"With {words} the residual is at the noise level ({lack.describe()}; {noise_txt}) "
                   "and shows no systematic pattern.")
+        if caveats:
+            # credible, but a reader taking the value at face value would take an implausible one
+            reason += (f" {'A value deserves' if len(caveats) == 1 else 'Values deserve'} a second look: "
+                       + "; ".join(caveats) + ".")
         return Verdict("explained", name, lack.p_value, pattern.describe(), reason, close, alts, share=share,
-                       effects=tuple(effects))
+                       effects=tuple(effects), caveats=tuple(caveats))
     if fits:
         reason = (f"With {words} the residual is at the noise level ({lack.describe()}; {noise_txt}), but the "
                   f"data do not identify {', '.join(not_identified)} (the 68 % interval spans the whole range "
