@@ -866,10 +866,11 @@ def _profile(fitter, u, j, chi2, s2, sd_u, k, max_steps: int = 4, refine: int = 
     the crossing by regula falsi in sqrt(delta chi2) (exact for a parabola, and converging for the linear rise of a
     profile at a bound). Each refit starts where the Gauss-Newton Hessian ``H`` at the optimum puts the other
     parameters for the new value of parameter j (:math:`\delta u_o = -H_{oo}^{-1} H_{oj}\,\delta u_j`), so that
-    correlated parameters need few iterations; where that linear step leaves the box, the start is clipped onto its
-    edge, where an effect may vanish (an adhesion's tau_f0 = 0) and the refit stay, so a refit so started that reads
-    above ``level`` is repeated from the last point without the step (the lower of the two is the profile, each an
-    upper bound on it; the repeat's model evaluations are not taken from the budget of the other profiles). The
+    correlated parameters need few iterations. Where that linear step leaves the box, the start is clipped onto its
+    edge, where an effect may vanish (an adhesion's tau_f0 = 0) and a refit started there stays: a refit so started
+    that reads above ``level`` is repeated from the last point without the step (the lower of the two is the
+    profile, each an upper bound on it; the repeat's model evaluations are not taken from the other profiles'
+    budget). The
     first step is at most :data:`FIRST_STEP` per unit of :math:`\sqrt{\Delta\chi^2}` and the next ones at most
     four times the last, each refit starting from the last point below the level; an upper bracket more than 16
     times the level is halved in distance, not interpolated.
