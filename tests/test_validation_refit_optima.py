@@ -95,3 +95,15 @@ def test_a_joint_fit_starts_with_parameters_a_member_fit_pushed_away_in_the_midd
     assert space.values_from_u(only)["adhesion.tau_f0"] == pytest.approx(1e7)
     assert space.values_from_u(only)["soft.f"] == pytest.approx(0.55)
     assert plausible_start(space, u, dims=[4], limits=True) is None
+
+
+def test_a_second_optimum_inside_the_95_percent_range_is_inside_the_95_percent_interval():
+    """The profile at the second optimum's value is at most its chi^2 (the other parameters refitted can only do
+    better), 2.5 above the best: inside the 95 % level 3.84, so the 95 % interval reaches it, while the local
+    interval around the best optimum alone stops short of it. One 9 units worse is outside the 95 % level and
+    leaves the interval as it was."""
+    toy = _Toy()
+    near = with_uncertainty(toy, _fit(toy, 2.5), s2=1.0, profile=False).estimates[0]
+    far = with_uncertainty(_Toy(), _fit(_Toy(), 9.0), s2=1.0, profile=False).estimates[0]
+    assert far.interval95[1] < 0.8 and far.interval == near.interval
+    assert near.interval95[0] == far.interval95[0] and near.interval95[1] == pytest.approx(0.8)

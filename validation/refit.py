@@ -499,7 +499,7 @@ def with_uncertainty(fitter: Fitter, fit: GlobalFit, *, s2: float, ranges: DataR
         try:
             est = _estimates(fitter, u, c, J, s2_eff, good, ranges, profile, notes=out, dof=dof,
                              reserve=budget is None if reserve is None else reserve, defer95=defer95 or defer,
-                             on_evals=on_evals)
+                             on_evals=on_evals, optima=fit.optima)
         except BudgetExhausted:
             out["the uncertainty stopped at its budget of model evaluations"] = None
             return _bare_estimates(fitter, u, ranges), out, False
@@ -612,12 +612,13 @@ def plausible_start(space, u, ranges: DataRange | None = None, *, dims=None, lim
 
 
 def _estimates(fitter, u, chi2, J, s2, good, ranges, profile, notes=None, dof=math.inf,
-               reserve: bool = False, only=None, defer95: bool = False, on_evals=None) -> tuple:
+               reserve: bool = False, only=None, defer95: bool = False, on_evals=None, optima=()) -> tuple:
     """The estimates of every parameter at the optimum ``u`` (module docstring, items 2-4); ``reserve``: each
     side of each profile gets :data:`PROFILE_EVALS` model evaluations per parameter beyond the fitter's budget;
     ``only`` (a set of indices): the 68 % intervals of those parameters alone, the others bare, no 95 % ones;
     ``defer95``: the 95 % intervals computed when first read (with the budget left now; ``on_evals`` is told what
-    they spent), their notes in each estimate's ``note95`` only."""
+    they spent), their notes in each estimate's ``note95`` only; ``optima``: the ``(chi2, u)`` of the local optima
+    the search found, those within the 95 % level of ``chi2`` inside each 95 % interval."""
     w = fitter.w
     Jw = J * w[:, None]
     H = Jw.T @ Jw / s2
@@ -666,6 +667,7 @@ def _estimates(fitter, u, chi2, J, s2, good, ranges, profile, notes=None, dof=ma
     # the 95 % intervals after every 68 % one, so that their profiles never take the evaluations a 68 % profile
     # (and with it the judgement identified / not identified) needs
     left = fitter.max_evals - fitter.n_evals
+    near95 = [np.asarray(v, dtype=float) for cv, v in optima if (cv - chi2) / s2 <= z95 * z95]
 
     def intervals95() -> dict:
         if defer95:
@@ -684,6 +686,11 @@ def _estimates(fitter, u, chi2, J, s2, good, ranges, profile, notes=None, dof=ma
                 if notes is not None and not defer95:
                     notes[f"the 95 % interval of {p.key} is {note}"] = None
             lo95_u, hi95_u = min(lo95_u, lo_u), max(hi95_u, hi_u)  # never narrower than the 68 % interval
+            # a local optimum within the 95 % level bounds the profile there from above (the others refitted can
+            # only do better): its value belongs to the 95 % interval, which a profile stepping out from the best
+            # optimum stops short of when the likelihood rises between the two
+            for g in near95:
+                lo95_u, hi95_u = min(lo95_u, g[j]), max(hi95_u, g[j])
             found[i] = ((p.from_u(lo95_u), p.from_u(hi95_u)), note)
         if defer95 and on_evals is not None:
             on_evals(fitter.n_evals - n0)
