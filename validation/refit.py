@@ -605,7 +605,7 @@ def plausible_start(space, u, ranges: DataRange | None = None, *, dims=None, lim
         if not lo < hi:
             continue
         on_bound = (u[j] < BOUND_TOL or u[j] > 1 - BOUND_TOL) and (limits or not p.is_physical_limit(x))
-        outside = not (lo * (1 - 1e-9) - 1e-300 <= x <= hi * (1 + 1e-9) + 1e-300)
+        outside = not _within(x, lo, hi)
         if on_bound or outside:
             out[j] = p.to_u(p.middle(lo, hi))
     return None if np.array_equal(out, u) else out
@@ -796,19 +796,15 @@ def _estimate(p, x, std, interval, method, uj, ranges) -> Estimate:
             lo, hi = est.interval
             # a bound beyond the plausible range, with plausible values inside the interval: the bound is not
             # demanded (a bound that is itself plausible, reached with a narrow interval, is pushed against)
-            implausible_bound = b > phi * (1 + 1e-9) + 1e-300 if uj > 0.5 else b < plo * (1 - 1e-9) - 1e-300
-            reaches = (math.isfinite(lo) and math.isfinite(hi) and lo <= phi * (1 + 1e-9) + 1e-300
-                       and hi >= plo * (1 - 1e-9) - 1e-300)
-            if not flat and implausible_bound and reaches and method != "none":
+            implausible_bound = not _within(b, -math.inf, phi) if uj > 0.5 else not _within(b, plo, math.inf)
+            if not flat and implausible_bound and _reaches(est.interval, plo, phi) and method != "none":
                 one_sided = f"below {hi:.3g}" if uj < 0.5 else f"above {lo:.3g}"
             elif not flat:
                 issue = (f"on the {'lower' if uj < 0.5 else 'upper'} search bound {b:g}: the data push it out of "
                          "the range searched")
     caveat = ""
-    if not issue and not flat and not one_sided and not (plo * (1 - 1e-9) - 1e-300 <= x <= phi * (1 + 1e-9) + 1e-300):
-        lo, hi = est.interval
-        if (method != "none" and math.isfinite(lo) and math.isfinite(hi) and lo <= phi * (1 + 1e-9) + 1e-300
-                and hi >= plo * (1 - 1e-9) - 1e-300):
+    if not issue and not flat and not one_sided and not _within(x, plo, phi):
+        if method != "none" and _reaches(est.interval, plo, phi):
             # as for a bound beyond the plausible range: plausible values lie within one unit of chi^2 of the best,
             # so the data do not demand the implausible value (a strain softening whose loss factor comes out at
             # 0.07 with an interval up to 0.27, against a plausible range from 0.1)
@@ -816,6 +812,19 @@ def _estimate(p, x, std, interval, method, uj, ranges) -> Estimate:
         else:
             issue = f"outside the plausible range {plo:.3g} - {phi:.3g}"
     return replace(est, bound=bound, issue=issue, one_sided=one_sided, caveat=caveat)
+
+
+def _within(x: float, lo: float, hi: float) -> bool:
+    """Whether ``x`` lies in the plausible range ``lo`` - ``hi``, with a relative tolerance of 1e-9 (a value
+    written with fewer digits than the range's end is still inside)."""
+    return lo * (1 - 1e-9) - 1e-300 <= x <= hi * (1 + 1e-9) + 1e-300
+
+
+def _reaches(interval, lo: float, hi: float) -> bool:
+    """Whether the finite ``interval`` overlaps the plausible range ``lo`` - ``hi`` (tolerance of :func:`_within`)."""
+    a, b = interval
+    return (math.isfinite(a) and math.isfinite(b) and a <= hi * (1 + 1e-9) + 1e-300
+            and b >= lo * (1 - 1e-9) - 1e-300)
 
 
 def _covariance(H: np.ndarray) -> np.ndarray:
@@ -877,10 +886,9 @@ def _profile(fitter, u, j, chi2, s2, sd_u, k, max_steps: int = 4, refine: int = 
     edge, where an effect may vanish (an adhesion's tau_f0 = 0) and a refit started there stays: a refit so started
     that reads above ``level`` is repeated from the last point without the step (the lower of the two is the
     profile, each an upper bound on it; the repeat's model evaluations are not taken from the other profiles'
-    budget). The
-    first step is at most :data:`FIRST_STEP` per unit of :math:`\sqrt{\Delta\chi^2}` and the next ones at most
-    four times the last, each refit starting from the last point below the level; an upper bracket more than 16
-    times the level is halved in distance, not interpolated.
+    budget). The first step is at most :data:`FIRST_STEP` per unit of :math:`\sqrt{\Delta\chi^2}` and the next
+    ones at most four times the last, each refit starting from the last point below the level; an upper bracket more
+    than 16 times the level is halved in distance, not interpolated.
 
     ``memo`` (a dict shared by the profiles of one fit) keeps every profile point, so that a profile at a higher
     ``level`` starts from the furthest point below it and brackets with the nearest one above. Where the model
