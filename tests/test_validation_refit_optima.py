@@ -107,3 +107,69 @@ def test_a_second_optimum_inside_the_95_percent_range_is_inside_the_95_percent_i
     far = with_uncertainty(_Toy(), _fit(_Toy(), 9.0), s2=1.0, profile=False).estimates[0]
     assert far.interval95[1] < 0.8 and far.interval == near.interval
     assert near.interval95[0] == far.interval95[0] and near.interval95[1] == pytest.approx(0.8)
+
+
+class _TwoBasins:
+    """The attributes of validation.fitting.Fitter that global_fit uses, on chi2(u) = min(1 + 10 |u - A|^2,
+    10 |u - B|^2) in the unit square: a local fit ends at the centre of the basin it starts in."""
+
+    A, B = np.array([0.2, 0.2]), np.array([0.8, 0.7])
+
+    def __init__(self):
+        self.space = ParameterSpace([FreeParameter("toy", "a", 0.0, 1.0, log=False),
+                                     FreeParameter("toy", "b", 0.0, 1.0, log=False)])
+        self.y = np.zeros(3)
+        self.n_evals = 0
+        self.best = (np.inf, None)
+        self.errors = {}
+        self.local_starts = []
+
+    def _terms(self, u):
+        u = np.asarray(u, dtype=float)
+        return 1.0 + 10.0 * float(np.sum((u - self.A) ** 2)), 10.0 * float(np.sum((u - self.B) ** 2))
+
+    def chi2(self, u):
+        self.n_evals += 1
+        c = min(self._terms(u))
+        if c < self.best[0]:
+            self.best = (c, np.asarray(u, dtype=float).copy())
+        return c
+
+    def screen(self, points):
+        return sorted(((self.chi2(p), np.asarray(p, dtype=float)) for p in points), key=lambda t: t[0])
+
+    def local(self, u0, known=()):
+        self.local_starts.append(np.asarray(u0, dtype=float).copy())
+        a, b = self._terms(u0)
+        u = self.A if a <= b else self.B
+        return u.copy(), self.chi2(u)
+
+    def mu(self, u):
+        return np.zeros(3)
+
+    def notes_at(self, u):
+        return ()
+
+    def model_at(self, u):
+        return None
+
+    def contact_at(self, u):
+        return None
+
+
+def test_a_start_next_to_an_earlier_one_gives_its_local_fit_to_a_distinct_design_point():
+    """Two starts within DISTINCT of each other (every coordinate) lead into the same basin: the later one is not
+    fitted again, and the search runs as many local fits as before (the given values, the distinct extra start and
+    the best distinct design points, n_local + extra starts in all), none of them from next to another."""
+    from validation.refit import DISTINCT, global_fit
+
+    toy = _TwoBasins()
+    given, twin, other = np.array([0.2, 0.2]), np.array([0.25, 0.16]), np.array([0.2, 0.9])
+    fit = global_fit(toy, given, n_local=3, extra_starts=[twin, other])
+    starts = toy.local_starts
+    assert len(starts) == 3 + 2 and fit.n_starts == 5
+    assert np.array_equal(starts[0], given) and any(np.array_equal(s, other) for s in starts)
+    assert not any(np.max(np.abs(s - twin)) < 1e-12 for s in starts)
+    assert all(np.max(np.abs(p - q)) > DISTINCT for i, p in enumerate(starts) for q in starts[:i])
+    # the design reaches the better basin: the fit is its centre, chi2 0
+    assert np.allclose(fit.u, toy.B) and fit.chi2 == 0.0

@@ -873,13 +873,10 @@ def test_a_step_diagnosis_computes_a_candidates_intervals_when_read(effects):
     assert later.verdict == now.verdict and later.explanation == now.explanation
 
 
-def test_a_joint_refit_leaves_the_basin_where_a_members_own_fit_pushed_it_out_of_its_plausible_range(effects):
-    """Texture (a = 0.05) + bump (b = 0.08 at c = 0.5). The bump's own fit, made without the texture, left its
-    peak at c = 8, far past the speeds measured, where it does nothing: a local fit of the pair from the members'
-    values cannot move it (no gradient), and a design over the box of the three parameters rarely lands within a
-    peak's width of the truth. The joint refit also starts with every parameter a member pushed onto a search bound
-    or out of its plausible range at the middle of that range (c = 0.5), and reaches the least-squares optimum of
-    the pair (closed form at the true peak position: both effects are then linear in their heights)."""
+def _joint_refit_of_texture_and_bump(effects, b: float, c: float) -> None:
+    """Data with texture (a = 0.05) + bump (b = 0.08 at c = 0.5); the texture diagnosed, the bump's own fit left
+    at ``b``, ``c``: the joint refit of the pair must reach its least-squares optimum (closed form at the fitted peak
+    position: both effects are then linear in their heights), credible and at the noise."""
     from validation.diagnose import diagnose_single
     from validation.select import SetSearch
 
@@ -889,16 +886,64 @@ def test_a_joint_refit_leaves_the_basin_where_a_members_own_fit_pushed_it_out_of
     dx = diagnose_single(base, m, [texture()])
     search = SetSearch(base, (), dx.context)
     search.record(dx, (), 0)
-    search.instances["test_bump"] = bump(b=0.2, c=8.0)
+    search.instances["test_bump"] = bump(b=b, c=c)
     search.free["test_bump"] = ("b", "c")
     pair = search.get(("test_texture", "test_bump"))
     est = {e.key: e.value for e in pair.estimates}
     assert est["test_bump.c"] == pytest.approx(0.5, abs=0.01)
     x = np.log10(m.sliding_speed / 1e-3) / 3.0
-    chi2, (a, b) = _linear_chi2(m, base, [np.ones(m.n), np.exp(-0.5 * ((x - est["test_bump.c"]) / 0.05) ** 2)])
+    chi2, (a, h) = _linear_chi2(m, base, [np.ones(m.n), np.exp(-0.5 * ((x - est["test_bump.c"]) / 0.05) ** 2)])
     assert pair.rss == pytest.approx(chi2, rel=1e-3)
-    assert est["test_texture.a"] == pytest.approx(a, rel=1e-2) and est["test_bump.b"] == pytest.approx(b, rel=1e-2)
+    assert est["test_texture.a"] == pytest.approx(a, rel=1e-2) and est["test_bump.b"] == pytest.approx(h, rel=1e-2)
     assert pair.plausible and validation.select.fits_at_noise(pair)
+
+
+def test_a_joint_refit_leaves_the_basin_where_a_members_own_fit_pushed_it_out_of_its_plausible_range(effects):
+    """Texture (a = 0.05) + bump (b = 0.08 at c = 0.5). The bump's own fit, made without the texture, left its
+    peak at c = 8, far past the speeds measured, where it does nothing: a local fit of the pair from the members'
+    values cannot move it (no gradient), and a design over the box of the three parameters rarely lands within a
+    peak's width of the truth. The joint refit also starts with every parameter a member pushed onto a search bound
+    or out of its plausible range at the middle of that range (c = 0.5), and reaches the least-squares optimum of
+    the pair (closed form at the true peak position: both effects are then linear in their heights)."""
+    _joint_refit_of_texture_and_bump(effects, b=0.2, c=8.0)
+
+
+def test_a_joint_refit_starts_a_member_its_own_fit_switched_off_from_its_declared_defaults(effects):
+    """Texture (a = 0.05) + bump (b = 0.08 at c = 0.5). The bump's own fit ended at zero height (its physical limit,
+    a legitimate optimum: the bump alone did nothing useful) with its peak at c = 0.9, inside its plausible range:
+    nothing there is on a search bound or implausible, so no parameter is moved to the middle of its range, and at
+    zero height the peak's position has no gradient. The joint refit also starts the bump at its declared defaults
+    (b = 0.05, c = 0.5, where a candidate's diagnosis starts) and reaches the least-squares optimum of the pair."""
+    _joint_refit_of_texture_and_bump(effects, b=0.0, c=0.9)
+
+
+def test_the_default_start_moves_only_the_members_own_parameters_and_keeps_placeholders():
+    """The members' parameters go to their declared defaults (flash temperature: macro_scale_ratio = 2; microtexture:
+    q1 = 1e7 rad/m); a baseline's parameter stays, and so does a parameter whose default is a placeholder computed
+    from the model (the microtexture's Hurst exponent 0: fitted on the PSD's last decade). Nothing to move: None."""
+    from persson import effects as fx
+    from validation.fitting import FreeParameter, ParameterSpace
+    from validation.select import _default_start
+
+    flash, micro = fx.get("flash_temperature", macro_scale_ratio=125.0), fx.get("microtexture", q1=1.3e5, hurst=0.8)
+
+    class _Model:
+        def effect(self, name):
+            return {"flash_temperature": flash, "microtexture": micro}[name]
+
+    space = ParameterSpace([FreeParameter("adhesion", "tau_f0", 0.0, 5e7, log=False),
+                            FreeParameter("microtexture", "q1", 1e2, 1e10, log=True),
+                            FreeParameter("microtexture", "hurst", 0.0, 1.0, log=False),
+                            FreeParameter("flash_temperature", "macro_scale_ratio", 1.0, 1e3, log=True)])
+    u = np.array([space.params[0].to_u(2e6), space.params[1].to_u(1.3e5), 0.8, space.params[3].to_u(125.0)])
+    out = _default_start(space, _Model(), u, ("microtexture", "flash_temperature"))
+    vals = space.values_from_u(out)
+    assert vals["flash_temperature.macro_scale_ratio"] == pytest.approx(2.0)
+    assert vals["microtexture.q1"] == pytest.approx(1e7)
+    assert out[0] == u[0] and out[2] == u[2]
+    only = _default_start(space, _Model(), u, ("flash_temperature",))
+    assert np.array_equal(only[:3], u[:3])
+    assert _default_start(space, _Model(), out, ("microtexture", "flash_temperature")) is None
 
 
 def test_two_candidates_each_implausible_alone_are_fitted_together(effects):

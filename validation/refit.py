@@ -54,6 +54,9 @@ __all__ = ["BUDGET_NOTE", "Estimate", "GlobalFit", "ParameterCovariance", "globa
 #: continues such fits where they could change the answer, :meth:`validation.select.SetSearch.resume`).
 BUDGET_NOTE = "the fit stopped at its budget of model evaluations (the best point found is used)"
 
+#: Distance in u (every coordinate) within which two starts of a global fit count as one: the later is not fitted.
+DISTINCT = 0.1
+
 #: Distance in u below which a fitted parameter is "on its bound".
 BOUND_TOL = 2e-3
 
@@ -370,7 +373,14 @@ def global_fit(fitter: Fitter, u_given, *, seed: int = 0, n_screen: int | None =
         if k == 0:
             fitter.mu(np.zeros(0))
         else:
-            starts = [u_given] + [np.clip(np.asarray(s, dtype=float), 0, 1) for s in extra_starts]
+            starts = [u_given]
+            for s in extra_starts:
+                # a start next to an earlier one leads into the same basin: its local fit would pay again for the
+                # same optimum (three sets' values that all held an effect where it does nothing), and its place
+                # goes to a distinct design point
+                s = np.clip(np.asarray(s, dtype=float), 0, 1)
+                if all(np.max(np.abs(s - q)) > DISTINCT for q in starts):
+                    starts.append(s)
             fitter.screen(starts)
             dims = np.arange(k) if screen_dims is None else np.asarray(screen_dims, dtype=int)
             n_scr = n_screen if n_screen is not None else min(3 + 5 * dims.size, 24)
@@ -387,7 +397,7 @@ def global_fit(fitter: Fitter, u_given, *, seed: int = 0, n_screen: int | None =
             for c, p in screened:
                 if len(starts) >= n_local + len(extra_starts):
                     break
-                if math.isfinite(c) and all(np.max(np.abs(p - q)) > 0.1 for q in starts):
+                if math.isfinite(c) and all(np.max(np.abs(p - q)) > DISTINCT for q in starts):
                     starts.append(p)
             known = []
             for s in starts:

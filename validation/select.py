@@ -6,8 +6,9 @@ the free parameters of every effect in :math:`S` -- are refitted jointly from gl
 for the first time starts from its members' fitted values and, first among the others, from the same values with
 every parameter a member pushed onto a search bound or out of its plausible range moved to the middle of that range
 (:func:`validation.refit.plausible_start`): fitted alone, a member may stand in for the partner it lacks, and the
-joint fit from there can stay in that basin. The search
-(:func:`validation.improve`) is stepwise:
+joint fit from there can stay in that basin; next, from the same values with the members' own parameters at their
+declared defaults (a member that did nothing alone is left where it still does nothing, with no gradient to leave
+by). The search (:func:`validation.improve`) is stepwise:
 
 1. **forward**: the diagnosis of the current set names the credible candidate that helps most (its joint refit is
    the new set);
@@ -480,7 +481,15 @@ class SetSearch:
         # or out of its plausible range was standing in for its partner, and the joint fit from there can stay in
         # that basin (an adhesion pushed to v_ref = 1e6 m/s by a microtexture's work): a start with those
         # parameters in the middle of their plausible ranges comes first
-        fresh = plausible_start(space, space.u_of(model, ctx.settings.contact), ctx.ranges)
+        given = space.u_of(model, ctx.settings.contact)
+        # an effect that did nothing alone (a flash temperature without the microtexture that gives it a signature)
+        # was left wherever its fit wandered, often where it still does nothing, and a local fit has no gradient
+        # there to leave by: the members' own parameters at their declared defaults (where each candidate's
+        # diagnosis starts) are a start too
+        informed = _default_start(space, model, given, effects)
+        if informed is not None:
+            starts.insert(0, informed)
+        fresh = plausible_start(space, given, ctx.ranges)
         if fresh is not None:
             starts.insert(0, fresh)
         return self._global_refit(effects, model, space, ctx.settings, starts, "joint refit")
@@ -898,6 +907,24 @@ class SetSearch:
                          separations_in_range=tuple(seps_in), visited=tuple(visited), removed=tuple(self.removed),
                          explored=tuple(self.explored), resumed=tuple(self.resumed), reduced=tuple(self.reduced),
                          calibration=calibration)
+
+
+def _default_start(space, model, u, effects) -> np.ndarray | None:
+    """``u`` with the parameters of the ``effects`` at their declared defaults (:class:`persson.effects.Parameter`,
+    the values a candidate's diagnosis starts from), or None where that changes nothing. A default that is a
+    placeholder (a value computed from the model, such as ``q1 = 0``) keeps the coordinate as it is."""
+    out = np.clip(np.asarray(u, dtype=float), 0.0, 1.0).copy()
+    for j, p in enumerate(space.params):
+        if p.effect not in effects:
+            continue
+        try:
+            declared = {q.name: q for q in model.effect(p.effect).parameters}[p.name]
+        except (LookupError, AttributeError, ValueError):
+            continue
+        if declared.sentinel is not None and declared.default == declared.sentinel:
+            continue
+        out[j] = p.to_u(declared.default)
+    return None if np.array_equal(out, np.clip(np.asarray(u, dtype=float), 0.0, 1.0)) else out
 
 
 def fits_at_noise(s: EffectSet) -> bool:
