@@ -77,6 +77,21 @@ def test_a_value_outside_its_plausible_range_stays_credible_when_its_interval_re
     assert e.issue == "outside the plausible range 0 - 0.5"
 
 
+def test_caveats_and_issues_name_the_parameter_its_value_and_its_unit():
+    """The phrases a verdict quotes: ``effect.parameter = value unit: why``, the unit left out when it is "1"; only
+    the estimates with a caveat (or an issue) are named."""
+    from dataclasses import replace
+
+    from validation.refit import GlobalFit
+
+    cav = _estimate(C, 0.6, 0.15, (0.45, 0.75), "quadratic", 0.3, None)
+    bad = _estimate(C, 0.6, 0.05, (0.55, 0.65), "quadratic", 0.3, None)
+    plain = replace(cav, unit="1")
+    assert GlobalFit.caveats_of([cav, bad]) == (f"adhesion.c = 0.6 1/decade^2: {cav.caveat}",)
+    assert GlobalFit.caveats_of([plain]) == (f"adhesion.c = 0.6: {cav.caveat}",)
+    assert GlobalFit.issues_of([cav, bad]) == (f"adhesion.c = 0.6 1/decade^2: {bad.issue}",)
+
+
 @pytest.mark.parametrize("u", [0.0, 1.0])
 def test_a_physical_limit_is_no_issue(u):
     tau = FreeParameter(effect="adhesion", name="tau_f0", lo=0.0, hi=50e6, log=False, unit="Pa",

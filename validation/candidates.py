@@ -217,9 +217,9 @@ class Candidate:
 
     @property
     def caveats(self) -> tuple:
-        """Credible fitted parameters that deserve a second look, as ``"effect.parameter = value: why"``
+        """Credible fitted parameters that deserve a second look, as ``"effect.parameter = value unit: why"``
         (:attr:`validation.refit.Estimate.caveat`)."""
-        return tuple(f"{e.key} = {e.value:.3g}: {e.caveat}" for e in self.estimates if e.caveat)
+        return GlobalFit.caveats_of(self.estimates)
 
     @property
     def identified(self) -> bool:

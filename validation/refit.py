@@ -328,8 +328,13 @@ class GlobalFit:
     @staticmethod
     def issues_of(estimates) -> tuple:
         """The phrases of :attr:`issues` for the estimates ``estimates`` (e.g. those of ``credibility``)."""
-        return tuple(f"{e.key} = {e.value:.3g}{(' ' + e.unit) if e.unit and e.unit != '1' else ''}: {e.issue}"
-                     for e in estimates if e.issue)
+        return tuple(f"{_named(e)}: {e.issue}" for e in estimates if e.issue)
+
+    @staticmethod
+    def caveats_of(estimates) -> tuple:
+        """``"effect.parameter = value unit: why"`` of each estimate among ``estimates`` that is credible but
+        deserves a second look (:attr:`Estimate.caveat`)."""
+        return tuple(f"{_named(e)}: {e.caveat}" for e in estimates if e.caveat)
 
     @property
     def n_effective(self) -> int:
@@ -359,7 +364,8 @@ def global_fit(fitter: Fitter, u_given, *, seed: int = 0, n_screen: int | None =
     n_local : int
         Local fits from the given values and the best distinct design points.
     extra_starts : sequence of array_like
-        Further starts fitted besides (e.g. a previous fit).
+        Further starts fitted besides (e.g. a previous fit); one within :data:`DISTINCT` of an earlier start (every
+        coordinate) is not fitted, and its local fit goes to the next distinct design point.
     screen_dims : sequence of int, optional
         The coordinates the design varies (default all); the others stay at ``u_given`` in the screen (e.g. the
         baseline's parameters, already at the optimum of a previous global fit), and every local fit is joint.
@@ -822,6 +828,11 @@ def _estimate(p, x, std, interval, method, uj, ranges) -> Estimate:
         else:
             issue = f"outside the plausible range {plo:.3g} - {phi:.3g}"
     return replace(est, bound=bound, issue=issue, one_sided=one_sided, caveat=caveat)
+
+
+def _named(e) -> str:
+    """``"effect.parameter = value unit"`` of an estimate (no unit for a dimensionless one)."""
+    return f"{e.key} = {e.value:.3g}{(' ' + e.unit) if e.unit and e.unit != '1' else ''}"
 
 
 def _within(x: float, lo: float, hi: float) -> bool:

@@ -114,7 +114,7 @@ from .calibration import SetFit, check_calibration
 from .candidates import KASS_RAFTERY_1995, SCHWARZ_1978, bic, fit_baseline
 from .deferred import Deferred, Lazy, is_ready, raw
 from .fitting import BudgetExhausted, Fitter, ParameterSpace, halton
-from .refit import BUDGET_NOTE, plausible_start
+from .refit import BUDGET_NOTE, GlobalFit, plausible_start
 
 __all__ = ["EffectSet", "Selection", "SetSearch", "STAY", "EQUAL"]
 
@@ -225,10 +225,9 @@ class EffectSet:
 
     @property
     def caveats(self) -> tuple:
-        """Credible parameters of the added effects that deserve a second look, as ``"effect.parameter = value:
-        why"`` (:attr:`validation.refit.Estimate.caveat`)."""
-        return tuple(f"{e.key} = {e.value:.3g}: {e.caveat}" for e in self.estimates
-                     if e.caveat and e.key.partition(".")[0] in self.effects)
+        """Credible parameters of the added effects that deserve a second look, as ``"effect.parameter = value
+        unit: why"`` (:attr:`validation.refit.Estimate.caveat`)."""
+        return GlobalFit.caveats_of(e for e in self.estimates if e.key.partition(".")[0] in self.effects)
 
     def parameters(self) -> dict:
         """``"effect.parameter" -> value`` of every fitted parameter."""
@@ -913,7 +912,8 @@ def _default_start(space, model, u, effects) -> np.ndarray | None:
     """``u`` with the parameters of the ``effects`` at their declared defaults (:class:`persson.effects.Parameter`,
     the values a candidate's diagnosis starts from), or None where that changes nothing. A default that is a
     placeholder (a value computed from the model, such as ``q1 = 0``) keeps the coordinate as it is."""
-    out = np.clip(np.asarray(u, dtype=float), 0.0, 1.0).copy()
+    u = np.clip(np.asarray(u, dtype=float), 0.0, 1.0)
+    out = u.copy()
     for j, p in enumerate(space.params):
         if p.effect not in effects:
             continue
@@ -924,7 +924,7 @@ def _default_start(space, model, u, effects) -> np.ndarray | None:
         if declared.sentinel is not None and declared.default == declared.sentinel:
             continue
         out[j] = p.to_u(declared.default)
-    return None if np.array_equal(out, np.clip(np.asarray(u, dtype=float), 0.0, 1.0)) else out
+    return None if np.array_equal(out, u) else out
 
 
 def fits_at_noise(s: EffectSet) -> bool:

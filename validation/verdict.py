@@ -106,8 +106,8 @@ class Verdict:
         (:mod:`validation.outliers`).
     caveats : tuple of str
         Parameters of the explaining effects that are credible but deserve a second look, each as
-        ``"effect.parameter = value: why"`` (a best value outside the plausible range whose 68 % interval reaches into
-        it, :attr:`validation.refit.Estimate.caveat`); the reason names them too.
+        ``"effect.parameter = value unit: why"`` (a best value outside the plausible range whose 68 % interval reaches
+        into it, :attr:`validation.refit.Estimate.caveat`); the reason names them too.
     """
 
     verdict: str
@@ -239,7 +239,7 @@ def judge(name, effects, lack, pattern, not_identified, share, delta_bic, noise_
     """The verdict on a credible model (a candidate, or a set of effects): ``explained`` when it fits the noise
     and the data identify its parameters, else ``partly_explained`` or ``unexplained`` by the share of the misfit
     above the noise it removes (module docstring). ``caveats``: its credible parameters that deserve a second look
-    (``"effect.parameter = value: why"``), named in an ``explained`` verdict's reason."""
+    (``"effect.parameter = value unit: why"``), named in an ``explained`` verdict's reason."""
     fits = lack.consistent and not pattern.found
     words = " + ".join(effects)
     if fits and not not_identified:
