@@ -80,7 +80,9 @@ class Step:
         ``"resumed"`` (a set whose fit had stopped at its budget of model evaluations and, continued, fits better
         than the path's by more than 10 BIC units; ``added`` and ``removed`` as for ``"explored"``), or
         ``"reduced"`` (a subset of a set within reach of the path's that fits better by more than 10 BIC units;
-        ``added`` and ``removed`` as for ``"explored"``).
+        ``added`` and ``removed`` as for ``"explored"``), or ``"preferred"`` (a set fitted on the way that fits
+        better than the answer with every effect earning its place, or a credible one within 10 BIC units of an
+        answer that is not credible; ``added`` and ``removed`` as for ``"explored"``).
     removed : str or None
         The effect removed (or swapped out) at this step.
     alternatives : tuple of str
@@ -118,7 +120,7 @@ class Step:
             return f"- {self.removed}"
         if self.action == "swapped":
             return f"{self.removed} -> {self.added}"
-        if self.action in ("explored", "resumed", "reduced"):
+        if self.action in ("explored", "resumed", "reduced", "preferred"):
             if self.removed and self.added:
                 return f"{self.removed} -> {self.added} ({self.action})"
             return f"+ {self.added} ({self.action})" if self.added else f"- {self.removed} ({self.action})"
@@ -524,6 +526,19 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
         if better is not None:
             current = _take(action, current, better, steps, base_fit, search, _sub(progress, checking))
             stopped = f"{stopped}; then {search.get(current).label}, {why}"
+    if current:
+        # the best set fitted is the answer: one off the path may fit better by less than the 10 units a step needs,
+        # and an answer that is not credible explains nothing, so a credible set the data support as well takes its
+        # place (the one it stands in for, often)
+        credible = search.get(current).plausible
+        better = search.prefer(current, progress=_sub(progress, "the best set fitted"))
+        if better is not None:
+            previous = current
+            current = _take("preferred", current, better, steps, base_fit, search,
+                            _sub(progress, "checking the effects of the best set"))
+            stopped = (f"{stopped}; then {search.get(current).label}, " + (
+                f"which fits better than {' + '.join(previous)} with every effect earning its place" if credible else
+                f"credible and within 10 BIC units of {' + '.join(previous)}, which is not credible"))
     probe = None
     if diagnose_options.get("probe", True):
         from .ambiguity import Probe

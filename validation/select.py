@@ -51,9 +51,10 @@ by). The search (:func:`validation.improve`) is stepwise:
    evaluations; where the bound comes within :data:`EQUAL` of the path's set (a
    pair that contains the path's set: better by more than :data:`STAY`), two bounded Gauss-Newton steps of the
    pair itself give a value it reaches, and the pairs that reach within :data:`EQUAL` of that limit are refitted
-   jointly, the most promising first, within as many model evaluations as the path took. A pair
-   that ties is named among the equally supported sets; one better by more than :data:`STAY` replaces the path's
-   set (as in step 4). The screen serves step 4 too, for the pairs the gain rule leaves out.
+   jointly, the most promising first, within as many model evaluations as the path took. A pair that ties is
+   named among the equally supported sets (and is the answer where it fits better, item 8); one better by more
+   than :data:`STAY` replaces the path's set (as in step 4). The screen serves step 4 too, for the pairs the gain
+   rule leaves out.
 6. **fits stopped at their budget**: a fit that runs out of model evaluations (40 + 25 k for k parameters) reports
    the best point it reached, so its BIC is only an upper bound. A candidate fitted on top of a set varies its own
    parameters in its design, and the local fits that start there can run out before they leave the set's values
@@ -76,6 +77,16 @@ by). The search (:func:`validation.improve`) is stepwise:
    subsets of the better sets first, within half the model evaluations the search took. A credible subset that
    fits better than the answer by more than :data:`STAY` replaces it (a step ``"reduced"``); the others count for
    the equally supported sets. Done under the conditions of item 6.
+8. **the best set fitted**: the path's answer is the set its steps reached, and a set fitted on the way off the
+   path (a pair the screen of item 5 fitted) can fit better by less than :data:`STAY`, so that no step above took
+   it (an adhesion that the path took, on three parameters, against the flash temperature + microtexture pair it
+   stands in for, on two, 3.9 BIC units better). And an answer with a parameter on a search bound or outside its
+   plausible range explains nothing (the verdict on it is ``unexplained``), even where it fits best. So at the end
+   of the search, the fitted set with the lowest BIC that is credible and whose every effect earns its place
+   (:data:`STAY`) replaces the answer where it fits better than the answer (lower BIC), or, when the answer is not
+   credible, where it comes within :data:`EQUAL` BIC units of it (the data support both, only one of them
+   physically): a step ``"preferred"``. An answer replaced that is not credible is then set aside, one that is
+   credible is named among the equally supported sets.
 
 The intervals of a set fitted here (its profile likelihoods, often costlier than the fit) are computed when first
 read (:class:`EffectSet`): for the sets reported, and for a set whose credibility depends on them (a parameter on a
@@ -298,6 +309,10 @@ class Selection:
     reduced : tuple of str
         What refitting the subsets of the sets within reach of the best (:meth:`SetSearch.reduce`) found, in words:
         a subset that fits better than the path's set, or that it stopped at its budget (empty when neither).
+    preferred : tuple of str
+        A set fitted on the way that took the place of the search's answer (:meth:`SetSearch.prefer`), in words:
+        one that fits better with every effect earning its place, or a credible one within :data:`EQUAL` BIC units
+        of an answer that is not credible (empty when none did).
     calibration : validation.calibration.CalibrationCheck or None
         A gain and a zero offset of the measured mu fitted on top of each subset of the best set, an offset of the
         recorded temperatures and a factor on the recorded speeds on the baseline and on the subsets one effect
@@ -317,6 +332,7 @@ class Selection:
     resumed: tuple = ()
     reduced: tuple = ()
     calibration: object = None
+    preferred: tuple = ()
 
     @property
     def equally_supported(self) -> bool:
@@ -340,7 +356,7 @@ class Selection:
             ``drop_costs``, ``set_separations`` and ``set_separations_in_measured_range``
             (:meth:`validation.probe.Separation.as_dict`), ``sets`` (every set fitted: ``effects``, ``bic``,
             ``delta_bic``, ``rmse``, ``plausible``, ``source``), ``set_aside`` (``effects``, ``delta_bic``, ``issues``),
-            ``removed``, ``explored``, ``resumed``, ``reduced`` and ``calibration``
+            ``removed``, ``explored``, ``resumed``, ``reduced``, ``preferred`` and ``calibration``
             (:meth:`validation.calibration.CalibrationCheck.as_dict`, None when not checked).
         """
         b = self.best.bic
@@ -353,7 +369,7 @@ class Selection:
                 "set_aside": [{"effects": list(s.effects), "delta_bic": s.bic - b, "issues": list(s.issues)}
                               for s in self.set_aside],
                 "removed": list(self.removed), "explored": list(self.explored), "resumed": list(self.resumed),
-                "reduced": list(self.reduced),
+                "reduced": list(self.reduced), "preferred": list(self.preferred),
                 "calibration": None if self.calibration is None else self.calibration.as_dict()}
 
     def text(self) -> str:
@@ -383,6 +399,9 @@ class Selection:
             lines.append("Fits continued past their budget of model evaluations: " + "; ".join(self.resumed) + ".")
         if self.reduced:
             lines.append("Subsets of the sets within reach: " + "; ".join(self.reduced) + ".")
+        if self.preferred:
+            lines.append("The best set fitted, in place of the answer the search reached: "
+                         + "; ".join(self.preferred) + ".")
         if self.removed:
             lines.append("Removed on the way: " + "; ".join(self.removed) + ".")
         aside = self.set_aside
@@ -425,6 +444,7 @@ class SetSearch:
         self.explored: list[str] = []
         self.resumed: list[str] = []
         self.reduced: list[str] = []
+        self.preferred: list[str] = []
         self._continued: dict[frozenset, int] = {}    # set -> times its fit was continued
         self._jacobians: dict[str, np.ndarray] = {}   # effect -> weighted Jacobian of its single fit
 
@@ -830,6 +850,44 @@ class SetSearch:
                             "a set within reach of it)")
         return tuple(best.effects)
 
+    def prefer(self, current: tuple, progress=None) -> tuple | None:
+        """The best set of those fitted, in place of the path's answer (module docstring, item 8).
+
+        The fitted sets that fit better than ``current`` (lower BIC) -- or, when ``current`` is not credible (a
+        parameter on a search bound or outside its plausible range), within :data:`EQUAL` BIC units of it -- are
+        taken in order of BIC; the first that is credible and whose every effect earns its place (dropping it costs
+        at least :data:`STAY` BIC units; the subsets not fitted yet are fitted from its values) is returned, else
+        None (and None for an empty ``current``).
+        """
+        current = tuple(current)
+        if not current:
+            return None
+        now = self.get(current)
+        credible = now.plausible
+        limit = now.bic if credible else now.bic + EQUAL
+        close = sorted((s for s in self.sets.values() if s.effects and s.key != now.key and s.bic < limit - 1e-9),
+                       key=lambda s: s.bic)
+        for s in close:
+            if not s.plausible:
+                continue
+            if progress is not None:
+                progress(f"checking the effects of {s.label}")
+            # the final rule would take apart a set one of whose effects does not earn its place (a superset of the
+            # answer that fits a few units better, say) and leave the answer; the subsets fitted already are looked
+            # at first, so that such a set costs no new fit
+            subsets = sorted((tuple(e for e in s.effects if e != f) for f in s.effects),
+                             key=lambda t: frozenset(t) not in self.sets)
+            if any(self.get(t, warm=(s,)).bic - s.bic < STAY for t in subsets):
+                continue
+            if credible:
+                self.preferred.append(f"{s.label} ({now.bic - s.bic:.1f} BIC units better than {now.label}, which "
+                                      "the search reached, with every effect earning its place)")
+            else:
+                self.preferred.append(f"{s.label} ({s.bic - now.bic:+.1f} BIC units from {now.label}, which is not "
+                                      f"credible: {'; '.join(now.issues)})")
+            return tuple(s.effects)
+        return None
+
     def _fit_in_turn(self, todo, budget: int | None, start: int, progress=None) -> tuple[list, bool]:
         """Fit the sets ``todo`` (``(effects, warm, message)`` each; :meth:`get`) not fitted yet, in turn, until
         ``budget`` model evaluations counted from ``start`` (:attr:`n_evals` then) are spent; returns the sets
@@ -905,6 +963,7 @@ class SetSearch:
         return Selection(best=best, supported=tuple(supported), drop_costs=costs, separations=tuple(seps),
                          separations_in_range=tuple(seps_in), visited=tuple(visited), removed=tuple(self.removed),
                          explored=tuple(self.explored), resumed=tuple(self.resumed), reduced=tuple(self.reduced),
+                         preferred=tuple(self.preferred),
                          calibration=calibration)
 
 
