@@ -1,6 +1,7 @@
 """False-alarm rate of the remaining-pattern tests and of the lack-of-fit test on noise-only data (not a test).
 
-Run: ``python benchmarks/pattern_false_alarms.py [--n 200] [--seed 1] [--cases example,null,...]``
+Run: ``python benchmarks/pattern_false_alarms.py [--n 200] [--seed 1] [--cases example,null,...]
+[--blind 18:41,18:51]`` (``--blind SEED:INDEX``: cases of ``benchmarks/blind_study.py`` instead of shipped ones)
 
 For each case the diagnosis is run once; its verdict's model (the explaining candidate, else the refitted
 baseline) is taken as the truth. Each simulation adds fresh Gaussian noise to that model's prediction (the noise
@@ -93,6 +94,18 @@ def simulate(case, n_sim: int, rng) -> dict:
         (dx.explaining.effect,) if dx.explaining else ("baseline",)), **counts}
 
 
+def _blind_case(item: str):
+    """The case ``SEED:INDEX`` of :mod:`blind_study` as a :class:`validation.Case` (the data the diagnosis sees)."""
+    from pathlib import Path
+
+    import blind_study
+
+    seed, index = (int(x) for x in item.split(":"))
+    c = blind_study.draw(index, seed)
+    return validation.Case(name=f"blind {seed}:{index}", path=Path("."), model=c.model, measurements=c.measurements,
+                           contact=c.contact, fit=c.fit)
+
+
 def upper95(k: int, n: int) -> float:
     """One-sided 95 % Clopper-Pearson upper bound of a rate seen k times in n."""
     return 1.0 if k >= n else float(stats.beta.ppf(0.95, k + 1, n - k))
@@ -103,12 +116,16 @@ def main(argv=None) -> None:
     ap.add_argument("--n", type=int, default=200, help="simulations per case (default 200)")
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--cases", default=",".join(DEFAULT_CASES), help="comma-separated shipped case names")
+    ap.add_argument("--blind", default="", help="comma-separated SEED:INDEX cases of blind_study.py (instead of "
+                                                "--cases)")
     args = ap.parse_args(argv)
     rng = np.random.default_rng(args.seed)
     t0 = time.perf_counter()
     rows = []
-    for name in args.cases.split(","):
-        rows.append(simulate(validation.load_case(name.strip()), args.n, rng))
+    cases = [_blind_case(item) for item in args.blind.split(",") if item.strip()] if args.blind else \
+        [validation.load_case(name.strip()) for name in args.cases.split(",")]
+    for case in cases:
+        rows.append(simulate(case, args.n, rng))
     print(f"{'case':<26}{'model':<20}{'noise':<18}{'n':>5}{'pattern':>9}{'(95% up)':>9}{'groups':>8}{'runs':>7}"
           f"{'trends':>8}{'LOF':>7}{'either':>8}{'rows':>7}")
     tot = {k: 0 for k in ("pattern", "lack_of_fit", "either", "outliers", "n")}
