@@ -617,6 +617,12 @@ def test_a_pair_that_ties_with_a_path_ending_at_the_noise_is_named_and_the_lower
     assert set(imp.added) == {"test_texture", "test_heat"} and imp.verdict == "explained", imp.table_text()
     assert imp.steps[-1].action == "preferred" and imp.steps[-1].removed == "test_mimic"
     assert sel.preferred and "better than test_mimic, which the search reached" in sel.preferred[0]
+    from validation.report import _selection_html
+
+    assert "The best set fitted, in place of the answer the search reached: " in _selection_html(sel)
+    assert imp.as_dict()["preferred"] == list(sel.preferred)
+    assert "test_mimic -> test_texture + test_heat (preferred)" in imp.steps[-1].describe().replace(
+        "test_heat + test_texture", "test_texture + test_heat")
     mimic = {s.effects: s for s in sel.supported}.get(("test_mimic",))
     assert mimic is not None, sel.text()
     assert mimic.bic - sel.best.bic == pytest.approx(chi2_mimic - chi2_pair, abs=0.05)
