@@ -1095,8 +1095,9 @@ def test_a_step_candidate_fit_also_starts_with_the_sets_parameters_moved_off_the
 class _Fitted:
     """A stand-in for a fitted set: what :meth:`SetSearch.prefer` reads of one."""
 
-    def __init__(self, effects, bic, plausible=True):
+    def __init__(self, effects, bic, plausible=True, not_identified=()):
         self.effects, self.bic, self.plausible = tuple(effects), float(bic), plausible
+        self.not_identified = tuple(not_identified)
         self.key = frozenset(self.effects)
         self.label = " + ".join(self.effects) or "(baseline)"
         self.issues = () if plausible else (f"{self.label}: a parameter on its search bound",)
@@ -1140,3 +1141,19 @@ def test_an_answer_that_is_not_credible_gives_way_to_a_credible_set_within_ten_b
     assert search.prefer(("A",)) == ("C",)
     assert "C (+6.0 BIC units from A, which is not credible: A: a parameter on its search bound)" in search.preferred[0]
     assert _search_of(_Fitted(("A",), 0.0, plausible=False), _Fitted(("C",), EQUAL + 2.0), base).prefer(("A",)) is None
+
+
+def test_a_set_with_a_parameter_the_data_do_not_identify_does_not_replace_an_identified_answer():
+    """C + D fits 3 units better than the answer A, but its D.q is not identified (its 68 % interval spans the range
+    searched: a flash temperature whose q_m runs to where it acts fully, not charged in the BIC; blind case 14-32):
+    it does not replace A, whose parameters are all identified, and the next set below A, the identified E, does.
+    An answer with a parameter not identified itself, or one that is not credible, is replaced by C + D."""
+    sets = [_Fitted(("A",), 0.0), _Fitted(("C", "D"), -3.0, not_identified=("D.q",)), _Fitted(("E",), -1.0),
+            _Fitted(("C",), 20.0), _Fitted(("D",), 15.0), _Fitted((), 40.0)]
+    assert _search_of(*sets).prefer(("A",)) == ("E",)
+    sets[2] = _Fitted(("E",), 1.0)
+    assert _search_of(*sets).prefer(("A",)) is None
+    sets[0] = _Fitted(("A",), 0.0, not_identified=("A.k",))
+    assert _search_of(*sets).prefer(("A",)) == ("C", "D")
+    sets[0] = _Fitted(("A",), 0.0, plausible=False)
+    assert _search_of(*sets).prefer(("A",)) == ("C", "D")

@@ -15,7 +15,8 @@ at their budget of model evaluations within 10 BIC units of an answer that misse
 and one that fits better by more than 10 units replaces it (item 6; only when effects were added and the noise is
 known); so, under the same conditions, does a subset of a larger set fitted within 10 BIC units of it (item 7).
 Then the best set fitted takes the answer's place: a credible set whose every effect earns its place and that fits
-better, or, for an answer that is not credible, one within 10 BIC units of it (item 8). A final pass keeps an
+better (with its parameters identified, where the answer's are), or, for an answer that is not credible, one within
+10 BIC units of it (item 8). A final pass keeps an
 effect only if dropping it from the final joint model costs more than 10 BIC units, and names every other set
 within 10 BIC units (equally supported) with the measurement that would separate it. Every step keeps the
 alternatives its diagnosis named ("or as well by").

@@ -85,8 +85,10 @@ by). The search (:func:`validation.improve`) is stepwise:
    of the search, the fitted set with the lowest BIC that is credible and whose every effect earns its place
    (:data:`STAY`) replaces the answer where it fits better than the answer (lower BIC), or, when the answer is not
    credible, where it comes within :data:`EQUAL` BIC units of it (the data support both, only one of them
-   physically): a step ``"preferred"``. An answer replaced that is not credible is then set aside, one that is
-   credible is named among the equally supported sets.
+   physically): a step ``"preferred"``. A set with a parameter the data do not identify does not replace a credible
+   answer whose parameters are all identified (the BIC counts the parameters that change the prediction, so it
+   flatters such a set: a flash temperature whose q_m runs to where it acts fully). An answer replaced that is not
+   credible is then set aside, one that is credible is named among the equally supported sets.
 
 The intervals of a set fitted here (its profile likelihoods, often costlier than the fit) are computed when first
 read (:class:`EffectSet`): for the sets reported, and for a set whose credibility depends on them (a parameter on a
@@ -857,7 +859,8 @@ class SetSearch:
         parameter on a search bound or outside its plausible range), within :data:`EQUAL` BIC units of it -- are
         taken in order of BIC; the first that is credible and whose every effect earns its place (dropping it costs
         at least :data:`STAY` BIC units; the subsets not fitted yet are fitted from its values) is returned, else
-        None (and None for an empty ``current``).
+        None (and None for an empty ``current``). A set with a parameter the data do not identify does not replace a
+        credible ``current`` whose parameters are all identified.
         """
         current = tuple(current)
         if not current:
@@ -878,6 +881,12 @@ class SetSearch:
             subsets = sorted((tuple(e for e in s.effects if e != f) for f in s.effects),
                              key=lambda t: frozenset(t) not in self.sets)
             if any(self.get(t, warm=(s,)).bic - s.bic < STAY for t in subsets):
+                continue
+            # a parameter the data do not identify (a flash temperature whose q_m runs to where it acts fully) is
+            # not charged in the BIC, which counts the parameters that change the prediction: such a set does not
+            # replace a credible answer whose parameters are all identified (it could make only "indicated"); asked
+            # last, since it may need the set's profiles
+            if credible and s.not_identified and not now.not_identified:
                 continue
             if credible:
                 self.preferred.append(f"{s.label} ({now.bic - s.bic:.1f} BIC units better than {now.label}, which "
