@@ -122,7 +122,11 @@ def main(argv=None) -> None:
     rng = np.random.default_rng(args.seed)
     t0 = time.perf_counter()
     rows = []
-    cases = [_blind_case(item) for item in args.blind.split(",") if item.strip()] if args.blind else \
+    blind = [item.strip() for item in args.blind.split(",") if item.strip()]
+    for item in blind:
+        if len(item.split(":")) != 2 or not all(x.strip().isdigit() for x in item.split(":")):
+            ap.error(f"--blind: {item!r} is not SEED:INDEX (two integers, e.g. 18:41)")
+    cases = [_blind_case(item) for item in blind] if blind else \
         [validation.load_case(name.strip()) for name in args.cases.split(",")]
     for case in cases:
         rows.append(simulate(case, args.n, rng))
