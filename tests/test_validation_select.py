@@ -621,6 +621,7 @@ def test_a_pair_that_ties_with_a_path_ending_at_the_noise_is_named_and_the_lower
 
     assert "The best set fitted, in place of the answer the search reached: " in _selection_html(sel)
     assert imp.as_dict()["preferred"] == list(sel.preferred)
+    assert imp.as_dict()["replaced"] == [] and not sel.replaced      # every parameter of the mimic is identified
     assert "test_mimic -> test_texture + test_heat (preferred)" in imp.steps[-1].describe().replace(
         "test_heat + test_texture", "test_texture + test_heat")
     mimic = {s.effects: s for s in sel.supported}.get(("test_mimic",))
@@ -1157,3 +1158,75 @@ def test_a_set_with_a_parameter_the_data_do_not_identify_does_not_replace_an_ide
     assert _search_of(*sets).prefer(("A",)) == ("C", "D")
     sets[0] = _Fitted(("A",), 0.0, plausible=False)
     assert _search_of(*sets).prefer(("A",)) == ("C", "D")
+
+
+class _Candidate:
+    """A stand-in for a candidate of the baseline's diagnosis: what :meth:`SetSearch.replace_unidentified` reads."""
+
+    def __init__(self, effect, bic, significant=True, status="ok"):
+        self.effect, self.bic, self.significant, self.status = effect, float(bic), significant, status
+        self.instance, self.free = f"{effect} as fitted", ("k",)
+
+
+def _replacing(sets, fits, candidates, n_evals=10):
+    """A search over the stand-in ``sets`` whose joint refits return the stand-ins ``fits`` (by effects), each
+    counting ``n_evals`` model evaluations; the refits asked for are listed in ``search.asked``."""
+    search = _search_of(*sets)
+    search.asked = []
+
+    def fit(effects, warm):
+        search.asked.append((tuple(effects), tuple(w.label for w in warm)))
+        search.n_evals += n_evals
+        return fits[frozenset(effects)]
+
+    search._fit = fit
+    first = type("Diagnosis", (), {"candidates": tuple(candidates)})()
+    return search, first
+
+
+def test_an_effect_the_data_do_not_identify_is_replaced_in_turn_by_each_credible_candidate():
+    """The answer A + B ends at the noise with A.k not identified (a strain softening whose loss factor runs onto
+    its bound beside a microtexture, standing in for a flash temperature: blind case 19-13). Each credible candidate
+    fitted alone on the baseline is fitted in A's place, from the answer's values and its own single fit: the
+    significant ones first, the better single fit first (D, then C), then the one that showed nothing alone (E: a
+    flash temperature invisible until the microtexture is in, blind case 19-89), then the one with no signature at
+    all (G, from the answer's values alone); not F (not credible alone), B (in the answer already), nor anything
+    in place of the identified B. The best set fitted then answers (:meth:`prefer`): C + B, 12 BIC units better,
+    with both effects earning their place."""
+    sets = [_Fitted(("A", "B"), 0.0, not_identified=("A.k",)), _Fitted(("A",), 30.0), _Fitted(("B",), 25.0),
+            _Fitted(("C",), 40.0), _Fitted(("D",), 35.0), _Fitted(("E",), 60.0), _Fitted(("F",), 20.0, plausible=False),
+            _Fitted((), 80.0)]
+    fits = {frozenset("CB"): _Fitted(("C", "B"), -12.0), frozenset("DB"): _Fitted(("D", "B"), 4.0),
+            frozenset("EB"): _Fitted(("E", "B"), 9.0), frozenset("GB"): _Fitted(("G", "B"), 7.0)}
+    candidates = [_Candidate("A", 30.0), _Candidate("B", 25.0), _Candidate("C", 40.0), _Candidate("D", 35.0),
+                  _Candidate("E", 60.0, significant=False), _Candidate("F", 20.0),
+                  _Candidate("G", math.nan, significant=False, status="no signature")]
+    search, first = _replacing(sets, fits, candidates)
+    assert search.replace_unidentified(("A", "B"), first) is None
+    assert search.asked == [(("D", "B"), ("A + B", "D")), (("C", "B"), ("A + B", "C")), (("E", "B"), ("A + B", "E")),
+                            (("G", "B"), ("A + B",))]
+    assert search.instances["G"] == "G as fitted" and search.free["G"] == ("k",)
+    assert search.replaced[0] == ("D + B (D in place of A, whose A.k the data do not identify): +4.0 BIC units from "
+                                  "A + B")
+    assert "-12.0 BIC units from A + B" in search.replaced[1]
+    assert search.prefer(("A", "B")) == ("C", "B")
+    # asked twice, nothing is fitted again
+    search.replace_unidentified(("A", "B"), first)
+    assert len(search.asked) == 4
+
+
+def test_replacing_an_unidentified_effect_stops_at_its_budget_and_leaves_an_identified_answer_alone():
+    """With a budget of 10 model evaluations the first refit spends it, and the second is not made (said so);
+    an answer whose parameters are all identified has nothing replaced."""
+    sets = [_Fitted(("A", "B"), 0.0, not_identified=("A.k",)), _Fitted(("C",), 40.0), _Fitted(("D",), 35.0)]
+    fits = {frozenset("CB"): _Fitted(("C", "B"), -12.0), frozenset("DB"): _Fitted(("D", "B"), 4.0)}
+    candidates = [_Candidate("C", 40.0), _Candidate("D", 35.0)]
+    search, first = _replacing(sets, fits, candidates)
+    search.replace_unidentified(("A", "B"), first, budget=10)
+    assert search.asked == [(("D", "B"), ("A + B", "D"))]
+    assert search.replaced[-1] == ("the replacements stopped at their budget of 10 model evaluations (1 of 2 sets "
+                                   "fitted)")
+    sets[0] = _Fitted(("A", "B"), 0.0)
+    search, first = _replacing(sets, fits, candidates)
+    search.replace_unidentified(("A", "B"), first)
+    assert search.asked == [] and search.replaced == []

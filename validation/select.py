@@ -89,6 +89,17 @@ by). The search (:func:`validation.improve`) is stepwise:
    answer whose parameters are all identified (the BIC counts the parameters that change the prediction, so it
    flatters such a set: a flash temperature whose q_m runs to where it acts fully). An answer replaced that is not
    credible is then set aside, one that is credible is named among the equally supported sets.
+9. **an answer the data do not pin down**: an effect of the answer with a parameter the data do not identify (its
+   68 % interval spans the range searched or is open on one side) may be standing in for another candidate, and
+   the swaps of item 3 try only the alternatives named when it was added (a strain softening taken first, whose
+   loss factor runs onto its bound once the microtexture is in, while the hidden pair is flash temperature +
+   microtexture: the flash temperature, significant alone but far behind, was never fitted beside the
+   microtexture). Before item 8, each such effect is replaced in turn by each credible candidate fitted alone on
+   the baseline -- the significant ones first, the better single fits first, then those that showed nothing alone
+   (an effect invisible until its partner is in), then those with no signature at all; the sets not fitted yet are
+   refitted jointly from the answer's values and the replacement's single fit, within half the model evaluations
+   the search took, and compete in item 8 and for the equally supported sets (:attr:`Selection.replaced` says what
+   was fitted). Done when the noise is known.
 
 The intervals of a set fitted here (its profile likelihoods, often costlier than the fit) are computed when first
 read (:class:`EffectSet`): for the sets reported, and for a set whose credibility depends on them (a parameter on a
@@ -315,6 +326,10 @@ class Selection:
         A set fitted on the way that took the place of the search's answer (:meth:`SetSearch.prefer`), in words:
         one that fits better with every effect earning its place, or a credible one within :data:`EQUAL` BIC units
         of an answer that is not credible (empty when none did).
+    replaced : tuple of str
+        The sets fitted with an effect of the answer whose parameters the data do not identify replaced by another
+        candidate (:meth:`SetSearch.replace_unidentified`), in words, with their BIC against the answer's (empty when
+        none were fitted); one that fits better is the answer by :attr:`preferred`.
     calibration : validation.calibration.CalibrationCheck or None
         A gain and a zero offset of the measured mu fitted on top of each subset of the best set, an offset of the
         recorded temperatures and a factor on the recorded speeds on the baseline and on the subsets one effect
@@ -335,6 +350,7 @@ class Selection:
     reduced: tuple = ()
     calibration: object = None
     preferred: tuple = ()
+    replaced: tuple = ()
 
     @property
     def equally_supported(self) -> bool:
@@ -358,7 +374,7 @@ class Selection:
             ``drop_costs``, ``set_separations`` and ``set_separations_in_measured_range``
             (:meth:`validation.probe.Separation.as_dict`), ``sets`` (every set fitted: ``effects``, ``bic``,
             ``delta_bic``, ``rmse``, ``plausible``, ``source``), ``set_aside`` (``effects``, ``delta_bic``, ``issues``),
-            ``removed``, ``explored``, ``resumed``, ``reduced``, ``preferred`` and ``calibration``
+            ``removed``, ``explored``, ``resumed``, ``reduced``, ``replaced``, ``preferred`` and ``calibration``
             (:meth:`validation.calibration.CalibrationCheck.as_dict`, None when not checked).
         """
         b = self.best.bic
@@ -371,7 +387,7 @@ class Selection:
                 "set_aside": [{"effects": list(s.effects), "delta_bic": s.bic - b, "issues": list(s.issues)}
                               for s in self.set_aside],
                 "removed": list(self.removed), "explored": list(self.explored), "resumed": list(self.resumed),
-                "reduced": list(self.reduced), "preferred": list(self.preferred),
+                "reduced": list(self.reduced), "replaced": list(self.replaced), "preferred": list(self.preferred),
                 "calibration": None if self.calibration is None else self.calibration.as_dict()}
 
     def text(self) -> str:
@@ -401,6 +417,8 @@ class Selection:
             lines.append("Fits continued past their budget of model evaluations: " + "; ".join(self.resumed) + ".")
         if self.reduced:
             lines.append("Subsets of the sets within reach: " + "; ".join(self.reduced) + ".")
+        if self.replaced:
+            lines.append("In place of an effect the data do not identify: " + "; ".join(self.replaced) + ".")
         if self.preferred:
             lines.append("The best set fitted, in place of the answer the search reached: "
                          + "; ".join(self.preferred) + ".")
@@ -447,6 +465,7 @@ class SetSearch:
         self.resumed: list[str] = []
         self.reduced: list[str] = []
         self.preferred: list[str] = []
+        self.replaced: list[str] = []
         self._continued: dict[frozenset, int] = {}    # set -> times its fit was continued
         self._jacobians: dict[str, np.ndarray] = {}   # effect -> weighted Jacobian of its single fit
 
@@ -852,6 +871,57 @@ class SetSearch:
                             "a set within reach of it)")
         return tuple(best.effects)
 
+    def replace_unidentified(self, current: tuple, first, budget: int | None = None, progress=None) -> None:
+        """Fit the sets with each effect of ``current`` whose parameters the data do not identify replaced by each
+        credible candidate of the baseline's diagnosis ``first`` (module docstring, item 9).
+
+        An effect with a parameter the data leave open may be standing in for another (a strain softening whose loss
+        factor runs onto its bound beside a microtexture, while the hidden pair is flash temperature +
+        microtexture): the swaps of :meth:`prune` try only the alternatives named when it was added, which need not
+        include that one. The replacements are the candidates of ``first`` credible alone: the significant ones,
+        the better single fits first, then those that showed nothing alone, then those with no signature. Each set
+        not fitted yet is refitted jointly from the values of ``current`` and of the replacement's single fit (the
+        values of ``current`` alone for one with no signature), in that order, until ``budget`` model evaluations
+        are spent. Nothing is returned: the sets fitted here compete in :meth:`prefer` (which takes
+        the best credible one whose every effect earns its place, where it fits better) and for the equally
+        supported sets; :attr:`Selection.replaced` says what was fitted.
+        """
+        current = tuple(current)
+        if not current:
+            return
+        now = self.get(current)
+        loose = [e for e in current if any(k.partition(".")[0] == e for k in now.not_identified)]
+        if not loose:
+            return
+        fitted_alone = [c for c in first.candidates if c.status == "ok" and c.effect not in current
+                        and frozenset({c.effect}) in self.sets and self.sets[frozenset({c.effect})].plausible]
+        # the significant ones first, then those that showed nothing alone (a flash temperature on a PSD that stops
+        # short is invisible until the microtexture is in, and an effect left open may stand in for its partner)
+        singles = sorted(fitted_alone, key=lambda c: (not c.significant, c.bic))
+        for c in first.candidates:
+            if c.status == "no signature" and c.instance is not None and c.effect not in current:
+                self.instances.setdefault(c.effect, c.instance)
+                self.free.setdefault(c.effect, tuple(c.free))
+                singles.append(c)
+        todo = []
+        for f in loose:
+            for c in singles:
+                trial = tuple(c.effect if e == f else e for e in current)
+                alone = self.sets.get(frozenset({c.effect}))
+                todo.append((trial, (now,) if alone is None else (now, alone),
+                             f"refitting with {c.effect} in place of {f}"))
+        start = self.n_evals
+        fitted, stopped = self._fit_in_turn(todo, budget, start, progress)
+        for t in fitted:
+            gone = next(e for e in current if e not in t.effects)
+            came = next(e for e in t.effects if e not in current)
+            why = ", ".join(k for k in now.not_identified if k.partition(".")[0] == gone)
+            self.replaced.append(f"{t.label} ({came} in place of {gone}, whose {why} the data do not identify): "
+                                 f"{t.bic - now.bic:+.1f} BIC units from {now.label}")
+        if stopped:
+            self.replaced.append(f"the replacements stopped at their budget of {budget} model evaluations "
+                                 f"({len(fitted)} of {len(todo)} sets fitted)")
+
     def prefer(self, current: tuple, progress=None) -> tuple | None:
         """The best set of those fitted, in place of the path's answer (module docstring, item 8).
 
@@ -972,7 +1042,7 @@ class SetSearch:
         return Selection(best=best, supported=tuple(supported), drop_costs=costs, separations=tuple(seps),
                          separations_in_range=tuple(seps_in), visited=tuple(visited), removed=tuple(self.removed),
                          explored=tuple(self.explored), resumed=tuple(self.resumed), reduced=tuple(self.reduced),
-                         preferred=tuple(self.preferred),
+                         preferred=tuple(self.preferred), replaced=tuple(self.replaced),
                          calibration=calibration)
 
 
