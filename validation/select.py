@@ -878,8 +878,9 @@ class SetSearch:
         An effect with a parameter the data leave open may be standing in for another (a strain softening whose loss
         factor runs onto its bound beside a microtexture, while the hidden pair is flash temperature +
         microtexture): the swaps of :meth:`prune` try only the alternatives named when it was added, which need not
-        include that one. The replacements are the candidates of ``first`` credible alone: the significant ones,
-        the better single fits first, then those that showed nothing alone, then those with no signature. Each set
+        include that one. The replacements are the candidates of ``first`` fitted alone and credible there (the
+        significant ones, the better single fits first, then those that showed nothing alone), then those with no
+        signature (never fitted alone). Each set
         not fitted yet is refitted jointly from the values of ``current`` and of the replacement's single fit (the
         values of ``current`` alone for one with no signature), in that order, until ``budget`` model evaluations
         are spent. Nothing is returned: the sets fitted here compete in :meth:`prefer` (which takes
