@@ -618,12 +618,7 @@ class SetSearch:
         ok = [c for c in first.candidates if c.status == "ok" and frozenset({c.effect}) in self.sets]
         significant = sorted((c for c in ok if c.significant and self.sets[frozenset({c.effect})].plausible),
                              key=lambda c: c.bic)[:top]
-        quiet = [c for c in ok if not c.significant]
-        for c in first.candidates:
-            if c.status == "no signature" and c.instance is not None:
-                self.instances.setdefault(c.effect, c.instance)
-                self.free.setdefault(c.effect, tuple(c.free))
-                quiet.append(c)
+        quiet = [c for c in ok if not c.significant] + self._unsigned(first)
         # a pair far behind the path would need its partner to do most of the work: only pairs whose members'
         # single fits together gain at least half of what the path gained over the baseline
         base_bic = first.baseline.bic
@@ -880,12 +875,11 @@ class SetSearch:
         microtexture): the swaps of :meth:`prune` try only the alternatives named when it was added, which need not
         include that one. The replacements are the candidates of ``first`` fitted alone and credible there (the
         significant ones, the better single fits first, then those that showed nothing alone), then those with no
-        signature (never fitted alone). Each set
-        not fitted yet is refitted jointly from the values of ``current`` and of the replacement's single fit (the
-        values of ``current`` alone for one with no signature), in that order, until ``budget`` model evaluations
-        are spent. Nothing is returned: the sets fitted here compete in :meth:`prefer` (which takes
-        the best credible one whose every effect earns its place, where it fits better) and for the equally
-        supported sets; :attr:`Selection.replaced` says what was fitted.
+        signature (never fitted alone). Each set not fitted yet is refitted jointly from the values of ``current``
+        and of the replacement's single fit (the values of ``current`` alone for one with no signature), in that
+        order, until ``budget`` model evaluations are spent. Nothing is returned: the sets fitted here compete in
+        :meth:`prefer` (which takes the best credible one whose every effect earns its place, where it fits better)
+        and for the equally supported sets; :attr:`Selection.replaced` says what was fitted.
         """
         current = tuple(current)
         if not current:
@@ -899,11 +893,7 @@ class SetSearch:
         # the significant ones first, then those that showed nothing alone (a flash temperature on a PSD that stops
         # short is invisible until the microtexture is in, and an effect left open may stand in for its partner)
         singles = sorted(fitted_alone, key=lambda c: (not c.significant, c.bic))
-        for c in first.candidates:
-            if c.status == "no signature" and c.instance is not None and c.effect not in current:
-                self.instances.setdefault(c.effect, c.instance)
-                self.free.setdefault(c.effect, tuple(c.free))
-                singles.append(c)
+        singles += [c for c in self._unsigned(first) if c.effect not in current]
         todo = []
         for f in loose:
             for c in singles:
@@ -967,6 +957,17 @@ class SetSearch:
                                       f"credible: {'; '.join(now.issues)})")
             return tuple(s.effects)
         return None
+
+    def _unsigned(self, first) -> list:
+        """The candidates of the diagnosis ``first`` with no signature that can be fitted in a set (an instance to
+        start from), their instances and free parameters registered for :meth:`get`."""
+        out = []
+        for c in first.candidates:
+            if c.status == "no signature" and c.instance is not None:
+                self.instances.setdefault(c.effect, c.instance)
+                self.free.setdefault(c.effect, tuple(c.free))
+                out.append(c)
+        return out
 
     def _fit_in_turn(self, todo, budget: int | None, start: int, progress=None) -> tuple[list, bool]:
         """Fit the sets ``todo`` (``(effects, warm, message)`` each; :meth:`get`) not fitted yet, in turn, until
