@@ -14,13 +14,13 @@ it never fitted and fits those that may tie with it (:mod:`validation.select`, i
 at their budget of model evaluations within 10 BIC units of an answer that misses the noise are then continued,
 and one that fits better by more than 10 units replaces it (item 6; only when effects were added and the noise is
 known); so, under the same conditions, does a subset of a larger set fitted within 10 BIC units of it (item 7).
-An effect of the answer with a parameter the data do not identify is refitted replaced by each credible candidate
-of the first diagnosis (item 9; the noise known). Then the best set fitted takes the answer's place: a credible set
-whose every effect earns its place and that fits better (with its parameters identified, where the answer's are),
-or, for an answer that is not credible, one within 10 BIC units of it (item 8). A final pass keeps an effect only
-if dropping it from the final joint model costs more than 10 BIC units, and names every other set within 10 BIC
-units (equally supported) with the measurement that would separate it. Every step keeps the alternatives its
-diagnosis named ("or as well by").
+An effect of the answer with a parameter the data do not identify is replaced in turn by each credible candidate
+of the first diagnosis, and each such set refitted (item 9; the noise known). Then the best set fitted takes the
+answer's place: a credible set whose every effect earns its place and that fits better (with its parameters
+identified, where the answer's are), or, for an answer that is not credible, one within 10 BIC units of it (item
+8). A final pass keeps an effect only if dropping it from the final joint model costs more than 10 BIC units, and
+names every other set within 10 BIC units (equally supported) with the measurement that would separate it. Every
+step keeps the alternatives its diagnosis named ("or as well by").
 """
 
 from __future__ import annotations
