@@ -264,7 +264,10 @@ def test_one_table_per_call_and_reuse_while_only_the_contact_changes():
     s = np.geomspace(0.01, 1.0, 40)
     s2, V2 = np.broadcast_arrays(s[:, None], np.array([0.3, 1.0, 3.0])[None, :])
     sol = patch_friction(mu_T, h, c, s2.ravel(), V2.ravel(), T0, SIGMA0)
-    assert len(mu_T.calls) == sol.engine_calls == 2  # the T0 slice, then the heated temperatures
+    # the T0 slice, the heated temperatures up to 1.15 times the rise with the friction held at T0, and one node
+    # more where the hottest points lie in the table's top interval (this compound's friction falls so slowly with
+    # temperature that the patch nearly reaches that rise)
+    assert len(mu_T.calls) == sol.engine_calls == 3
     cache = {}
     named = _Named(mu_T, h)
     ps.predict_slip(named, s2.ravel(), V2.ravel(), contact=c, cache=cache)
@@ -333,6 +336,105 @@ def test_a_kept_table_gives_the_notes_of_the_nodes_a_solution_uses_not_of_its_hi
     assert again.engine_calls == 0                                      # read from the grown table
     np.testing.assert_allclose(again.mu, fresh.mu, rtol=1e-12)
     assert again.converged and again.notes == fresh.notes and not again_warned
+
+
+def test_a_new_table_for_another_engine_reaches_the_rises_of_the_last_solution_not_the_hottest_ever():
+    """In a joint fit of patch heating with an effect that changes the engine's friction (the flash temperature,
+    the microtexture), every evaluation needs a new table for the same rows. Its temperature range starts from the
+    rises of the last solution (1.15 times), not from the range of the previous table, which only ever grows: after
+    one hot evaluation, the cool ones that follow would otherwise fill nodes far above the temperatures they reach.
+    A patch hotter than that first guess widens the table, and every answer is that of a fresh table."""
+
+    def law(scale):
+        return ClosedForm(lambda v, p, T: scale * (0.8 + 0.1 * np.log10(v)) * np.exp(-0.004 * (T - T0)))
+
+    c = ps.Contact(L, W, K)
+    s, V = np.broadcast_arrays(np.geomspace(0.05, 1.0, 10)[:, None], np.array([0.5, 3.0])[None, :])
+    s, V = s.ravel(), V.ravel()
+    mild = PatchHeating(counter_effusivity=2.0e4, rubber_effusivity=E_R)
+    strong = PatchHeating(counter_effusivity=60.0, rubber_effusivity=E_R)
+    cache = {}
+    first = law(1.0)
+    hot = patch_friction(first, strong, c, s, V, T0, SIGMA0, tables=cache)
+    tall = patch_friction(first, mild, c, s, V, T0, SIGMA0, tables=cache)  # the same engine: the table is kept
+    hot_nodes, n_pressure = int(np.sum(cache["value"].nu)), cache["value"].gnodes.size
+    # every point interpolates on a centered stencil, in a table grown by the hot patch as in a fresh one sized
+    # for this patch alone: the same answer, whatever the history
+    own = patch_friction(first, mild, c, s, V, T0, SIGMA0, tables={})
+    assert own.table_points < 0.2 * hot_nodes * n_pressure
+    np.testing.assert_allclose(tall.mu, own.mu, rtol=1e-9)
+    np.testing.assert_allclose(tall.max_rise, own.max_rise, rtol=1e-9)
+    # another engine, a cool patch: a table sized by the cool patch's rises, a small part of the hot range
+    cool = patch_friction(law(1.02), mild, c, s, V, T0, SIGMA0, tables=cache)
+    assert float(np.max(cool.max_rise)) < 0.05 * float(np.max(hot.max_rise))
+    assert int(np.sum(cache["value"].nu)) < 0.2 * hot_nodes
+    # another engine, a hot patch: the first guess (the cool range) is widened until it reaches the patch
+    hotter = patch_friction(law(1.04), strong, c, s, V, T0, SIGMA0, tables=cache)
+    assert hotter.engine_calls >= 3 and hotter.converged
+    for kept, scale, heating in ((cool, 1.02, mild), (hotter, 1.04, strong)):
+        fresh = patch_friction(law(scale), heating, c, s, V, T0, SIGMA0, tables={})
+        np.testing.assert_allclose(kept.mu, fresh.mu, rtol=1e-9)
+        np.testing.assert_allclose(kept.max_rise, fresh.max_rise, rtol=1e-9)
+
+
+@pytest.mark.filterwarnings("ignore::persson.PhysicsWarning")   # the example road's rms slope
+def test_a_new_table_whose_solver_problems_are_unchanged_keeps_the_range_just_solved(monkeypatch):
+    """An engine that differs only in a term added after the solver (an adhesion the table cannot rescale: friction
+    above 3) solves the same problems: its new table starts from the previous table's range, whose nodes
+    persson.solver.reuse_solutions returns without solving again. An engine whose solver changed (the flash
+    temperature) starts from the rises of the last solution."""
+    from persson.effects import Adhesion, FlashTemperature
+    from persson.engine import solver
+    from persson.slip.heating import solver_key
+
+    road, tread = surfaces.example_road(), materials.example_tread()
+    grid = persson.GridSettings(q_per_decade=6, n_phi=12, omega_per_decade=12, tolerance=1e-2)
+
+    def engine(*effects):
+        return persson.Model(road, tread, effects=list(effects), grid=grid)
+
+    c = ps.Contact(L, W, K)
+    s, V = np.broadcast_arrays(np.geomspace(0.05, 1.0, 6)[:, None], np.array([0.5, 3.0])[None, :])
+    s, V = s.ravel(), V.ravel()
+    hot, mild = PatchHeating(counter_effusivity=60.0), PatchHeating(counter_effusivity=5000.0)
+    sticky, stickier = Adhesion(tau_f0=1.0e6, c=0.0), Adhesion(tau_f0=4.0e7, c=0.0)
+    assert solver_key(engine(sticky)) == solver_key(engine(stickier)) != solver_key(engine(sticky, FlashTemperature()))
+    solves = []
+    real = solver._solve
+    monkeypatch.setattr(solver, "_solve", lambda *a: solves.append(1) or real(*a))
+    with solver.reuse_solutions(size=64):
+        cache = {}
+        patch_friction(engine(sticky), hot, c, s, V, T0, SIGMA0, tables=cache)
+        patch_friction(engine(sticky), mild, c, s, V, T0, SIGMA0, tables=cache)
+        first, n = cache["value"], len(solves)
+        loud = patch_friction(engine(stickier), mild, c, s, V, T0, SIGMA0, tables=cache)
+        assert cache["value"] is not first and loud.engine_calls == 2
+        np.testing.assert_array_equal(cache["value"].nu, first.nu)    # the hot patch's range
+        assert len(solves) == n                                        # every node a problem solved before
+        flash = patch_friction(engine(sticky, FlashTemperature()), mild, c, s, V, T0, SIGMA0, tables=cache)
+        assert flash.engine_calls >= 2 and int(np.sum(cache["value"].nu)) < 0.5 * int(np.sum(first.nu))
+
+
+@pytest.mark.parametrize("slope, per_decade", [(0.01, 3.0), (0.0005, 3.0), (-0.002, 3.0), (0.0005, 1.0)])
+def test_a_solution_does_not_depend_on_how_far_its_table_reaches(slope, per_decade):
+    """The friction between temperature nodes comes from a four-point stencil, centered on the point's interval
+    where the table has a node below and one above it. A table is widened until every temperature of the patch lies
+    below its top interval, so a table sized for one patch gives the answer of one grown far above it by a hotter
+    patch before: a result never depends on the calls that came before, at any heating strength."""
+    model = ClosedForm(lambda v, p, T: (0.8 + 0.1 * np.log10(v)) * np.exp(-slope * (T - T0)))
+    c = ps.Contact(L, W, K)
+    s, V = np.broadcast_arrays(np.geomspace(0.05, 1.0, 6)[:, None], np.array([0.5, 3.0])[None, :])
+    s, V = s.ravel(), V.ravel()
+    cache = {}
+    patch_friction(model, PatchHeating(counter_effusivity=50.0, rubber_effusivity=E_R,
+                                       temperature_points_per_decade=per_decade), c, s, V, T0, SIGMA0, tables=cache)
+    for e_c in np.geomspace(1000.0, 3.0e4, 15):   # rises of 2-150 K, below the table's cap
+        heating = PatchHeating(counter_effusivity=e_c, rubber_effusivity=E_R, temperature_points_per_decade=per_decade)
+        tall = patch_friction(model, heating, c, s, V, T0, SIGMA0, tables=cache)
+        own = patch_friction(model, heating, c, s, V, T0, SIGMA0, tables={})
+        assert tall.engine_calls == 0 and own.table_points < cache["value"].points and not own.notes
+        np.testing.assert_allclose(own.mu, tall.mu, rtol=1e-10)
+        np.testing.assert_allclose(own.max_rise, tall.max_rise, rtol=1e-10)
 
 
 def test_one_table_serves_every_adhesive_shear_stress():

@@ -291,11 +291,15 @@ def patch_friction(model, heating: PatchHeating, contact, slip, speed, temperatu
     (``n_pressure`` nodes over the range of p(x), floored at 2 % of sigma0) and the background temperature on
     the lattice :math:`y_k = k/n_y`, :math:`y = \log_{10}a_T(T_0) - \log_{10}a_T(T)`,
     :math:`n_y` = ``temperature_points_per_decade``, from T0 up to :math:`T_0 + \Delta T_{max}(v)`
-    (:math:`\Delta T_{max}` 1.15 times the rise the patch would reach with the friction held at its T0 value;
-    more nodes are added if the patch gets hotter; at least 4 nodes per speed); values in between by
+    (:math:`\Delta T_{max}` 1.15 times the rise the patch would reach with the friction held at its T0 value, and
+    one node more; more nodes are added where the patch gets hotter, each time up to 1.25 times the temperatures it
+    reached, until every temperature of the solution lies below the table's top interval, where the stencil would
+    be one-sided: the answer is then that of any taller table; at least 4 nodes per speed); values in between by
     tensor-product four-point Lagrange interpolation. The lattice does not depend on the heating parameters, so
     a table kept in ``tables`` serves any counter-surface effusivity or heat fraction and only grows (one engine
-    call for the missing nodes) when a hotter patch needs a higher temperature range. Along the patch (the
+    call for the missing nodes) when a hotter patch needs a higher temperature range. A new table for the same
+    rows with another engine (a joint fit with an effect that changes the engine's friction) first reaches
+    1.15 times the rises of the previous solution. Along the patch (the
     contact's nodes), the stick zone ends at the first sign change of :math:`\mu(v_s, p, T_0)p - k\theta x` (as in
     :func:`persson.slip.mu_slip`); behind it the
     Abel integral is evaluated by product integration (the shear piecewise linear between nodes, the kernel
@@ -370,13 +374,21 @@ def patch_friction(model, heating: PatchHeating, contact, slip, speed, temperatu
         calls0, points0 = 0, 0
         tab = _Tables(engine, keys, vnodes, voff, gnodes, V_lo, heating, adhesion_scale=scale, adhesion=adhesion)
         if tables is not None:
+            solver = solver_key(engine)
             if heated and tables.get("key") == cache_key and tables["value"].has_heated():
-                # the same rows with another engine (e.g. a fitted adhesion): the temperature range the previous
-                # table reached is the first guess, and the march below widens it if the patch gets hotter
-                tab.B[:] = tables["value"].B
+                # the same rows with another engine. Where the solver sees the same problems (an effect that only
+                # adds a friction term changed, e.g. an adhesion the table cannot rescale), the previous table's
+                # range is the first guess: its nodes are the problems the solver has just solved, which
+                # persson.solver.reuse_solutions returns at once. Where the solver changed (a joint fit with the
+                # flash temperature, the microtexture: every node costs a solve), the range that the previous
+                # solution's own rises needed is, not the previous table's, which only ever grows and may lie far
+                # above the rises of the fit's later evaluations. The march below widens it if the patch is hotter.
+                reach = tables.get("reach")
+                same = solver is not None and tables.get("solver") == solver
+                tab.B[:] = tables["value"].B if reach is None or same else np.minimum(tables["value"].B, reach)
                 tab._grow(np.ones(keys.shape[0], dtype=bool))
             tables.clear()
-            tables.update(engine=ekey, separable=skey, key=cache_key, value=tab, model=model)
+            tables.update(engine=ekey, separable=skey, key=cache_key, value=tab, model=model, solver=solver)
     xi = np.ascontiguousarray(contact._xi)
     gg = np.ascontiguousarray(contact._g)
     rows = PatchRows(sweep=sweep.astype(np.int64), log_speed=np.log(vs), stick_slope=a, heat_factor=lam)
@@ -395,6 +407,8 @@ def patch_friction(model, heating: PatchHeating, contact, slip, speed, temperatu
         if not over.any():
             break
         tab.extend(over, np.array([float(np.max(umax[sweep == c])) for c in range(keys.shape[0])]))
+    if tables is not None and tables.get("value") is tab and heated:
+        tables["reach"] = tab.range_for(rise, vs, sweep)
     # what the engine said at the nodes this solution interpolates (not at nodes a hotter solution added before)
     rise_top = np.array([float(np.max(rise[sweep == c])) for c in range(keys.shape[0])])
     fill_notes, fill_warned, converged = tab.outcome(rise_top)
@@ -457,6 +471,30 @@ def _with_adhesion(model, values: dict):
 
     return model.replace(effects=tuple(dataclasses.replace(e, **values) if getattr(e, "name", "") == "adhesion"
                                        else e for e in model.effects))
+
+
+def solver_key(model):
+    """What the engine's solver sees of ``model``: its surface and material (by identity), nu, gamma, grid, area
+    correction and the effects that act before or inside the solver (on the conditions, the surface, the material,
+    the temperature or the modulus; by value). Two models with equal keys solve the same problems (they may differ
+    in effects that only add a friction term, such as the adhesion); None for an object that is not a
+    persson.Model (its solver is unknown)."""
+    if not all(hasattr(model, a) for a in ("surface", "material", "effects", "nu", "gamma")):
+        return None
+    return ("model", id(model.surface), id(model.material), model.nu, model.gamma, getattr(model, "grid", None),
+            getattr(model, "correction", None),
+            tuple(e for e in model.effects if getattr(e, "name", "") != "patch_heating" and _acts_on_solver(e)))
+
+
+def _acts_on_solver(effect) -> bool:
+    """Whether ``effect`` changes what the solver solves (any hook before or inside it; an object that is not a
+    persson.effects.Effect counts as one that does)."""
+    from ..effects.base import Effect
+
+    if not isinstance(effect, Effect):
+        return True
+    hooks = ("transform_conditions", "transform_surface", "transform_material", "modulus_factors")
+    return effect.solver_role is not None or any(getattr(type(effect), h) is not getattr(Effect, h) for h in hooks)
 
 
 def engine_key(model):

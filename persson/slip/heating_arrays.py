@@ -66,7 +66,8 @@ class MarchOutputs(NamedTuple):
     rise : ndarray (n,)
         Largest background temperature rise along the patch, K.
     table_use : ndarray (n,)
-        Highest y reached over the top of the row's temperature table (> 1: the table must grow).
+        Highest (y + h) reached over the top of the row's temperature table, h its spacing (> 1: a point lies in
+        the table's top interval, where its interpolation is one-sided, or above the top: the table must grow).
     temperature, shear, mu_profile : ndarray (n, N) or (1, N)
         Background temperature (deg C), shear / sigma0 and local friction at the nodes (one unused row without
         profiles).

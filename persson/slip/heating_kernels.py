@@ -586,7 +586,13 @@ def _node_temperature(base, coef, T_prev, T0, mu_max, c, iv, w_speed, mv, ig, w_
 
 @njit(cache=True, inline="always")
 def _table_use(x, h, y_top):
-    """How far up its temperature table a point reached: y / y_top (> 1: above the top).
+    """How far up its temperature table the four-point stencil of a point reached: (y + h) / y_top (> 1: the point
+    lies in the table's top interval, where the stencil is one-sided, or above the top).
+
+    A point in the interval [k h, (k + 1) h] interpolates on the nodes k - 1 .. k + 2 when the table has them: as
+    on a lattice without end. The table that keeps every point below its top interval therefore gives the answer
+    of any taller table, whatever the calls that grew it (:func:`persson.slip.patch_friction` widens it until it
+    does).
 
     Parameters
     ----------
@@ -600,13 +606,13 @@ def _table_use(x, h, y_top):
     Returns
     -------
     float
-        y / y_top; 2 when heated with only the T0 slice tabulated, 0 when not heated.
+        (y + h) / y_top; 2 when heated with only the T0 slice tabulated, 0 when not heated.
     """
+    if x <= 0.0:
+        return 0.0
     if y_top > 0.0:
-        return x * h / y_top
-    if x > 0.0:
-        return 2.0  # heated, but the table has only the T0 slice here
-    return 0.0
+        return (x + 1.0) * h / y_top
+    return 2.0  # heated, but the table has only the T0 slice here
 
 
 @njit(cache=True)

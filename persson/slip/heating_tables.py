@@ -129,15 +129,22 @@ class _Tables:
         """Make the table reach the temperatures of this call. ``rise0``: the rise of every row with the friction
         held at its T0 value (an upper bound when the friction falls with temperature); the range covers 1.15
         times it."""
-        nc = self.B.size
-        for c in range(nc):
+        self.B[:] = self.range_for(rise0, vs, sweep)
+        self._grow(np.ones(self.B.size, dtype=bool))
+
+    def range_for(self, rise, vs, sweep) -> np.ndarray:
+        """The range factor B of every sweep (:meth:`dT_max`) that covers 1.15 times the temperature rise ``rise``
+        of each row (sliding speeds ``vs``, sweeps ``sweep``); a tiny range where nothing rises (it keeps the table
+        regular)."""
+        B = np.zeros(self.B.size)
+        for c in range(B.size):
             sel = sweep == c
             v = vs[sel]
-            need = rise0[sel] * np.sqrt(v + self.V_lo[c]) / v
-            self.B[c] = 1.15 * float(np.max(need)) if need.size else 0.0
-            if not self.B[c] > 0:
-                self.B[c] = 1e-6 * self.cap  # nothing slides: a tiny range keeps the table regular
-        self._grow(np.ones(nc, dtype=bool))
+            need = rise[sel] * np.sqrt(v + self.V_lo[c]) / v
+            B[c] = 1.15 * float(np.max(need)) if need.size else 0.0
+            if not B[c] > 0:
+                B[c] = 1e-6 * self.cap
+        return B
 
     def _grow(self, which):
         """Add the lattice nodes that the sweeps ``which`` need for their current range and are missing."""
