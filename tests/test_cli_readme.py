@@ -47,6 +47,7 @@ def test_the_program_runs_the_command_of_its_arguments_and_leaves_what_lives_to_
     import gc
     import tomllib
 
+    from persson.commands import cli
     from persson.commands.cli import program
 
     scripts = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["scripts"]
@@ -54,12 +55,22 @@ def test_the_program_runs_the_command_of_its_arguments_and_leaves_what_lives_to_
     assert "program()" in (ROOT / "persson" / "__main__.py").read_text()
     monkeypatch.setattr(sys, "argv", ["persson"])
     gc.unfreeze()
+    before = gc.get_threshold()
     try:
         assert program() == 2                    # no command: the help, and status 2
         assert gc.get_freeze_count() > 1000
     finally:
         gc.unfreeze()                            # the rest of the test session collects as before
     assert "usage: persson" in capsys.readouterr().out
+    # while the command runs, the oldest generation is collected rarely (its full walks cost a report 0.25-0.5 s);
+    # the thresholds are given back afterwards
+    seen = []
+    monkeypatch.setattr(cli, "main", lambda: seen.append(gc.get_threshold()) or 0)
+    try:
+        assert program() == 0
+    finally:
+        gc.unfreeze()
+    assert seen == [(before[0], before[1], max(before[2], 1000))] and gc.get_threshold() == before
 
 
 #: Checks that need a fresh interpreter (what importing a package pulls in, ``python -m persson``).
