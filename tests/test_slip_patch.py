@@ -415,6 +415,27 @@ def test_a_new_table_whose_solver_problems_are_unchanged_keeps_the_range_just_so
         assert flash.engine_calls >= 2 and int(np.sum(cache["value"].nu)) < 0.5 * int(np.sum(first.nu))
 
 
+@pytest.mark.filterwarnings("ignore::persson.PhysicsWarning")   # the example road's rms slope
+def test_a_kept_table_is_not_lent_to_a_model_with_another_area_correction():
+    """The area correction changes the engine's friction (the contact area at every scale): a model with another
+    correction gets a table of its own, with the answers of a fresh one."""
+    from persson.slip.heating import engine_key, solver_key
+
+    road, tread = surfaces.example_road(), materials.example_tread()
+    grid = persson.GridSettings(q_per_decade=6, n_phi=12, omega_per_decade=12, tolerance=1e-2)
+    plain = persson.Model(road, tread, effects=[PatchHeating()], grid=grid)
+    corrected = persson.Model(road, tread, effects=[PatchHeating()], grid=grid, correction="yang-persson")
+    assert engine_key(plain) != engine_key(corrected) and solver_key(plain) != solver_key(corrected)
+    c = ps.Contact(L, W, K)
+    s, V = np.geomspace(0.05, 1.0, 5), np.full(5, 1.0)
+    cache = {}
+    first = patch_friction(plain, plain.effect("patch_heating"), c, s, V, T0, SIGMA0, tables=cache)
+    kept = patch_friction(corrected, corrected.effect("patch_heating"), c, s, V, T0, SIGMA0, tables=cache)
+    fresh = patch_friction(corrected, corrected.effect("patch_heating"), c, s, V, T0, SIGMA0)
+    assert kept.engine_calls > 0 and np.all(np.abs(kept.mu - first.mu) > 0.05)
+    np.testing.assert_allclose(kept.mu, fresh.mu, rtol=1e-9)
+
+
 @pytest.mark.parametrize("slope, per_decade", [(0.01, 3.0), (0.0005, 3.0), (-0.002, 3.0), (0.0005, 1.0)])
 def test_a_solution_does_not_depend_on_how_far_its_table_reaches(slope, per_decade):
     """The friction between temperature nodes comes from a four-point stencil, centered on the point's interval

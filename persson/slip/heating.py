@@ -291,15 +291,16 @@ def patch_friction(model, heating: PatchHeating, contact, slip, speed, temperatu
     (``n_pressure`` nodes over the range of p(x), floored at 2 % of sigma0) and the background temperature on
     the lattice :math:`y_k = k/n_y`, :math:`y = \log_{10}a_T(T_0) - \log_{10}a_T(T)`,
     :math:`n_y` = ``temperature_points_per_decade``, from T0 up to :math:`T_0 + \Delta T_{max}(v)`
-    (:math:`\Delta T_{max}` 1.15 times the rise the patch would reach with the friction held at its T0 value, and
-    one node more; more nodes are added where the patch gets hotter, each time up to 1.25 times the temperatures it
-    reached, until every temperature of the solution lies below the table's top interval, where the stencil would
-    be one-sided: the answer is then that of any taller table; at least 4 nodes per speed); values in between by
+    (:math:`\Delta T_{max}` 1.15 times the rise the patch would reach with the friction held at its T0 value;
+    more nodes are added where the patch gets hotter, each time up to 1.25 times the temperatures it reached,
+    until every temperature of the solution lies below the table's top interval, where the stencil would be
+    one-sided: the answer is then that of any taller table; at least 4 nodes per speed); values in between by
     tensor-product four-point Lagrange interpolation. The lattice does not depend on the heating parameters, so
     a table kept in ``tables`` serves any counter-surface effusivity or heat fraction and only grows (one engine
     call for the missing nodes) when a hotter patch needs a higher temperature range. A new table for the same
-    rows with another engine (a joint fit with an effect that changes the engine's friction) first reaches
-    1.15 times the rises of the previous solution. Along the patch (the
+    rows with another engine first reaches 1.15 times the rises of the previous solution where the solver sees
+    other problems (:func:`solver_key`; a joint fit with the flash temperature), and the previous table's range
+    where it does not (its nodes are then problems just solved). Along the patch (the
     contact's nodes), the stick zone ends at the first sign change of :math:`\mu(v_s, p, T_0)p - k\theta x` (as in
     :func:`persson.slip.mu_slip`); behind it the
     Abel integral is evaluated by product integration (the shear piecewise linear between nodes, the kernel
@@ -474,16 +475,28 @@ def _with_adhesion(model, values: dict):
 
 
 def solver_key(model):
-    """What the engine's solver sees of ``model``: its surface and material (by identity), nu, gamma, grid, area
-    correction and the effects that act before or inside the solver (on the conditions, the surface, the material,
-    the temperature or the modulus; by value). Two models with equal keys solve the same problems (they may differ
-    in effects that only add a friction term, such as the adhesion); None for an object that is not a
-    persson.Model (its solver is unknown)."""
+    """What the engine's solver sees of ``model``: :func:`engine_key` with only the effects that act before or
+    inside the solver (on the conditions, the surface, the material, the temperature or the modulus). Two models
+    with equal keys solve the same problems (they may differ in effects that only add a friction term, such as the
+    adhesion); None for an object that is not a persson.Model (its solver is unknown)."""
+    return _model_key(model, _acts_on_solver)
+
+
+def engine_key(model):
+    """What the engine's friction depends on: the model's surface and material (by identity), nu, gamma, grid,
+    area correction and its effects other than patch heating (by value). Two models with equal keys give equal
+    friction; an object that is not a persson.Model is keyed by its identity."""
+    return _model_key(model, lambda effect: True) or ("object", id(model))
+
+
+def _model_key(model, keep):
+    """The key of :func:`engine_key` with the effects ``keep`` accepts (patch heating never); None for an object
+    that is not a persson.Model."""
     if not all(hasattr(model, a) for a in ("surface", "material", "effects", "nu", "gamma")):
         return None
     return ("model", id(model.surface), id(model.material), model.nu, model.gamma, getattr(model, "grid", None),
             getattr(model, "correction", None),
-            tuple(e for e in model.effects if getattr(e, "name", "") != "patch_heating" and _acts_on_solver(e)))
+            tuple(e for e in model.effects if getattr(e, "name", "") != "patch_heating" and keep(e)))
 
 
 def _acts_on_solver(effect) -> bool:
@@ -495,15 +508,3 @@ def _acts_on_solver(effect) -> bool:
         return True
     hooks = ("transform_conditions", "transform_surface", "transform_material", "modulus_factors")
     return effect.solver_role is not None or any(getattr(type(effect), h) is not getattr(Effect, h) for h in hooks)
-
-
-def engine_key(model):
-    """What the engine's friction depends on: the model's surface and material (by identity), nu, gamma, grid and
-    its effects other than patch heating (by value). Two models with equal keys give equal friction."""
-    if all(hasattr(model, a) for a in ("surface", "material", "effects", "nu", "gamma")):
-        return ("model", id(model.surface), id(model.material), model.nu, model.gamma, getattr(model, "grid", None),
-                tuple(e for e in model.effects if getattr(e, "name", "") != "patch_heating"))
-    return ("object", id(model))
-
-
-
