@@ -811,6 +811,70 @@ def test_a_better_subset_of_a_larger_set_within_reach_replaces_an_answer_that_mi
     assert Step(added="b", removed="c", action="reduced", **common).describe() == "c -> b (reduced)"
 
 
+def _stand_in_set(effects, bic, at_noise=False, issue="", notes=()):
+    """A fitted set with one parameter per effect, ``issue`` on each (not credible when given), at the noise or not."""
+    from types import SimpleNamespace
+
+    from validation.refit import Estimate
+    from validation.select import EffectSet
+
+    est = tuple(Estimate(key=f"{e}.p", value=1.0, std=0.1, interval=(0.9, 1.1), method="quadratic", issue=issue)
+                for e in effects)
+    return EffectSet(effects=tuple(effects), model=None, contact=None, predicted=np.zeros(3), rss=1.0, bic=bic,
+                     rmse=0.1, n_params=len(effects), estimates=est, lack=SimpleNamespace(consistent=at_noise),
+                     pattern=None, notes=notes)
+
+
+def test_an_answer_at_the_noise_that_is_not_credible_has_the_fits_stopped_within_reach_continued(monkeypatch):
+    """An answer at the noise is left to the pair screen -- unless it is not credible, which explains nothing
+    (blind case 21-13: an adhesion whose peak speed ran to the search bound stood in for the hidden flash
+    temperature + microtexture at the noise, while adhesion + flash temperature + microtexture had stopped at its
+    budget 7.6 BIC units better; continued, it fell 20 units below the answer, and the backward elimination left
+    the hidden pair). The credible answer at the noise: nothing continued."""
+    from validation.refit import BUDGET_NOTE
+    from validation.select import SetSearch
+
+    def search_with(answer):
+        search = SetSearch(None, (), None)
+        for s in (answer, _stand_in_set(("a", "b", "c"), -7.6, notes=(BUDGET_NOTE,))):
+            search.sets[s.key] = s
+        monkeypatch.setattr(search, "_continue", lambda s: _stand_in_set(s.effects, -20.0, at_noise=True))
+        return search
+
+    credible = search_with(_stand_in_set(("a", "b"), 0.0, at_noise=True))
+    assert credible.resume(("a", "b")) is None and credible.resumed == []
+    assert credible.sets[frozenset("abc")].bic == -7.6
+    aside = search_with(_stand_in_set(("a", "b"), 0.0, at_noise=True, issue="on the upper search bound"))
+    assert aside.resume(("a", "b")) == ("a", "b", "c") and aside.sets[frozenset("abc")].bic == -20.0
+    assert aside.resumed == ["a + b + c (BIC -7.6 where its fit stopped, -20.0 continued)"]
+
+
+def test_an_answer_at_the_noise_that_is_not_credible_has_the_subsets_of_the_sets_within_reach_fitted(monkeypatch):
+    """The same for the subsets of the sets within reach: an answer at the noise that is not credible does not
+    stop the look, and the credible subset b + c of a + b + c, never fitted and 20 units better, replaces it."""
+    from validation.select import SetSearch
+
+    def search_with(answer):
+        search = SetSearch(None, (), None)
+        for s in (answer, _stand_in_set(("a", "b", "c"), -5.0, at_noise=True)):
+            search.sets[s.key] = s
+        fitted = []
+
+        def fit(effects, warm):
+            fitted.append(frozenset(effects))
+            return _stand_in_set(effects, -20.0 if set(effects) == {"b", "c"} else 3.0, at_noise=True)
+
+        monkeypatch.setattr(search, "_fit", fit)
+        return search, fitted
+
+    search, fitted = search_with(_stand_in_set(("a", "b"), 0.0, at_noise=True))
+    assert search.reduce(("a", "b")) is None and fitted == []
+    search, fitted = search_with(_stand_in_set(("a", "b"), 0.0, at_noise=True, issue="outside the plausible range"))
+    assert search.reduce(("a", "b")) == ("b", "c")
+    assert set(fitted) == {frozenset("bc"), frozenset("ac")}     # a + b, the answer, is fitted already
+    assert search.reduced == ["b + c (20.0 BIC units better than a + b; a subset of a set within reach of it)"]
+
+
 def test_a_step_diagnosis_computes_its_baseline_intervals_and_explanation_when_read(effects):
     """The diagnoses of a search's later steps refit the set the search fitted already (their baseline): its
     intervals, and the explanation that shows them, are computed when first read, with the model evaluations they

@@ -11,7 +11,8 @@ noise) starts from the current set's values. The loop stops when the verdict is 
 no noise to judge against), when a set comes back that was tried before, or after ``max_steps`` additions. A path
 that ends short of the noise explores the pairs it could not reach; one that ends at the noise screens the pairs
 it never fitted and fits those that may tie with it (:mod:`validation.select`, items 4 and 5). Fits that stopped
-at their budget of model evaluations within 10 BIC units of an answer that misses the noise are then continued,
+at their budget of model evaluations within 10 BIC units of an answer that misses the noise, or is not credible,
+are then continued,
 and one that fits better by more than 10 units replaces it (item 6; only when effects were added and the noise is
 known); so, under the same conditions, does a subset of a larger set fitted within 10 BIC units of it (item 7).
 An effect of the answer with a parameter the data do not identify is replaced in turn by each credible candidate
@@ -509,12 +510,12 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
                             _sub(progress, "checking the effects of the pair"))
             stopped = (f"{' + '.join(previous)} reached the noise level; {search.get(current).label}, found by "
                        "exploring pairs, fits better by more than 10 BIC units")
-    # when the path added effects and the answer misses the noise (a baseline left alone is the first diagnosis'
-    # judgement, with its tests), two more looks, each within half the model evaluations the search took: fits
-    # that stopped at their budget give upper bounds on their BIC, and those within reach of the answer are
-    # continued; a larger set within reach may contain a better one that no step fitted (the backward elimination
-    # acts on the path's set only), and its subsets are fitted. A set that then fits better by more than STAY takes
-    # the place of the path's.
+    # when the path added effects and the answer misses the noise or is not credible (a baseline left alone is the
+    # first diagnosis' judgement, with its tests), two more looks, each within half the model evaluations the search
+    # took: fits that stopped at their budget give upper bounds on their BIC, and those within reach of the answer
+    # are continued; a larger set within reach may contain a better one that no step fitted (the backward
+    # elimination acts on the path's set only), and its subsets are fitted. A set that then fits better by more than
+    # STAY takes the place of the path's.
     for look, action, doing, checking, why in (
             (search.resume, "resumed", "continuing fits stopped at their budget",
              "checking the effects of the continued set",

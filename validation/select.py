@@ -59,24 +59,26 @@ by). The search (:func:`validation.improve`) is stepwise:
    the best point it reached, so its BIC is only an upper bound. A candidate fitted on top of a set varies its own
    parameters in its design, and the local fits that start there can run out before they leave the set's values
    (a flash temperature held at its bound by the look-alike it replaced). When the search ends with an answer that
-   misses the noise, every such set within :data:`EQUAL` BIC units of it (itself included) is fitted again by a
-   global search of all its parameters from the point it reached, with a budget of its own, the best first, within
-   half the model evaluations the search took (a second time if the first took it further and it stopped again; a
-   credible fit is kept when its continuation is not); a credible set that then fits better than the answer by
-   more than :data:`STAY` replaces it (a step ``"resumed"``). This is done when the path added effects and the
-   noise is known (a baseline left alone is the first diagnosis' judgement, made with its significance tests); an
-   answer at the noise is left to the pair screen (item 5).
+   misses the noise, or one that is not credible (at the noise or not, it explains nothing: an adhesion whose peak
+   speed runs to the search bound standing in for a flash temperature + microtexture pair), every such set within
+   :data:`EQUAL` BIC units of it (itself included) is fitted again by a global search of all its parameters from
+   the point it reached, with a budget of its own, the best first, within half the model evaluations the search
+   took (a second time if the first took it further and it stopped again; a credible fit is kept when its
+   continuation is not); a credible set that then fits better than the answer by more than :data:`STAY` replaces
+   it (a step ``"resumed"``). This is done when the path added effects and the noise is known (a baseline left
+   alone is the first diagnosis' judgement, made with its significance tests); a credible answer at the noise is
+   left to the pair screen (item 5).
 7. **subsets of the sets within reach**: backward elimination acts on the path's own set only, and a larger set
    fitted on the way (a candidate on top of the path's set, a pair the exploration fitted) may tie with the answer
    because it contains a better set: the path's set plus the true partner of an effect the path took a look-alike
    for, whose subset without the look-alike is the truth (a flash temperature + microtexture pair hidden behind an
    adhesion: the adhesion is fitted first, the microtexture next, and the flash temperature on top of both only
    ties; the pair without the adhesion was never fitted). When the search ends with an answer that misses the
-   noise, every set fitted with two or more effects within :data:`EQUAL` BIC units of it (credible or not) has
-   each of its effects dropped in turn; the subsets not fitted yet are refitted jointly from its values, the
-   subsets of the better sets first, within half the model evaluations the search took. A credible subset that
-   fits better than the answer by more than :data:`STAY` replaces it (a step ``"reduced"``); the others count for
-   the equally supported sets. Done under the conditions of item 6.
+   noise or is not credible, every set fitted with two or more effects within :data:`EQUAL` BIC units of it
+   (credible or not) has each of its effects dropped in turn; the subsets not fitted yet are refitted jointly from
+   its values, the subsets of the better sets first, within half the model evaluations the search took. A credible
+   subset that fits better than the answer by more than :data:`STAY` replaces it (a step ``"reduced"``); the others
+   count for the equally supported sets. Done under the conditions of item 6.
 8. **the best set fitted**: the path's answer is the set its steps reached, and a set fitted on the way off the
    path (a pair the screen of item 5 fitted) can fit better by less than :data:`STAY`, so that no step above took
    it (an adhesion that the path took, on three parameters, against the flash temperature + microtexture pair it
@@ -798,8 +800,8 @@ class SetSearch:
         (module docstring, item 6).
 
         A fit that stopped at its budget reports the best point it reached: its BIC is an upper bound, and the set
-        may fit better. When ``current`` misses the noise (lack of fit, or a pattern left; at the noise, the sets
-        that might replace it are those the pair screen fits, :meth:`explore`), every such set within
+        may fit better. When ``current`` misses the noise (lack of fit, or a pattern left), or is not credible (at
+        the noise, a credible ``current`` is left to the pair screen, :meth:`explore`), every such set within
         :data:`EQUAL` BIC units of it, itself included, is fitted again from that point with a budget of its own
         (:meth:`_continue`), the best first, at most ``rounds`` times (once when a continuation gains nothing),
         until none is left within reach or ``budget`` model evaluations are spent. A credible fit is kept when its
@@ -807,7 +809,8 @@ class SetSearch:
         better than ``current`` by more than :data:`STAY` BIC units, else None.
         """
         current = tuple(current)
-        if fits_at_noise(self.get(current)):
+        now = self.get(current)
+        if fits_at_noise(now) and now.plausible:
             return None
         start = self.n_evals
         continued = set()
@@ -840,15 +843,16 @@ class SetSearch:
     def reduce(self, current: tuple, budget: int | None = None, progress=None) -> tuple | None:
         """The subsets of the sets within reach of the answer (module docstring, item 7).
 
-        When ``current`` misses the noise, every fitted set of two or more effects within :data:`EQUAL` BIC units of
-        it (credible or not, ``current`` itself left to the backward elimination) has each effect dropped in turn;
-        each subset not fitted yet is refitted jointly from that set's values (:meth:`get`), the subsets of the
-        better sets first, until ``budget`` model evaluations are spent. Returns the effects of the best credible
-        subset fitted here when it fits better than ``current`` by more than :data:`STAY` BIC units, else None.
+        When ``current`` misses the noise or is not credible, every fitted set of two or more effects within
+        :data:`EQUAL` BIC units of it (credible or not, ``current`` itself left to the backward elimination) has each
+        effect dropped in turn; each subset not fitted yet is refitted jointly from that set's values (:meth:`get`),
+        the subsets of the better sets first, until ``budget`` model evaluations are spent. Returns the effects of the
+        best credible subset fitted here when it fits better than ``current`` by more than :data:`STAY` BIC units,
+        else None.
         """
         current = tuple(current)
         now = self.get(current)
-        if fits_at_noise(now):
+        if fits_at_noise(now) and now.plausible:
             return None
         start = self.n_evals
         within = sorted((t for t in self.sets.values() if len(t.effects) >= 2 and t.key != now.key
