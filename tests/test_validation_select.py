@@ -1254,29 +1254,50 @@ def test_an_effect_the_data_do_not_identify_is_replaced_in_turn_by_each_credible
     fitted alone on the baseline is fitted in A's place, from the answer's values and its own single fit: the
     significant ones first, the better single fit first (D, then C), then the one that showed nothing alone (E: a
     flash temperature invisible until the microtexture is in, blind case 19-89), then the one with no signature at
-    all (G, from the answer's values alone); not F (not credible alone), B (in the answer already), nor anything
-    in place of the identified B. The best set fitted then answers (:meth:`prefer`): C + B, 12 BIC units better,
-    with both effects earning their place."""
+    all (G, from the answer's values alone); not F (not credible alone), nor B (in the answer already). Then A is
+    kept and the same candidates take the identified B's place, in the same order. The best set fitted then
+    answers (:meth:`prefer`): C + B, 12 BIC units better, with both effects earning their place."""
     sets = [_Fitted(("A", "B"), 0.0, not_identified=("A.k",)), _Fitted(("A",), 30.0), _Fitted(("B",), 25.0),
             _Fitted(("C",), 40.0), _Fitted(("D",), 35.0), _Fitted(("E",), 60.0), _Fitted(("F",), 20.0, plausible=False),
             _Fitted((), 80.0)]
     fits = {frozenset("CB"): _Fitted(("C", "B"), -12.0), frozenset("DB"): _Fitted(("D", "B"), 4.0),
             frozenset("EB"): _Fitted(("E", "B"), 9.0), frozenset("GB"): _Fitted(("G", "B"), 7.0)}
+    fits.update({frozenset("A" + e): _Fitted(("A", e), 3.0) for e in "DCEG"})
     candidates = [_Candidate("A", 30.0), _Candidate("B", 25.0), _Candidate("C", 40.0), _Candidate("D", 35.0),
                   _Candidate("E", 60.0, significant=False), _Candidate("F", 20.0),
                   _Candidate("G", math.nan, significant=False, status="no signature")]
     search, first = _replacing(sets, fits, candidates)
     assert search.replace_unidentified(("A", "B"), first) is None
     assert search.asked == [(("D", "B"), ("A + B", "D")), (("C", "B"), ("A + B", "C")), (("E", "B"), ("A + B", "E")),
-                            (("G", "B"), ("A + B",))]
+                            (("G", "B"), ("A + B",)), (("A", "D"), ("A + B", "D")), (("A", "C"), ("A + B", "C")),
+                            (("A", "E"), ("A + B", "E")), (("A", "G"), ("A + B",))]
     assert search.instances["G"] == "G as fitted" and search.free["G"] == ("k",)
     assert search.replaced[0] == ("D + B (D in place of A, whose A.k the data do not identify): +4.0 BIC units from "
                                   "A + B")
     assert "-12.0 BIC units from A + B" in search.replaced[1]
     assert search.prefer(("A", "B")) == ("C", "B")
+    assert search.replaced[4] == ("A + D (D in place of B, beside A.k, which the data do not identify): +3.0 BIC "
+                                  "units from A + B")
     # asked twice, nothing is fitted again
     search.replace_unidentified(("A", "B"), first)
-    assert len(search.asked) == 4
+    assert len(search.asked) == 8
+
+
+def test_an_effect_the_data_do_not_identify_is_kept_while_its_partner_takes_another_effects_place():
+    """Blind case 23-89 (flash temperature + microtexture, 64 rows): the answer B + A is an adhesion B beside a
+    flash temperature A whose q_m runs to where it does nothing (A.k not identified); the microtexture C and the
+    flash temperature each fitted worse than the baseline alone (+3.1 and +12.3 BIC units), so no step paired
+    them, and C in A's place fits 4.5 units worse than the answer. Kept, A acts once C is in B's place: A + C fits
+    4.2 units better, with both parameters identified, and answers."""
+    sets = [_Fitted(("B", "A"), 0.0, not_identified=("A.k",)), _Fitted(("B",), 63.0), _Fitted(("A",), 154.0),
+            _Fitted(("C",), 145.0), _Fitted((), 142.0)]
+    fits = {frozenset("BC"): _Fitted(("B", "C"), 4.5), frozenset("CA"): _Fitted(("C", "A"), -4.2)}
+    candidates = [_Candidate("B", 63.0), _Candidate("A", 154.0, significant=False),
+                  _Candidate("C", 145.0, significant=False)]
+    search, first = _replacing(sets, fits, candidates)
+    search.replace_unidentified(("B", "A"), first)
+    assert [a for a, _ in search.asked] == [("B", "C"), ("C", "A")]
+    assert search.prefer(("B", "A")) == ("C", "A")
 
 
 def test_replacing_an_unidentified_effect_stops_at_its_budget_and_leaves_an_identified_answer_alone():
@@ -1288,7 +1309,7 @@ def test_replacing_an_unidentified_effect_stops_at_its_budget_and_leaves_an_iden
     search, first = _replacing(sets, fits, candidates)
     search.replace_unidentified(("A", "B"), first, budget=10)
     assert search.asked == [(("D", "B"), ("A + B", "D"))]
-    assert search.replaced[-1] == ("the replacements stopped at their budget of 10 model evaluations (1 of 2 sets "
+    assert search.replaced[-1] == ("the replacements stopped at their budget of 10 model evaluations (1 of 4 sets "
                                    "fitted)")
     sets[0] = _Fitted(("A", "B"), 0.0)
     search, first = _replacing(sets, fits, candidates)

@@ -98,10 +98,14 @@ by). The search (:func:`validation.improve`) is stepwise:
    microtexture: the flash temperature, significant alone but far behind, was never fitted beside the
    microtexture). Before item 8, each such effect is replaced in turn by each credible candidate fitted alone on
    the baseline -- the significant ones first, the better single fits first, then those that showed nothing alone
-   (an effect invisible until its partner is in), then those with no signature at all; the sets not fitted yet are
-   refitted jointly from the answer's values and the replacement's single fit, within half the model evaluations
-   the search took, and compete in item 8 and for the equally supported sets (:attr:`Selection.replaced` says what
-   was fitted). Done when the noise is known.
+   (an effect invisible until its partner is in), then those with no signature at all. Then each such effect is
+   kept and the same candidates take the place of each other effect of the answer, in the same order: the effect
+   left open may act only beside a partner the answer lacks, while another effect of the answer stands in for the
+   pair (an adhesion fitting what flash temperature + microtexture do, beside a flash temperature whose q_m runs to
+   where it does nothing, each member of the pair fitting worse than the baseline alone). The sets not fitted yet
+   are refitted jointly from the answer's values and the replacement's single fit, within half the model
+   evaluations the search took, and compete in item 8 and for the equally supported sets
+   (:attr:`Selection.replaced` says what was fitted). Done when the noise is known.
 
 The intervals of a set fitted here (its profile likelihoods, often costlier than the fit) are computed when first
 read (:class:`EffectSet`): for the sets reported, and for a set whose credibility depends on them (a parameter on a
@@ -879,7 +883,9 @@ class SetSearch:
         microtexture): the swaps of :meth:`prune` try only the alternatives named when it was added, which need not
         include that one. The replacements are the candidates of ``first`` fitted alone and credible there (the
         significant ones, the better single fits first, then those that showed nothing alone), then those with no
-        signature (never fitted alone). Each set not fitted yet is refitted jointly from the values of ``current``
+        signature (never fitted alone); then each such effect is kept and the same replacements take the place of
+        each other effect of ``current`` (the effect left open may act only beside a partner that ``current``
+        lacks). Each set not fitted yet is refitted jointly from the values of ``current``
         and of the replacement's single fit (the values of ``current`` alone for one with no signature), in that
         order, until ``budget`` model evaluations are spent. Nothing is returned: the sets fitted here compete in
         :meth:`prefer` (which takes the best credible one whose every effect earns its place, where it fits better)
@@ -898,21 +904,30 @@ class SetSearch:
         # short is invisible until the microtexture is in, and an effect left open may stand in for its partner)
         singles = sorted(fitted_alone, key=lambda c: (not c.significant, c.bic))
         singles += [c for c in self._unsigned(first) if c.effect not in current]
+        # the effects left open first; then each of them is kept and the others are replaced: it may act only
+        # beside a partner that the answer lacks, while another effect of the answer stands in for the pair (a
+        # flash temperature whose q_m runs to where it does nothing, beside an adhesion that fits what flash
+        # temperature + microtexture do, each of those two fitting worse than the baseline alone)
         todo = []
-        for f in loose:
+        for f in loose + [e for e in current if e not in loose]:
+            beside = "" if f in loose else f", beside {', '.join(loose)}"
             for c in singles:
                 trial = tuple(c.effect if e == f else e for e in current)
                 alone = self.sets.get(frozenset({c.effect}))
                 todo.append((trial, (now,) if alone is None else (now, alone),
-                             f"refitting with {c.effect} in place of {f}"))
+                             f"refitting with {c.effect} in place of {f}{beside}"))
         start = self.n_evals
         fitted, stopped = self._fit_in_turn(todo, budget, start, progress)
         for t in fitted:
             gone = next(e for e in current if e not in t.effects)
             came = next(e for e in t.effects if e not in current)
-            why = ", ".join(k for k in now.not_identified if k.partition(".")[0] == gone)
-            self.replaced.append(f"{t.label} ({came} in place of {gone}, whose {why} the data do not identify): "
-                                 f"{t.bic - now.bic:+.1f} BIC units from {now.label}")
+            if gone in loose:
+                why = ", ".join(k for k in now.not_identified if k.partition(".")[0] == gone)
+                said = f"{came} in place of {gone}, whose {why} the data do not identify"
+            else:
+                why = ", ".join(k for k in now.not_identified)
+                said = f"{came} in place of {gone}, beside {why}, which the data do not identify"
+            self.replaced.append(f"{t.label} ({said}): {t.bic - now.bic:+.1f} BIC units from {now.label}")
         if stopped:
             self.replaced.append(f"the replacements stopped at their budget of {budget} model evaluations "
                                  f"({len(fitted)} of {len(todo)} sets fitted)")
