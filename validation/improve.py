@@ -12,11 +12,11 @@ no noise to judge against), when a set comes back that was tried before, or afte
 that ends short of the noise explores the pairs it could not reach; one that ends at the noise screens the pairs
 it never fitted and fits those that may tie with it (:mod:`validation.select`, items 4 and 5). Fits that stopped
 at their budget of model evaluations within 10 BIC units of an answer that misses the noise, or is not credible,
-are then continued,
-and one that fits better by more than 10 units replaces it (item 6; only when effects were added and the noise is
-known); so, under the same conditions, does a subset of a larger set fitted within 10 BIC units of it (item 7).
-An effect of the answer with a parameter the data do not identify is replaced in turn by each credible candidate
-of the first diagnosis, and each such set refitted (item 9; the noise known). Then the best set fitted takes the
+are then continued, and one that fits better by more than 10 units replaces it (item 6; only when effects were
+added and the noise is known); so, under the same conditions, does a subset of a larger set fitted within 10 BIC
+units of it (item 7). An effect of the answer with a parameter the data do not identify is replaced in turn by
+each credible candidate of the first diagnosis, then kept while each other effect of the answer is replaced so,
+and each such set refitted (item 9; the noise known). Then the best set fitted takes the
 answer's place: a credible set whose every effect earns its place and that fits better (with its parameters
 identified, where the answer's are), or, for an answer that is not credible, one within 10 BIC units of it (item
 8). A final pass keeps an effect only if dropping it from the final joint model costs more than 10 BIC units, and
