@@ -331,7 +331,7 @@ def _selection_html(sel) -> str:
     if getattr(sel, "reduced", ()):
         out.append("<p class='note'>Subsets of the sets within reach: " + _e("; ".join(sel.reduced)) + ".</p>")
     if getattr(sel, "replaced", ()):
-        out.append("<p class='note'>In place of an effect the data do not identify: "
+        out.append("<p class='note'>Refitted around an effect the data do not identify: "
                    + _e("; ".join(sel.replaced)) + ".</p>")
     if getattr(sel, "preferred", ()):
         out.append("<p class='note'>The best set fitted, in place of the answer the search reached: "

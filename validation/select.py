@@ -334,7 +334,8 @@ class Selection:
         of an answer that is not credible (empty when none did).
     replaced : tuple of str
         The sets fitted with an effect of the answer whose parameters the data do not identify replaced by another
-        candidate (:meth:`SetSearch.replace_unidentified`), in words, with their BIC against the answer's (empty when
+        candidate, or kept beside another candidate in place of one of the answer's other effects
+        (:meth:`SetSearch.replace_unidentified`), in words, with their BIC against the answer's (empty when
         none were fitted); one that fits better is the answer by :attr:`preferred`.
     calibration : validation.calibration.CalibrationCheck or None
         A gain and a zero offset of the measured mu fitted on top of each subset of the best set, an offset of the
@@ -424,7 +425,7 @@ class Selection:
         if self.reduced:
             lines.append("Subsets of the sets within reach: " + "; ".join(self.reduced) + ".")
         if self.replaced:
-            lines.append("In place of an effect the data do not identify: " + "; ".join(self.replaced) + ".")
+            lines.append("Refitted around an effect the data do not identify: " + "; ".join(self.replaced) + ".")
         if self.preferred:
             lines.append("The best set fitted, in place of the answer the search reached: "
                          + "; ".join(self.preferred) + ".")
