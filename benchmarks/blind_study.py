@@ -12,8 +12,11 @@ Each case is drawn at random and made by a path independent of the diagnosis:
 * **conditions**: 2-3 temperatures, 1-2 pressures (at least 3 combinations), 7-9 sliding speeds over 3.5-4.5
   decades, a slip sweep with a contact (always with patch heating), wet rows in some cases;
 * **hidden physics**: none; one effect (adhesion, flash temperature, microtexture, strain softening, patch
-  heating); a pair; wet rows with nothing hidden; or physics outside the candidate list (a Cole-Cole filler
-  relaxation of the compound that shifts with an Arrhenius law instead of WLF);
+  heating); a pair; wet rows with nothing hidden; or physics outside the candidate list, chosen by ``--outside``:
+  ``filler`` (the default), a Cole-Cole filler relaxation of the compound that shifts with an Arrhenius law
+  instead of WLF; ``shift``, a compound whose true WLF constants are not those of the master curve the case is
+  given (each of C1 and C2 off by a factor 0.7-1.4: a master curve shifted with another compound's or a textbook's
+  constants); ``mixed``, either at random;
 * **truth**: the engine on a converged grid (6x the default wavevector nodes, 3x the modulus table, a 2.5x finer
   temperature table, a brush model with 1601 nodes), never the diagnosis's settings;
 * **noise**: Gaussian, its level set by an effect-to-noise ratio (rms of the hidden physics' change of mu over the
@@ -52,7 +55,7 @@ import sys
 import time
 import traceback
 import warnings
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -99,8 +102,15 @@ class BlindCase:
 
 
 # ==========================================================================================================
-def draw(index: int, seed: int) -> BlindCase:
-    """The case ``index`` of the study with seed ``seed`` (module docstring)."""
+#: The kinds of physics outside the candidate list (``--outside``; module docstring).
+OUTSIDE = ("filler", "shift", "mixed")
+
+
+def draw(index: int, seed: int, outside: str = "filler") -> BlindCase:
+    """The case ``index`` of the study with seed ``seed`` (module docstring); ``outside``: the physics outside the
+    candidates of an ``outside`` case (one of :data:`OUTSIDE`)."""
+    if outside not in OUTSIDE:
+        raise ValueError(f"outside: expected one of {', '.join(OUTSIDE)}, got {outside!r}")
     rng = np.random.default_rng([seed, index])
     kind = SCHEDULE[index % len(SCHEDULE)]
     hidden_names: tuple = ()
@@ -155,10 +165,20 @@ def draw(index: int, seed: int) -> BlindCase:
     truth_material = material
     notes = {}
     if kind == "outside":
-        filler = {"delta_E": rng.uniform(4e6, 10e6), "f_ref_Hz": 10 ** rng.uniform(2.0, 4.0),
-                  "alpha": rng.uniform(0.3, 0.5), "E_a": rng.uniform(40e3, 80e3)}
-        truth_material = ArrheniusFiller(material, **filler)
-        notes["filler"] = filler
+        if outside == "mixed":
+            # drawn apart from the case's own generator
+            outside = ("filler", "shift")[int(np.random.default_rng([seed, index, 1]).integers(2))]
+        if outside == "filler":
+            filler = {"delta_E": rng.uniform(4e6, 10e6), "f_ref_Hz": 10 ** rng.uniform(2.0, 4.0),
+                      "alpha": rng.uniform(0.3, 0.5), "E_a": rng.uniform(40e3, 80e3)}
+            truth_material = ArrheniusFiller(material, **filler)
+            notes["filler"] = filler
+        else:
+            wlf = material.wlf
+            shift = {"C1": wlf.C1 * 10 ** rng.uniform(math.log10(0.7), math.log10(1.4)),
+                     "C2": wlf.C2 * 10 ** rng.uniform(math.log10(0.7), math.log10(1.4)), "T_ref": wlf.T_ref}
+            truth_material = replace(material, wlf=materials.WLF(**shift), label="blind study compound, true shift")
+            notes["shift"] = {"true": shift, "given": {"C1": wlf.C1, "C2": wlf.C2, "T_ref": wlf.T_ref}}
     truth = persson.Model(truth_surface, truth_material, effects=truth_effects, grid=TRUTH_GRID)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
@@ -367,6 +387,8 @@ def run(case: BlindCase) -> dict:
            "calibration_rivals": [f"{f.describe()} on {f.on}" for f in imp.selection.calibration.rivals]
            if imp.selection is not None and imp.selection.calibration is not None else [],
            "coverage": []}
+    if case.kind == "outside":
+        out["outside"] = "shift" if "shift" in case.notes else "filler"
     if case.kind in ("single", "pair") and set(found) == set(truth):
         est = {e.key: e for e in imp.selection.best.estimates}
         for eff, params in case.hidden.items():
@@ -451,6 +473,11 @@ def summarize(results: list) -> str:
     out = [r for r in results if r["kind"] == "outside"]
     lines.append(f"Physics outside the candidates called explained: {sum(r['verdict'] == 'explained' for r in out)} "
                  f"of {len(out)} (verdicts: {', '.join(r['verdict'] for r in out) or '-'})")
+    physics = sorted({r.get("outside", "filler") for r in out})
+    if len(physics) > 1:
+        lines.append("  by physics: " + "; ".join(
+            f"{ph} {sum(r['verdict'] == 'explained' for r in out if r.get('outside', 'filler') == ph)} of "
+            f"{sum(r.get('outside', 'filler') == ph for r in out)}" for ph in physics))
     far = [r for r in out if r.get("distinguishable", math.nan) >= 2]
     if far:
         lines.append(f"  of those that no single candidate absorbs (distinguishable ratio >= 2, what the best "
@@ -507,6 +534,8 @@ def main(argv=None) -> int:
     ap.add_argument("--seed", type=int, default=1, help="seed of the study (default 1)")
     ap.add_argument("--start", type=int, default=0, help="index of the first case (to split a study in parts)")
     ap.add_argument("--kinds", default="", help="comma-separated kinds to run (null, wet, single, pair, outside)")
+    ap.add_argument("--outside", default="filler", choices=OUTSIDE,
+                    help="the physics outside the candidates of the outside cases (default filler)")
     ap.add_argument("--out", default=None, help="JSON file for the per-case results (appended to when it exists)")
     args = ap.parse_args(argv)
     kinds = set(filter(None, args.kinds.split(",")))
@@ -523,7 +552,7 @@ def main(argv=None) -> int:
         if i in done or (kinds and SCHEDULE[i % len(SCHEDULE)] not in kinds):
             continue
         try:
-            case = draw(i, args.seed)
+            case = draw(i, args.seed, outside=args.outside)
             r = run(case)
         except Exception as exc:  # noqa: BLE001  (one case's failure must not end a study of hours)
             # recorded and reported, not hidden: the summary lists it, and a later run retries it
