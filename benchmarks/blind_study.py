@@ -19,10 +19,11 @@ Each case is drawn at random and made by a path independent of the diagnosis:
   constants); ``mixed``, either at random;
 * **truth**: the engine on a converged grid (6x the default wavevector nodes, 3x the modulus table, a 2.5x finer
   temperature table, a brush model with 1601 nodes), never the diagnosis's settings;
-* **noise**: Gaussian, its level set by an effect-to-noise ratio (rms of the hidden physics' change of mu over the
-  noise; for a pair, that of the weaker effect) drawn log-uniformly from 0.5-20 (0.004-0.02 in mu without hidden
-  physics); given as ``mu_std`` in 30 % of the cases, as replicate rows in 20 %, else left to the local-difference
-  estimate;
+* **noise**: Gaussian (with ``--noise proportional``, each row's standard deviation in proportion to its true mu,
+  the level below at the case's mean mu), its level set by an effect-to-noise ratio (rms of the hidden physics'
+  change of mu over the noise; for a pair, that of the weaker effect) drawn log-uniformly from 0.5-20 (0.004-0.02
+  in mu without hidden physics); given as ``mu_std`` in 30 % of the cases, as replicate rows in 20 %, else left to
+  the local-difference estimate;
 * **distinguishable ratio**: what is left of the hidden effect after a refit of every other free parameter (the
   case's fitted ones, those of the other hidden effect of a pair) to the noise-free truth, over the noise: the part
   a diagnosis can see at all (a strain softening under a fitted adhesion is largely absorbed by it); for physics
@@ -104,13 +105,18 @@ class BlindCase:
 # ==========================================================================================================
 #: The kinds of physics outside the candidate list (``--outside``; module docstring).
 OUTSIDE = ("filler", "shift", "mixed")
+#: The noise models (``--noise``; module docstring).
+NOISE = ("constant", "proportional")
 
 
-def draw(index: int, seed: int, outside: str = "filler") -> BlindCase:
+def draw(index: int, seed: int, outside: str = "filler", noise: str = "constant") -> BlindCase:
     """The case ``index`` of the study with seed ``seed`` (module docstring); ``outside``: the physics outside the
-    candidates of an ``outside`` case (one of :data:`OUTSIDE`)."""
+    candidates of an ``outside`` case (one of :data:`OUTSIDE`); ``noise``: the noise's standard deviation the same
+    on every row (``"constant"``) or in proportion to the true mu of the row (``"proportional"``)."""
     if outside not in OUTSIDE:
         raise ValueError(f"outside: expected one of {', '.join(OUTSIDE)}, got {outside!r}")
+    if noise not in NOISE:
+        raise ValueError(f"noise: expected one of {', '.join(NOISE)}, got {noise!r}")
     rng = np.random.default_rng([seed, index])
     kind = SCHEDULE[index % len(SCHEDULE)]
     hidden_names: tuple = ()
@@ -223,9 +229,12 @@ def draw(index: int, seed: int, outside: str = "filler") -> BlindCase:
             warnings.simplefilter("ignore")
             rms, closest = _closest_other_set(kind, hidden_names, baseline, truth_rows, contact_case, fit, known)
         separable = rms / sigma
-    mu = np.clip(mu_true + rng.normal(0.0, sigma, mu_true.size), 0.0, None)
+    # proportional noise: each row's standard deviation in proportion to its mu (a force sensor's relative error),
+    # sigma at the case's mean mu
+    scale = mu_true / float(np.mean(mu_true)) if noise == "proportional" else np.ones(mu_true.size)
+    mu = np.clip(mu_true + rng.normal(0.0, sigma, mu_true.size) * scale, 0.0, None)
     meas = validation.Measurements.from_arrays(slip=slip, speed=V, temperature=T, pressure=p, mu=np.round(mu, 6),
-                                               mu_std=np.full(mu.size, sigma) if use_std else None,
+                                               mu_std=sigma * scale if use_std else None,
                                                wet=wet.astype(bool), source=f"blind case {index}", contact=contact_case)
     return BlindCase(index=index, kind=kind, hidden=hidden, model=case_model, measurements=meas,
                      contact=contact_case, fit=fit, ratio=ratio, sigma=sigma, distinguishable=distinguishable,
@@ -536,6 +545,9 @@ def main(argv=None) -> int:
     ap.add_argument("--kinds", default="", help="comma-separated kinds to run (null, wet, single, pair, outside)")
     ap.add_argument("--outside", default="filler", choices=OUTSIDE,
                     help="the physics outside the candidates of the outside cases (default filler)")
+    ap.add_argument("--noise", default="constant", choices=NOISE,
+                    help="the noise's standard deviation the same on every row (constant, the default) or in "
+                         "proportion to the row's true mu (proportional)")
     ap.add_argument("--out", default=None, help="JSON file for the per-case results (appended to when it exists)")
     args = ap.parse_args(argv)
     kinds = set(filter(None, args.kinds.split(",")))
@@ -552,7 +564,7 @@ def main(argv=None) -> int:
         if i in done or (kinds and SCHEDULE[i % len(SCHEDULE)] not in kinds):
             continue
         try:
-            case = draw(i, args.seed, outside=args.outside)
+            case = draw(i, args.seed, outside=args.outside, noise=args.noise)
             r = run(case)
         except Exception as exc:  # noqa: BLE001  (one case's failure must not end a study of hours)
             # recorded and reported, not hidden: the summary lists it, and a later run retries it
