@@ -190,6 +190,8 @@ REFERENCES: dict[str, str] = {
     "Biometrics Bulletin 2, 110 (1946).",
     "gasser:biometrika-73-625-1986": "T. Gasser, L. Sroka, C. Jennen-Steinmetz, Residual variance and residual "
     "pattern in nonlinear regression, Biometrika 73, 625 (1986).",
+    "10.1093/biomet/70.1.1": "R. D. Cook, S. Weisberg, Diagnostics for heteroscedasticity in regression, "
+    "Biometrika 70, 1 (1983).",
 }
 
 

@@ -108,6 +108,96 @@ def test_replicates_give_the_pure_error_and_the_classical_lack_of_fit_test():
     assert lack_of_fit(r2, 3, ne).consistent
 
 
+# ---- a scatter that changes with the friction level ---------------------------------------------------------------
+def _replicates_at_levels(rng, levels, n_rep=4, rel=0.05, gamma=1.0):
+    """Replicate rows at conditions whose true mu are ``levels``, noise sd = rel * mean level * (mu/mean)^gamma."""
+    v = np.repeat(np.geomspace(1e-3, 1.0, len(levels)), n_rep)
+    mu_true = np.repeat(levels, n_rep)
+    ref = float(np.exp(np.mean(np.log(levels))))
+    sd = rel * ref * (mu_true / ref) ** gamma
+    return _one_series(mu_true + rng.normal(0.0, sd), speeds=v)
+
+
+def test_replicate_scatter_in_proportion_to_mu_is_found_at_its_maximum_likelihood_exponent():
+    """The exponent is the maximum of the chi^2 likelihood of the group sums of squares, found here independently
+    by a brute-force search over both the scale and the exponent."""
+    rng = np.random.default_rng(31)
+    levels = np.geomspace(0.2, 1.2, 12)
+    m = _replicates_at_levels(rng, levels, n_rep=4)
+    ne = estimate_noise(m)
+    assert ne.source == "replicates"
+    assert ne.trend_p < 0.01 and ne.trend != 0.0
+    # independent: SS_g ~ sigma_g^2 chi^2(3), sigma_g = s (mean_g / gbar)^gamma, log-likelihood over a grid
+    y = m.mu.reshape(12, 4)
+    means, ss = y.mean(axis=1), ((y - y.mean(axis=1, keepdims=True)) ** 2).sum(axis=1)
+    x = np.log(means) - np.mean(np.log(means))
+    gammas = np.linspace(-1.0, 2.0, 3001)
+    log_s2 = np.linspace(-12.0, -4.0, 801)
+    G, L = np.meshgrid(gammas, log_s2, indexing="ij")
+    var = np.exp(L[..., None] + 2.0 * G[..., None] * x)
+    ll = np.sum(-1.5 * np.log(var) - ss / (2.0 * var), axis=-1)
+    g_best = gammas[np.unravel_index(np.argmax(ll), ll.shape)[0]]
+    assert ne.trend == pytest.approx(g_best, abs=2e-3)
+    assert abs(ne.trend - 1.0) < 0.5
+    # the estimate itself is not changed by the test: the pooled pure error, as without a trend
+    assert ne.sigma == pytest.approx(math.sqrt(np.sum(ss) / 36), rel=1e-12)
+    assert "mu_std per row" in ne.description and ne.as_dict()["trend_exponent"] == ne.trend
+
+
+def test_local_difference_scatter_in_proportion_to_mu_is_found():
+    rng = np.random.default_rng(32)
+    temps, n_speed = (0.0, 10.0, 20.0, 30.0, 40.0), 15
+    v = np.tile(np.geomspace(1e-3, 1.0, n_speed), len(temps))
+    T = np.repeat(temps, n_speed)
+    mu_true = 0.15 + 0.9 * (np.log10(v) + 3.0) / 3.0 * (1.0 - T / 80.0)
+    sd = 0.03 * mu_true / np.mean(mu_true)
+    m = validation.Measurements.from_arrays(slip=1.0, speed=v, temperature=T, pressure=3e5,
+                                            mu=mu_true + rng.normal(0.0, sd))
+    ne = estimate_noise(m, reference=mu_true)
+    assert ne.source == "local differences"
+    assert ne.trend_p < 0.01 and 0.5 < ne.trend < 1.5
+
+
+@pytest.mark.parametrize("kind", ["replicates", "local differences"])
+def test_a_constant_scatter_is_rarely_called_a_trend(kind):
+    """300 noise-only data sets with one noise level over a friction range of 6x: the test of a trend keeps its
+    1 % level (at most 3 % here; binomial: P(more than 9 of 300 | 1 %) < 0.1 %)."""
+    rng = np.random.default_rng(33 if kind == "replicates" else 34)
+    found = 0
+    for _ in range(300):
+        if kind == "replicates":
+            m = _replicates_at_levels(rng, np.geomspace(0.2, 1.2, 10), n_rep=3, gamma=0.0)
+        else:
+            m = _grid(lambda lv, T: 0.2 + 0.33 * (lv + 3.0) * (1.0 - T / 80.0), rng, sigma=0.02, n_speed=12)
+        ne = estimate_noise(m)
+        assert ne.source == kind and math.isfinite(ne.trend_p)
+        found += ne.trend != 0.0
+    assert found <= 9
+
+
+def test_no_trend_test_with_mu_std():
+    m = _one_series(np.linspace(0.2, 1.0, 12), mu_std=np.linspace(0.01, 0.05, 12))
+    ne = estimate_noise(m)
+    assert math.isnan(ne.trend_p) and ne.trend == 0.0 and ne.as_dict()["trend_p"] is None
+
+
+def test_a_verdict_on_data_whose_scatter_grows_with_mu_says_so():
+    from dataclasses import replace
+
+    from validation.verdict import Verdict, with_noise_trend
+
+    rng = np.random.default_rng(31)
+    ne = estimate_noise(_replicates_at_levels(rng, np.geomspace(0.2, 1.2, 12)))
+    assert ne.trend > 0
+    v = Verdict(verdict="unexplained", effect=None, lack_of_fit_p=1e-4, remaining_pattern="a pattern", reason="R.")
+    out = with_noise_trend(v, ne)
+    assert out.reason.startswith("R. Note: the scatter of these data grows with the friction level")
+    assert "give mu_std per row" in out.reason and out.verdict == "unexplained"
+    # nothing to warn about where nothing is missing, or where the noise shows no trend
+    assert with_noise_trend(replace(v, verdict="nothing_missing"), ne).reason == "R."
+    assert with_noise_trend(v, replace(ne, trend=0.0)).reason == "R."
+
+
 def test_mu_std_gives_a_chi2_test():
     rng = np.random.default_rng(5)
     std = np.linspace(0.005, 0.02, 10)

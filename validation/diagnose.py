@@ -41,7 +41,7 @@ from .noise import NoiseEstimate, estimate_noise, lack_of_fit, remaining_pattern
 from .outliers import outlying_rows
 from .predict import Predictor, mostly_extrapolated
 from .refit import data_range, issues_at, with_uncertainty
-from .verdict import Verdict, decide, explain, with_calibration, with_outliers
+from .verdict import Verdict, decide, explain, with_calibration, with_noise_trend, with_outliers
 
 __all__ = ["Diagnosis", "Baseline", "Candidate", "Ambiguity", "Separation", "diagnose_single", "SIGNIFICANCE_RULE",
            "DELTA_BIC_THRESHOLD", "P_THRESHOLD", "COSINE_THRESHOLD"]
@@ -174,7 +174,8 @@ class Diagnosis:
         """The ``persson diagnose --json`` layout.
 
         Top level: ``verdict``, ``noise``, ``noise_source``, ``lack_of_fit_p``, ``remaining_pattern`` (and
-        ``verdict_effect``, ``verdict_reason``, ``close_call``, ``noise_dof``), then ``baseline`` (``rmse``,
+        ``verdict_effect``, ``verdict_reason``, ``close_call``, ``noise_dof``, ``noise_trend_exponent`` and
+        ``noise_trend_p``: a scatter that changes with mu, :mod:`validation.noise`), then ``baseline`` (``rmse``,
         ``effects``, the BIC, the refitted parameters with ``parameters_std`` and ``intervals``, its lack of fit,
         the significance rule, the explanation, the cost) and ``candidates``, best first: ``effect``, ``rmse``,
         ``delta_bic``, ``significant``, ``parameters``, ``parameters_std``, ``intervals``, ``plausible``,
@@ -204,6 +205,7 @@ class Diagnosis:
             "closest": v.closest, "caveats": list(v.caveats),
             "close_call": list(v.close_call[:2]) + [v.close_call[2]] if v.close_call else None,
             "noise_dof": ne.dof, "noise_description": ne.description,
+            "noise_trend_exponent": ne.trend, "noise_trend_p": ne.trend_p if math.isfinite(ne.trend_p) else None,
             "citations": list(self.citations), "references": self.references(),
             "baseline": {"rmse": b.rmse, "effects": list(b.effects), "bic": b.bic, "rss": b.rss,
                          "fitted": dict(b.fitted), "parameters_std": {e.key: e.std for e in b.estimates},
@@ -363,7 +365,7 @@ def diagnose_single(model, measurements: Measurements | None = None, candidates=
     calibration = _calibration_check(named, baseline, ctx, conditions=check_conditions)
     verdict = with_calibration(verdict, calibration)
     outliers = _outliers(named, baseline, m, noise)
-    verdict = with_outliers(verdict, outliers)
+    verdict = with_noise_trend(with_outliers(verdict, outliers), noise)
     # the baseline at its optimum again, in full: its solutions are kept by the predictor, so this costs no solve
     extrapolated = predictor.predict(baseline.model, full=True).modulus_extrapolated_share
     explanation = Deferred(lambda: explain(verdict, m, baseline, results, clusters, noise,

@@ -39,7 +39,7 @@ from .errors import InputError
 from .outliers import outlying_rows
 from .predict import Prediction, Predictor
 from .select import Selection, SetSearch, fits_at_noise
-from .verdict import Verdict, judge, misfit_share, with_calibration, with_outliers
+from .verdict import Verdict, judge, misfit_share, with_calibration, with_noise_trend, with_outliers
 
 __all__ = ["Improvement", "Step", "improve", "diagnose"]
 
@@ -563,7 +563,7 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
     best = selection.best
     outliers = outlying_rows(measurements.mu - best.predicted, noise, measurements,
                              "the baseline" + "".join(f" + {e}" for e in best.effects))
-    final = with_outliers(final, outliers)
+    final = with_noise_trend(with_outliers(final, outliers), noise)
     if stopped.startswith("explained") and final.verdict != "explained":
         # the loop stops at the noise; the verdict also weighs identification, credibility and the share of the
         # misfit removed, and can say less: the stop text names it, so that the two never read as a contradiction

@@ -26,6 +26,21 @@ not come from the model being judged (otherwise every model's residual looks lik
 4. ``"none"``: none of the above has :data:`MIN_DOF` degrees of freedom; no lack-of-fit test is possible and the
    diagnosis says so.
 
+Sources 2 and 3 assume one noise level for every row. Where the scatter grows (or shrinks) with the friction level,
+as with a force sensor whose error is a fraction of its reading, the rows of high friction scatter more than the
+pooled estimate allows, and the pattern tests can read that as a misfit. The estimate therefore says so: the model
+:math:`\sigma_i = s\,(\mu_i/\bar\mu)^{\gamma}` (:math:`\bar\mu` the geometric mean level) is fitted by maximum
+likelihood to the units of the estimate (each pseudo-residual, or each group of replicates, its sum of squares
+:math:`SS_k` taken as :math:`\sigma^2(\mu_k)` times a :math:`\chi^2` with :math:`d_k` degrees of freedom: 1, or the
+group size less one): for a given :math:`\gamma`, :math:`\hat s^2 = \sum_k SS_k (\mu_k/\bar\mu)^{-2\gamma} / D`,
+:math:`D = \sum_k d_k`, and the profile log-likelihood :math:`-\frac D2 \ln \hat s^2 - \gamma \sum_k d_k
+\ln(\mu_k/\bar\mu)` is maximised over :math:`\gamma \in [-1, 2]`. Its likelihood-ratio test against
+:math:`\gamma = 0` (a test of variance heterogeneity in the sense of Cook & Weisberg, Biometrika 70, 1 (1983)) is
+made at :data:`TREND_ALPHA`; neighbouring pseudo-residuals share rows, so their statistic is scaled by the
+Satterthwaite degrees of freedom over the number of pseudo-residuals. A significant trend is reported
+(``trend``, ``trend_p`` and the description, which asks for a ``mu_std`` column per row); the estimate itself is
+left as it is: weighting the fits by an estimated trend is not part of the diagnosis.
+
 :func:`remaining_pattern` looks for what a lack-of-fit test does not localise: group means (by speed decade,
 temperature, pressure, slip range, wet/dry) beyond their standard error, too few sign runs along the series
 (Wald & Wolfowitz, Ann. Math. Stat. 11, 147 (1940): a hump or a trend gives long runs), and a cubic trend of the
@@ -38,7 +53,7 @@ on noise-only simulations of fitted models).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -64,6 +79,8 @@ _FAMILY_ALPHA = PATTERN_ALPHA / 3
 MIN_DOF = 8
 #: The noise sources, in order of preference.
 NOISE_SOURCES = ("mu_std", "replicates", "local differences", "none")
+#: Significance level of the test of a noise level that changes with the friction level (module docstring).
+TREND_ALPHA = 0.01
 
 
 @dataclass(frozen=True, eq=False)
@@ -85,7 +102,12 @@ class NoiseEstimate:
     n_groups : int
         Distinct conditions (replicates only, else 0).
     description : str
-        One sentence: where the number comes from.
+        One sentence: where the number comes from (and, with ``trend``, that the scatter changes with mu).
+    trend : float
+        The exponent gamma of a scatter that changes with the friction level, sigma_i proportional to mu_i^gamma,
+        where the data show one at :data:`TREND_ALPHA` (module docstring); 0 otherwise.
+    trend_p : float
+        The p-value of the test for it (NaN where it was not made: ``mu_std``, no estimate, one friction level).
     """
 
     source: str
@@ -95,6 +117,8 @@ class NoiseEstimate:
     pure_error: float = math.nan
     n_groups: int = 0
     description: str = ""
+    trend: float = 0.0
+    trend_p: float = math.nan
 
     @property
     def known(self) -> bool:
@@ -107,9 +131,13 @@ class NoiseEstimate:
         Returns
         -------
         dict
-            ``source``, ``sigma``, ``dof`` and ``description``.
+            ``source``, ``sigma``, ``dof``, ``description``, ``trend_exponent`` (gamma of a scatter proportional to
+            mu^gamma where the data show one, else 0) and ``trend_p`` (its test's p-value, null where none was
+            made).
         """
-        return {"source": self.source, "sigma": self.sigma, "dof": self.dof, "description": self.description}
+        return {"source": self.source, "sigma": self.sigma, "dof": self.dof, "description": self.description,
+                "trend_exponent": self.trend,
+                "trend_p": self.trend_p if math.isfinite(self.trend_p) else None}
 
 
 @dataclass(frozen=True)
@@ -190,12 +218,14 @@ class Pattern:
 GASSER_1986 = "gasser:biometrika-73-625-1986"
 #: F. E. Satterthwaite, Biometrics Bulletin 2, 110 (1946): degrees of freedom of a quadratic form.
 SATTERTHWAITE_1946 = "10.2307/3002019"
+#: R. D. Cook, S. Weisberg, Biometrika 70, 1 (1983): a test of a variance that changes with the level.
+COOK_WEISBERG_1983 = "10.1093/biomet/70.1.1"
 #: A. Wald, J. Wolfowitz, Ann. Math. Stat. 11, 147 (1940): the runs test.
 WALD_WOLFOWITZ_1940 = "10.1214/aoms/1177731909"
 
 
 # ==========================================================================================================
-@doi(GASSER_1986, SATTERTHWAITE_1946)
+@doi(GASSER_1986, SATTERTHWAITE_1946, COOK_WEISBERG_1983)
 def estimate_noise(measurements: Measurements, reference=None) -> NoiseEstimate:
     """The noise level of ``measurements`` from the first source that is available (module docstring).
 
@@ -342,10 +372,13 @@ def _replicates(m: Measurements) -> NoiseEstimate | None:
     means = np.bincount(inverse, weights=m.mu) / counts
     ss = float(np.sum((m.mu - means[inverse]) ** 2))
     sigma = math.sqrt(ss / df_pe)
-    return NoiseEstimate(source="replicates", sigma=sigma, dof=float(df_pe), row_sigma=np.full(m.n, sigma),
-                         pure_error=ss, n_groups=int(g),
-                         description=f"the scatter of replicate rows ({int(np.sum(counts > 1))} conditions measured "
-                                     f"more than once; pure error with {df_pe} degrees of freedom)")
+    est = NoiseEstimate(source="replicates", sigma=sigma, dof=float(df_pe), row_sigma=np.full(m.n, sigma),
+                        pure_error=ss, n_groups=int(g),
+                        description=f"the scatter of replicate rows ({int(np.sum(counts > 1))} conditions measured "
+                                    f"more than once; pure error with {df_pe} degrees of freedom)")
+    multi = counts > 1
+    ss_g = np.bincount(inverse, weights=(m.mu - means[inverse]) ** 2)
+    return _with_trend(est, ss_g[multi], (counts - 1)[multi].astype(float), means[multi], 1.0)
 
 
 def _local_differences(m: Measurements, y: np.ndarray) -> NoiseEstimate | None:
@@ -376,10 +409,61 @@ def _local_differences(m: Measurements, y: np.ndarray) -> NoiseEstimate | None:
     if dof < MIN_DOF:
         return None
     sigma = math.sqrt(var)
-    return NoiseEstimate(source="local differences", sigma=sigma, dof=float(dof), row_sigma=np.full(m.n, sigma),
-                         description=f"differences of neighbouring rows along {n_series} series (Gasser-Sroka-"
-                                     f"Jennen-Steinmetz pseudo-residuals, {mcount} of them, {dof:.0f} effective "
-                                     "degrees of freedom)")
+    est = NoiseEstimate(source="local differences", sigma=sigma, dof=float(dof), row_sigma=np.full(m.n, sigma),
+                        description=f"differences of neighbouring rows along {n_series} series (Gasser-Sroka-"
+                                    f"Jennen-Steinmetz pseudo-residuals, {mcount} of them, {dof:.0f} effective "
+                                    "degrees of freedom)")
+    # the level of each pseudo-residual: the mean measured mu of its three rows
+    level = np.array([(m.mu[i] + m.mu[j] + m.mu[k]) / 3.0 for i, j, k in rows])
+    return _with_trend(est, e * e, np.ones(mcount), level, dof / mcount)
+
+
+def _with_trend(est: NoiseEstimate, ss, d, level, scale: float) -> NoiseEstimate:
+    """``est`` with the test of a scatter that changes with the friction level (module docstring): ``trend_p``
+    always, ``trend`` and a sentence in the description where it is significant.
+
+    Parameters
+    ----------
+    est : NoiseEstimate
+        The estimate (one noise level for every row).
+    ss : ndarray (K,)
+        The sums of squares of its units (pseudo-residuals or groups of replicates), each sigma^2(level) times a
+        chi^2.
+    d : ndarray (K,)
+        Their degrees of freedom.
+    level : ndarray (K,)
+        The friction level of each unit (mean measured mu).
+    scale : float
+        Factor on the likelihood-ratio statistic for units that are not independent (Satterthwaite's degrees of
+        freedom over the number of units; 1 for independent units).
+    """
+    ok = level > 0
+    if int(np.sum(ok)) < 3:
+        return est
+    ss, d, lv = ss[ok], d[ok], np.log(level[ok])
+    ref = float(np.sum(d * lv) / np.sum(d))
+    x = lv - ref
+    if float(np.ptp(x)) < 1e-6:     # one friction level: nothing to tell a trend from
+        return est
+    D = float(np.sum(d))
+
+    def profile(gamma: float) -> float:
+        s2 = float(np.sum(ss * np.exp(-2.0 * gamma * x))) / D
+        return -0.5 * D * math.log(max(s2, 1e-300)) - gamma * float(np.sum(d * x))
+
+    from scipy.optimize import minimize_scalar
+
+    gamma = float(minimize_scalar(lambda g: -profile(g), bounds=(-1.0, 2.0), method="bounded",
+                                  options={"xatol": 1e-4}).x)
+    p = float(distributions.chi2_sf(max(2.0 * (profile(gamma) - profile(0.0)) * scale, 0.0), 1))
+    if not p < TREND_ALPHA:
+        return replace(est, trend_p=p)
+    how = "grows" if gamma > 0 else "falls"
+    return replace(est, trend=gamma, trend_p=p,
+                   description=f"{est.description}; the scatter {how} with the friction level (sigma proportional "
+                               f"to mu^{gamma:.2f}, likelihood-ratio test p = {p:.2g}), which one noise level for "
+                               "every row does not describe: if the rig's noise scales with its reading, give "
+                               "mu_std per row")
 
 
 def _row_array(x, n: int, name: str) -> np.ndarray:

@@ -45,7 +45,7 @@ from .candidates import KASS_RAFTERY_1995, SIGNIFICANCE_RULE
 from .predict import mostly_extrapolated
 
 __all__ = ["Verdict", "decide", "explain", "VERDICTS", "CLOSE_CALL", "PARTLY_SHARE", "misfit_share",
-           "with_calibration", "with_outliers"]
+           "with_calibration", "with_outliers", "with_noise_trend"]
 
 #: Lack-of-fit p-values above this (and below the test's 0.01) are marginal: an ``unexplained`` verdict that rests
 #: on such a misfit alone, with no pattern and no candidate taking it up, says the noise estimate may be low.
@@ -167,6 +167,20 @@ def with_calibration(verdict: Verdict, check) -> Verdict:
 def with_outliers(verdict: Verdict, outliers) -> Verdict:
     """``verdict`` naming the rows of ``outliers`` (a :class:`validation.outliers.Outliers`, or None)."""
     return replace(verdict, outliers="" if outliers is None else outliers.text())
+
+
+def with_noise_trend(verdict: Verdict, noise) -> Verdict:
+    """``verdict`` whose reason says, where the scatter of the data changes with the friction level
+    (``noise.trend``, :mod:`validation.noise`), that its tests assume one noise level for every row; unchanged
+    otherwise, and for ``nothing_missing`` and ``undetermined``."""
+    gamma = float(getattr(noise, "trend", 0.0) or 0.0)
+    if gamma == 0.0 or verdict.verdict in ("nothing_missing", "undetermined"):
+        return verdict
+    return replace(verdict, reason=(
+        f"{verdict.reason} Note: the scatter of these data {'grows' if gamma > 0 else 'falls'} with the friction "
+        f"level (sigma proportional to mu^{gamma:.2f}, p = {noise.trend_p:.2g}), and the tests assume one noise "
+        "level for every row: rows of large scatter can read as a pattern or a fitted effect. If the rig's noise "
+        "scales with its reading, give mu_std per row and diagnose again."))
 
 
 def misfit_share(rss0: float, k0: int, rss1: float, k1: int, n: int, noise, sigma_known: bool) -> float:
