@@ -6,6 +6,7 @@ Draper & Smith, the Wald-Wolfowitz runs test), and Monte-Carlo checks of unbiase
 """
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -131,17 +132,45 @@ def test_replicate_scatter_in_proportion_to_mu_is_found_at_its_maximum_likelihoo
     y = m.mu.reshape(12, 4)
     means, ss = y.mean(axis=1), ((y - y.mean(axis=1, keepdims=True)) ** 2).sum(axis=1)
     x = np.log(means) - np.mean(np.log(means))
-    gammas = np.linspace(-1.0, 2.0, 3001)
+    gammas = np.linspace(0.0, 1.0, 3001)
     log_s2 = np.linspace(-12.0, -4.0, 801)
     G, L = np.meshgrid(gammas, log_s2, indexing="ij")
     var = np.exp(L[..., None] + 2.0 * G[..., None] * x)
     ll = np.sum(-1.5 * np.log(var) - ss / (2.0 * var), axis=-1)
-    g_best = gammas[np.unravel_index(np.argmax(ll), ll.shape)[0]]
-    assert ne.trend == pytest.approx(g_best, abs=2e-3)
+    ig, il = np.unravel_index(np.argmax(ll), ll.shape)
+    assert ne.trend == pytest.approx(gammas[ig], abs=2e-3)
     assert abs(ne.trend - 1.0) < 0.5
-    # the estimate itself is not changed by the test: the pooled pure error, as without a trend
-    assert ne.sigma == pytest.approx(math.sqrt(np.sum(ss) / 36), rel=1e-12)
-    assert "mu_std per row" in ne.description and ne.as_dict()["trend_exponent"] == ne.trend
+    # sigma is the level at the geometric mean of the group means, each row's noise the law at its group's mean
+    assert ne.sigma == pytest.approx(math.exp(0.5 * log_s2[il]), rel=0.01)
+    gbar = math.exp(np.mean(np.log(means)))
+    assert ne.row_sigma == pytest.approx(ne.sigma * np.repeat(means / gbar, 4) ** ne.trend, rel=1e-10)
+    assert ne.dof == 36 - 1
+    # the pure error in the units of the reference level: each group's scatter over its noise factor
+    f = np.repeat((means / gbar) ** ne.trend, 4)
+    assert ne.pure_error == pytest.approx(np.sum(((y.ravel() - np.repeat(means, 4)) / f) ** 2), rel=1e-10)
+    assert "each row weighted by its own" in ne.description and ne.as_dict()["trend_exponent"] == ne.trend
+
+
+def test_the_lack_of_fit_test_weighs_each_row_by_its_noise():
+    """With sigma_i = s f_i, F = sum (r_i / f_i)^2 / (n - k) / s^2 (local differences); the right model passes, and
+    with one noise level (f = 1) the statistic is the unweighted one exactly."""
+    rng = np.random.default_rng(35)
+    temps, n_speed = (0.0, 10.0, 20.0, 30.0, 40.0), 15
+    v = np.tile(np.geomspace(1e-3, 1.0, n_speed), len(temps))
+    T = np.repeat(temps, n_speed)
+    mu_true = 0.15 + 0.9 * (np.log10(v) + 3.0) / 3.0 * (1.0 - T / 80.0)
+    sd = 0.03 * mu_true / np.mean(mu_true)
+    m = validation.Measurements.from_arrays(slip=1.0, speed=v, temperature=T, pressure=3e5,
+                                            mu=mu_true + rng.normal(0.0, sd))
+    ne = estimate_noise(m, reference=mu_true)
+    assert ne.trend != 0.0
+    r = m.mu - mu_true
+    lof = lack_of_fit(r, 0, ne)
+    f = ne.row_sigma / ne.sigma
+    assert lof.statistic == pytest.approx(np.sum((r / f) ** 2) / r.size / ne.sigma ** 2, rel=1e-12)
+    assert lof.consistent
+    flat = replace(ne, row_sigma=np.full(r.size, ne.sigma), trend=0.0)
+    assert lack_of_fit(r, 0, flat).statistic == float(np.sum(r * r)) / r.size / ne.sigma ** 2
 
 
 def test_local_difference_scatter_in_proportion_to_mu_is_found():
@@ -182,8 +211,6 @@ def test_no_trend_test_with_mu_std():
 
 
 def test_a_verdict_on_data_whose_scatter_grows_with_mu_says_so():
-    from dataclasses import replace
-
     from validation.verdict import Verdict, with_noise_trend
 
     rng = np.random.default_rng(31)
@@ -192,7 +219,7 @@ def test_a_verdict_on_data_whose_scatter_grows_with_mu_says_so():
     v = Verdict(verdict="unexplained", effect=None, lack_of_fit_p=1e-4, remaining_pattern="a pattern", reason="R.")
     out = with_noise_trend(v, ne)
     assert out.reason.startswith("R. Note: the scatter of these data grows with the friction level")
-    assert "give mu_std per row" in out.reason and out.verdict == "unexplained"
+    assert "each row was weighted" in out.reason and out.verdict == "unexplained"
     # nothing to warn about where nothing is missing, or where the noise shows no trend
     assert with_noise_trend(replace(v, verdict="nothing_missing"), ne).reason == "R."
     assert with_noise_trend(v, replace(ne, trend=0.0)).reason == "R."
@@ -317,3 +344,26 @@ def test_pattern_search_on_pure_noise_keeps_its_false_alarm_rate():
         m = m0.with_mu(0.5 + r)
         found += remaining_pattern(r, m, estimate_noise(m, reference=np.full(m.n, 0.5))).found
     assert found / n <= PATTERN_ALPHA + 3 * math.sqrt(PATTERN_ALPHA / n)
+
+
+def test_a_diagnosis_weights_each_row_by_a_noise_that_grows_with_mu():
+    """The shipped null case with noise in proportion to mu: the diagnosis finds the trend, refits with each row
+    weighted by s / sigma_i, counts both passes, and finds nothing missing; with one noise level every weight is
+    exactly 1."""
+    case = validation.load_case("null")
+    m = case.measurements
+    mu = validation.predict(case.model, m, case.contact).mu
+    rng = np.random.default_rng(0)
+    meas = m.with_mu(np.clip(mu + rng.normal(0.0, 0.03 * mu / mu.mean()), 0.0, None))
+    kw = dict(contact=case.contact, fit=case.fit, candidates=["microtexture"])
+    dx = validation.diagnose(case.model, meas, **kw)
+    ne = dx.noise_estimate
+    assert ne.source == "local differences" and ne.trend > 0.5 and ne.trend_p < 0.01
+    w = dx.context.settings.w
+    assert w == pytest.approx(ne.sigma / ne.row_sigma, rel=1e-12) and w.max() / w.min() > 3
+    once = validation.diagnose(case.model, meas, noise=ne, **kw)       # the weighted pass alone
+    assert np.array_equal(once.context.settings.w, w)
+    assert dx.n_evaluations > once.n_evaluations
+    assert dx.verdict.verdict == once.verdict.verdict == "nothing_missing"
+    flat = validation.diagnose(case.model, m.with_mu(np.clip(mu + rng.normal(0.0, 0.01, m.n), 0.0, None)), **kw)
+    assert flat.noise_estimate.trend == 0.0 and np.all(flat.context.settings.w == 1.0)

@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -313,7 +313,10 @@ def diagnose_single(model, measurements: Measurements | None = None, candidates=
     if predictor is None or predictor.measurements is not m:
         predictor = Predictor(m, contact)
     sigma_known = m.mu_std is not None
-    settings = FitSettings(predictor=predictor, y=m.mu, w=1.0 / m.mu_std if sigma_known else np.ones(m.n),
+    # a noise that changes with mu (validation.noise: trend) weights each row by it, relative to the reference level
+    weighted = not sigma_known and noise is not None and noise.known and noise.trend != 0.0
+    w = 1.0 / m.mu_std if sigma_known else (noise.sigma / noise.row_sigma if weighted else np.ones(m.n))
+    settings = FitSettings(predictor=predictor, y=m.mu, w=w,
                            sigma_known=sigma_known, seed=seed, n_local=max(1, n_starts), max_evals=max_evals,
                            contact=contact)
     parameters = dict(parameters or {})
@@ -332,7 +335,17 @@ def diagnose_single(model, measurements: Measurements | None = None, candidates=
         trials.append(fit_candidate(eff, base, settings, parameters.get(eff.name)))
     n_eval = base.n_evals + sum(t.n_evals for t in trials)
 
-    noise = noise or _estimate_noise(m, base, trials)
+    if noise is None:
+        noise = _estimate_noise(m, base, trials)
+        if not sigma_known and noise.known and noise.trend != 0.0:
+            # the fits were made with one noise level for every row; they are made again, each row weighted by its
+            # own (the noise estimated here), and both passes are counted
+            dx = diagnose_single(model, m, candidates, contact, fit=fit, parameters=parameters, n_starts=n_starts,
+                                 seed=seed, probe=probe, name=name, max_evals=max_evals, noise=noise,
+                                 refit_baseline=refit_baseline, progress=progress, predictor=predictor,
+                                 check_conditions=check_conditions, defer95=defer95, defer_baseline=defer_baseline,
+                                 defer_candidates=defer_candidates, on_evals=on_evals)
+            return replace(dx, n_evaluations=dx.n_evaluations + n_eval, seconds=time.perf_counter() - t_start)
     ctx = FitContext(settings=settings, noise=noise, ranges=ranges, measurements=m,
                      s2=1.0 if sigma_known else (noise.sigma ** 2 if noise.known else
                                                  base.rss / max(m.n - base.k_eff, 1)),

@@ -26,20 +26,30 @@ not come from the model being judged (otherwise every model's residual looks lik
 4. ``"none"``: none of the above has :data:`MIN_DOF` degrees of freedom; no lack-of-fit test is possible and the
    diagnosis says so.
 
-Sources 2 and 3 assume one noise level for every row. Where the scatter grows (or shrinks) with the friction level,
+Sources 2 and 3 pool one noise level over the rows. Where the scatter grows (or shrinks) with the friction level,
 as with a force sensor whose error is a fraction of its reading, the rows of high friction scatter more than the
-pooled estimate allows, and the pattern tests can read that as a misfit. The estimate therefore says so: the model
-:math:`\sigma_i = s\,(\mu_i/\bar\mu)^{\gamma}` (:math:`\bar\mu` the geometric mean level) is fitted by maximum
+pooled estimate allows, and the pattern tests can read that as a misfit. The estimate therefore tests for it:
+the model :math:`\sigma_i = s\,(\mu_i/\bar\mu)^{\gamma}` (:math:`\bar\mu` the geometric mean level) is fitted
+by maximum
 likelihood to the units of the estimate (each pseudo-residual, or each group of replicates, its sum of squares
 :math:`SS_k` taken as :math:`\sigma^2(\mu_k)` times a :math:`\chi^2` with :math:`d_k` degrees of freedom: 1, or the
 group size less one): for a given :math:`\gamma`, :math:`\hat s^2 = \sum_k SS_k (\mu_k/\bar\mu)^{-2\gamma} / D`,
 :math:`D = \sum_k d_k`, and the profile log-likelihood :math:`-\frac D2 \ln \hat s^2 - \gamma \sum_k d_k
-\ln(\mu_k/\bar\mu)` is maximised over :math:`\gamma \in [-1, 2]`. Its likelihood-ratio test against
-:math:`\gamma = 0` (a test of variance heterogeneity in the sense of Cook & Weisberg, Biometrika 70, 1 (1983)) is
-made at :data:`TREND_ALPHA`; neighbouring pseudo-residuals share rows, so their statistic is scaled by the
-Satterthwaite degrees of freedom over the number of pseudo-residuals. A significant trend is reported
-(``trend``, ``trend_p`` and the description, which asks for a ``mu_std`` column per row); the estimate itself is
-left as it is: weighting the fits by an estimated trend is not part of the diagnosis.
+\ln(\mu_k/\bar\mu)` is maximised over :math:`\gamma \in [0, 1]`, from one noise level to a noise in proportion
+to mu (a steeper law, which the few units of a data set often suggest, would give the rows of low friction weights
+they cannot bear out). Its likelihood-ratio test against :math:`\gamma = 0` (a test of variance heterogeneity in
+the sense of Cook & Weisberg, Biometrika 70, 1 (1983); on the bound of the range, so half a :math:`\chi^2(1)`:
+Self & Liang, J. Am. Stat. Assoc. 82, 605 (1987)) is made at :data:`TREND_ALPHA`; neighbouring pseudo-residuals
+share rows, so their statistic is scaled by the Satterthwaite degrees of freedom over the number of
+pseudo-residuals. Where it is significant, every row gets its
+own noise level, :math:`\sigma_i = \hat s\,(\mu_i/\bar\mu)^{\hat\gamma}` (``row_sigma``; :math:`\mu_i` the
+smooth reference where one is given, else the measured mu, and at least a tenth of :math:`\bar\mu`), ``sigma``
+is :math:`\hat s`, the level at :math:`\bar\mu`, with one degree of freedom less, and ``trend`` and the
+description say so. The diagnosis then weights each row by :math:`\hat s/\sigma_i` (its fits, their
+information criteria and F tests are those of weighted least squares with known relative weights), the
+lack-of-fit test compares the weighted residuals with :math:`\hat s` (the pure error of replicates weighted the
+same way), and the pattern and outlier tests use :math:`\sigma_i`. With one noise level the weights are exactly 1
+and nothing changes.
 
 :func:`remaining_pattern` looks for what a lack-of-fit test does not localise: group means (by speed decade,
 temperature, pressure, slip range, wet/dry) beyond their standard error, too few sign runs along the series
@@ -220,12 +230,14 @@ GASSER_1986 = "gasser:biometrika-73-625-1986"
 SATTERTHWAITE_1946 = "10.2307/3002019"
 #: R. D. Cook, S. Weisberg, Biometrika 70, 1 (1983): a test of a variance that changes with the level.
 COOK_WEISBERG_1983 = "10.1093/biomet/70.1.1"
+#: S. G. Self, K.-Y. Liang, J. Am. Stat. Assoc. 82, 605 (1987): likelihood-ratio tests on the boundary.
+SELF_LIANG_1987 = "10.1080/01621459.1987.10478472"
 #: A. Wald, J. Wolfowitz, Ann. Math. Stat. 11, 147 (1940): the runs test.
 WALD_WOLFOWITZ_1940 = "10.1214/aoms/1177731909"
 
 
 # ==========================================================================================================
-@doi(GASSER_1986, SATTERTHWAITE_1946, COOK_WEISBERG_1983)
+@doi(GASSER_1986, SATTERTHWAITE_1946, COOK_WEISBERG_1983, SELF_LIANG_1987)
 def estimate_noise(measurements: Measurements, reference=None) -> NoiseEstimate:
     """The noise level of ``measurements`` from the first source that is available (module docstring).
 
@@ -251,7 +263,7 @@ def estimate_noise(measurements: Measurements, reference=None) -> NoiseEstimate:
     if rep is not None:
         return rep
     y = m.mu if reference is None else m.mu - _row_array(reference, m.n, "reference")
-    local = _local_differences(m, y)
+    local = _local_differences(m, y, reference is not None)
     if local is not None:
         return local
     return NoiseEstimate(source="none", sigma=math.nan, dof=0.0, row_sigma=np.full(m.n, math.nan),
@@ -281,7 +293,10 @@ def lack_of_fit(residual, n_params: int, noise: NoiseEstimate) -> LackOfFit:
         p = distributions.chi2_sf(chi2, dof1)
         return LackOfFit(test="chi2", statistic=chi2, dof=(dof1, math.inf), p_value=p,
                          ratio=math.sqrt(chi2 / dof1), consistent=p >= ALPHA)
-    rss = float(np.sum(r * r))
+    # with a noise that changes with mu (noise.trend), the residuals in the units of the reference level; the
+    # factors are exactly 1 for one noise level
+    rw = r / (noise.row_sigma / noise.sigma)
+    rss = float(np.sum(rw * rw))
     ratio = math.sqrt(rss / dof1) / noise.sigma
     if noise.source == "replicates":
         df_pe = n - noise.n_groups
@@ -378,10 +393,15 @@ def _replicates(m: Measurements) -> NoiseEstimate | None:
                                     f"more than once; pure error with {df_pe} degrees of freedom)")
     multi = counts > 1
     ss_g = np.bincount(inverse, weights=(m.mu - means[inverse]) ** 2)
-    return _with_trend(est, ss_g[multi], (counts - 1)[multi].astype(float), means[multi], 1.0)
+    out = _with_trend(est, ss_g[multi], (counts - 1)[multi].astype(float), means[multi], 1.0, means[inverse])
+    if out.trend != 0.0:
+        # the pure error in the units of the weighted residuals (r_i sigma / sigma_i), for the lack-of-fit test
+        f = out.row_sigma / out.sigma
+        out = replace(out, pure_error=float(np.sum(((m.mu - means[inverse]) / f) ** 2)))
+    return out
 
 
-def _local_differences(m: Measurements, y: np.ndarray) -> NoiseEstimate | None:
+def _local_differences(m: Measurements, y: np.ndarray, reference_given: bool = False) -> NoiseEstimate | None:
     rows, coef = [], []
     n_series = 0
     for idx, x, _ in series_of(m):
@@ -413,14 +433,17 @@ def _local_differences(m: Measurements, y: np.ndarray) -> NoiseEstimate | None:
                         description=f"differences of neighbouring rows along {n_series} series (Gasser-Sroka-"
                                     f"Jennen-Steinmetz pseudo-residuals, {mcount} of them, {dof:.0f} effective "
                                     "degrees of freedom)")
-    # the level of each pseudo-residual: the mean measured mu of its three rows
-    level = np.array([(m.mu[i] + m.mu[j] + m.mu[k]) / 3.0 for i, j, k in rows])
-    return _with_trend(est, e * e, np.ones(mcount), level, dof / mcount)
+    # the level of each row: the smooth reference where given (the data less y), else the measured mu; of each
+    # pseudo-residual, the mean level of its three rows
+    row_level = m.mu - y if reference_given else m.mu
+    level = np.array([(row_level[i] + row_level[j] + row_level[k]) / 3.0 for i, j, k in rows])
+    return _with_trend(est, e * e, np.ones(mcount), level, dof / mcount, row_level)
 
 
-def _with_trend(est: NoiseEstimate, ss, d, level, scale: float) -> NoiseEstimate:
+def _with_trend(est: NoiseEstimate, ss, d, level, scale: float, row_level) -> NoiseEstimate:
     """``est`` with the test of a scatter that changes with the friction level (module docstring): ``trend_p``
-    always, ``trend`` and a sentence in the description where it is significant.
+    always; where it is significant, ``trend``, the noise of every row (``row_sigma``), ``sigma`` the level at the
+    reference mu and a sentence in the description.
 
     Parameters
     ----------
@@ -436,6 +459,8 @@ def _with_trend(est: NoiseEstimate, ss, d, level, scale: float) -> NoiseEstimate
     scale : float
         Factor on the likelihood-ratio statistic for units that are not independent (Satterthwaite's degrees of
         freedom over the number of units; 1 for independent units).
+    row_level : ndarray (n,)
+        The friction level of every row.
     """
     ok = level > 0
     if int(np.sum(ok)) < 3:
@@ -453,17 +478,23 @@ def _with_trend(est: NoiseEstimate, ss, d, level, scale: float) -> NoiseEstimate
 
     from scipy.optimize import minimize_scalar
 
-    gamma = float(minimize_scalar(lambda g: -profile(g), bounds=(-1.0, 2.0), method="bounded",
+    gamma = float(minimize_scalar(lambda g: -profile(g), bounds=(0.0, 1.0), method="bounded",
                                   options={"xatol": 1e-4}).x)
-    p = float(distributions.chi2_sf(max(2.0 * (profile(gamma) - profile(0.0)) * scale, 0.0), 1))
+    # gamma = 0 lies on the bound of the range searched: the statistic is half a chi^2(0), half a chi^2(1) (Self &
+    # Liang, J. Am. Stat. Assoc. 82, 605 (1987))
+    p = 0.5 * float(distributions.chi2_sf(max(2.0 * (profile(gamma) - profile(0.0)) * scale, 0.0), 1))
     if not p < TREND_ALPHA:
         return replace(est, trend_p=p)
-    how = "grows" if gamma > 0 else "falls"
-    return replace(est, trend=gamma, trend_p=p,
-                   description=f"{est.description}; the scatter {how} with the friction level (sigma proportional "
-                               f"to mu^{gamma:.2f}, likelihood-ratio test p = {p:.2g}), which one noise level for "
-                               "every row does not describe: if the rig's noise scales with its reading, give "
-                               "mu_std per row")
+    s_ref = math.sqrt(float(np.sum(ss * np.exp(-2.0 * gamma * x))) / D)
+    mu_ref = math.exp(ref)
+    # a row's level is at least a tenth of the reference level: a near-zero friction does not get a near-zero noise
+    lv_row = np.log(np.maximum(np.asarray(row_level, dtype=float), 0.1 * mu_ref)) - ref
+    return replace(est, sigma=s_ref, row_sigma=s_ref * np.exp(gamma * lv_row), dof=max(est.dof - 1.0, 1.0),
+                   trend=gamma, trend_p=p,
+                   description=f"{est.description}; the scatter grows with the friction level, sigma proportional "
+                               f"to mu^{gamma:.2f} (likelihood-ratio test p = {p:.2g}): {s_ref:.3g} at mu = "
+                               f"{mu_ref:.3g}, the level quoted, and each row weighted by its own; a mu_std column "
+                               "per row, where the rig's noise is known, is better still")
 
 
 def _row_array(x, n: int, name: str) -> np.ndarray:

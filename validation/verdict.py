@@ -171,16 +171,16 @@ def with_outliers(verdict: Verdict, outliers) -> Verdict:
 
 def with_noise_trend(verdict: Verdict, noise) -> Verdict:
     """``verdict`` whose reason says, where the scatter of the data changes with the friction level
-    (``noise.trend``, :mod:`validation.noise`), that its tests assume one noise level for every row; unchanged
-    otherwise, and for ``nothing_missing`` and ``undetermined``."""
+    (``noise.trend``, :mod:`validation.noise`), that the rows were weighted by a noise estimated from the data;
+    unchanged otherwise, and for ``nothing_missing`` and ``undetermined``."""
     gamma = float(getattr(noise, "trend", 0.0) or 0.0)
     if gamma == 0.0 or verdict.verdict in ("nothing_missing", "undetermined"):
         return verdict
     return replace(verdict, reason=(
         f"{verdict.reason} Note: the scatter of these data {'grows' if gamma > 0 else 'falls'} with the friction "
-        f"level (sigma proportional to mu^{gamma:.2f}, p = {noise.trend_p:.2g}), and the tests assume one noise "
-        "level for every row: rows of large scatter can read as a pattern or a fitted effect. If the rig's noise "
-        "scales with its reading, give mu_std per row and diagnose again."))
+        f"level (sigma proportional to mu^{gamma:.2f}, p = {noise.trend_p:.2g}); each row was weighted by the noise "
+        "that law gives it, an estimate from these data. If the rig's noise is known, give mu_std per row and "
+        "diagnose again."))
 
 
 def misfit_share(rss0: float, k0: int, rss1: float, k1: int, n: int, noise, sigma_known: bool) -> float:
