@@ -119,6 +119,19 @@ def _replicates_at_levels(rng, levels, n_rep=4, rel=0.05, gamma=1.0):
     return _one_series(mu_true + rng.normal(0.0, sd), speeds=v)
 
 
+def _proportional_series(rng):
+    """Five speed series (0-40 C, 15 speeds each) whose true mu spans 0.15-1.05, with noise in proportion to mu (3 %
+    of the mean at the mean level); returns the measurements and the true mu."""
+    temps, n_speed = (0.0, 10.0, 20.0, 30.0, 40.0), 15
+    v = np.tile(np.geomspace(1e-3, 1.0, n_speed), len(temps))
+    T = np.repeat(temps, n_speed)
+    mu_true = 0.15 + 0.9 * (np.log10(v) + 3.0) / 3.0 * (1.0 - T / 80.0)
+    sd = 0.03 * mu_true / np.mean(mu_true)
+    m = validation.Measurements.from_arrays(slip=1.0, speed=v, temperature=T, pressure=3e5,
+                                            mu=mu_true + rng.normal(0.0, sd))
+    return m, mu_true
+
+
 def test_replicate_scatter_in_proportion_to_mu_is_found_at_its_maximum_likelihood_exponent():
     """The exponent is the maximum of the chi^2 likelihood of the group sums of squares, found here independently
     by a brute-force search over both the scale and the exponent."""
@@ -154,14 +167,7 @@ def test_replicate_scatter_in_proportion_to_mu_is_found_at_its_maximum_likelihoo
 def test_the_lack_of_fit_test_weighs_each_row_by_its_noise():
     """With sigma_i = s f_i, F = sum (r_i / f_i)^2 / (n - k) / s^2 (local differences); the right model passes, and
     with one noise level (f = 1) the statistic is the unweighted one exactly."""
-    rng = np.random.default_rng(35)
-    temps, n_speed = (0.0, 10.0, 20.0, 30.0, 40.0), 15
-    v = np.tile(np.geomspace(1e-3, 1.0, n_speed), len(temps))
-    T = np.repeat(temps, n_speed)
-    mu_true = 0.15 + 0.9 * (np.log10(v) + 3.0) / 3.0 * (1.0 - T / 80.0)
-    sd = 0.03 * mu_true / np.mean(mu_true)
-    m = validation.Measurements.from_arrays(slip=1.0, speed=v, temperature=T, pressure=3e5,
-                                            mu=mu_true + rng.normal(0.0, sd))
+    m, mu_true = _proportional_series(np.random.default_rng(35))
     ne = estimate_noise(m, reference=mu_true)
     assert ne.trend != 0.0
     r = m.mu - mu_true
@@ -174,14 +180,7 @@ def test_the_lack_of_fit_test_weighs_each_row_by_its_noise():
 
 
 def test_local_difference_scatter_in_proportion_to_mu_is_found():
-    rng = np.random.default_rng(32)
-    temps, n_speed = (0.0, 10.0, 20.0, 30.0, 40.0), 15
-    v = np.tile(np.geomspace(1e-3, 1.0, n_speed), len(temps))
-    T = np.repeat(temps, n_speed)
-    mu_true = 0.15 + 0.9 * (np.log10(v) + 3.0) / 3.0 * (1.0 - T / 80.0)
-    sd = 0.03 * mu_true / np.mean(mu_true)
-    m = validation.Measurements.from_arrays(slip=1.0, speed=v, temperature=T, pressure=3e5,
-                                            mu=mu_true + rng.normal(0.0, sd))
+    m, mu_true = _proportional_series(np.random.default_rng(32))
     ne = estimate_noise(m, reference=mu_true)
     assert ne.source == "local differences"
     assert ne.trend_p < 0.01 and 0.5 < ne.trend < 1.5
