@@ -203,6 +203,25 @@ def test_a_constant_scatter_is_rarely_called_a_trend(kind):
     assert found <= 9
 
 
+def test_rows_at_zero_friction_keep_a_finite_noise_level():
+    """The corner of a vanishing friction (a locked, lubricated or clipped reading): a group measured at mu = 0
+    cannot enter the fit of the law (its level has no logarithm), and its rows get the floor of a tenth of the
+    reference level, not a zero or NaN noise that would make their weights infinite."""
+    rng = np.random.default_rng(36)
+    levels = np.concatenate([[0.0], np.geomspace(0.2, 1.2, 12)])
+    mu_true = np.repeat(levels, 4)
+    m = _one_series(mu_true + rng.normal(0.0, 0.05 * mu_true), speeds=np.repeat(np.geomspace(1e-3, 1.0, 13), 4))
+    assert np.all(m.mu[:4] == 0.0)
+    ne = estimate_noise(m)
+    assert ne.trend > 0 and np.all(np.isfinite(ne.row_sigma)) and np.all(ne.row_sigma > 0)
+    means = m.mu.reshape(13, 4).mean(axis=1)
+    gbar = math.exp(np.mean(np.log(means[1:])))
+    assert ne.row_sigma[:4] == pytest.approx(ne.sigma * 0.1 ** ne.trend, rel=1e-10)
+    assert ne.row_sigma[4:] == pytest.approx(ne.sigma * np.repeat(means[1:] / gbar, 4) ** ne.trend, rel=1e-10)
+    lof = lack_of_fit(m.mu - 0.9 * np.repeat(means, 4), 2, ne)
+    assert math.isfinite(lof.statistic) and math.isfinite(ne.pure_error)
+
+
 def test_no_trend_test_with_mu_std():
     m = _one_series(np.linspace(0.2, 1.0, 12), mu_std=np.linspace(0.01, 0.05, 12))
     ne = estimate_noise(m)

@@ -26,30 +26,28 @@ not come from the model being judged (otherwise every model's residual looks lik
 4. ``"none"``: none of the above has :data:`MIN_DOF` degrees of freedom; no lack-of-fit test is possible and the
    diagnosis says so.
 
-Sources 2 and 3 pool one noise level over the rows. Where the scatter grows (or shrinks) with the friction level,
-as with a force sensor whose error is a fraction of its reading, the rows of high friction scatter more than the
-pooled estimate allows, and the pattern tests can read that as a misfit. The estimate therefore tests for it:
-the model :math:`\sigma_i = s\,(\mu_i/\bar\mu)^{\gamma}` (:math:`\bar\mu` the geometric mean level) is fitted
-by maximum
+Sources 2 and 3 pool one noise level over the rows. Where the scatter grows with the friction level, as
+with a force sensor whose error is a fraction of its reading, the rows of high friction scatter more than the pooled
+estimate allows, and the pattern tests can read that as a misfit. The estimate therefore tests for it: the model
+:math:`\sigma_i = s\,(\mu_i/\bar\mu)^{\gamma}` (:math:`\bar\mu` the geometric mean level) is fitted by maximum
 likelihood to the units of the estimate (each pseudo-residual, or each group of replicates, its sum of squares
 :math:`SS_k` taken as :math:`\sigma^2(\mu_k)` times a :math:`\chi^2` with :math:`d_k` degrees of freedom: 1, or the
 group size less one): for a given :math:`\gamma`, :math:`\hat s^2 = \sum_k SS_k (\mu_k/\bar\mu)^{-2\gamma} / D`,
 :math:`D = \sum_k d_k`, and the profile log-likelihood :math:`-\frac D2 \ln \hat s^2 - \gamma \sum_k d_k
-\ln(\mu_k/\bar\mu)` is maximised over :math:`\gamma \in [0, 1]`, from one noise level to a noise in proportion
-to mu (a steeper law, which the few units of a data set often suggest, would give the rows of low friction weights
-they cannot bear out). Its likelihood-ratio test against :math:`\gamma = 0` (a test of variance heterogeneity in
-the sense of Cook & Weisberg, Biometrika 70, 1 (1983); on the bound of the range, so half a :math:`\chi^2(1)`:
-Self & Liang, J. Am. Stat. Assoc. 82, 605 (1987)) is made at :data:`TREND_ALPHA`; neighbouring pseudo-residuals
-share rows, so their statistic is scaled by the Satterthwaite degrees of freedom over the number of
-pseudo-residuals. Where it is significant, every row gets its
-own noise level, :math:`\sigma_i = \hat s\,(\mu_i/\bar\mu)^{\hat\gamma}` (``row_sigma``; :math:`\mu_i` the
-smooth reference where one is given, else the measured mu, and at least a tenth of :math:`\bar\mu`), ``sigma``
-is :math:`\hat s`, the level at :math:`\bar\mu`, with one degree of freedom less, and ``trend`` and the
-description say so. The diagnosis then weights each row by :math:`\hat s/\sigma_i` (its fits, their
-information criteria and F tests are those of weighted least squares with known relative weights), the
-lack-of-fit test compares the weighted residuals with :math:`\hat s` (the pure error of replicates weighted the
-same way), and the pattern and outlier tests use :math:`\sigma_i`. With one noise level the weights are exactly 1
-and nothing changes.
+\ln(\mu_k/\bar\mu)` is maximised over :math:`\gamma \in [0, 1]`, from one noise level to a noise in proportion to mu
+(a steeper law, which the few units of a data set often suggest, would give the rows of low friction weights they
+cannot bear out). Its likelihood-ratio test against :math:`\gamma = 0` (a test of variance heterogeneity in the
+sense of Cook & Weisberg, Biometrika 70, 1 (1983); on the bound of the range, so half a :math:`\chi^2(1)`: Self &
+Liang, J. Am. Stat. Assoc. 82, 605 (1987)) is made at :data:`TREND_ALPHA`; neighbouring pseudo-residuals share rows,
+so their statistic is scaled by the Satterthwaite degrees of freedom over the number of pseudo-residuals. Where it
+is significant, every row gets its own noise level, :math:`\sigma_i = \hat s\,(\mu_i/\bar\mu)^{\hat\gamma}`
+(``row_sigma``; :math:`\mu_i` the mean of its group with replicates, with local differences the smooth reference
+where one is given, else the measured mu; at least a tenth of :math:`\bar\mu`), ``sigma`` is :math:`\hat s`, the
+level at :math:`\bar\mu`, with one degree of freedom less, and ``trend`` and the description say so. The diagnosis
+then weights each row by :math:`\hat s/\sigma_i` (its fits, their information criteria and F tests are those of
+weighted least squares with known relative weights), the lack-of-fit test compares the weighted residuals with
+:math:`\hat s` (the pure error of replicates weighted the same way), and the pattern and outlier tests use
+:math:`\sigma_i`. With one noise level the weights are exactly 1 and nothing changes.
 
 :func:`remaining_pattern` looks for what a lack-of-fit test does not localise: group means (by speed decade,
 temperature, pressure, slip range, wet/dry) beyond their standard error, too few sign runs along the series
@@ -102,13 +100,16 @@ class NoiseEstimate:
     source : str
         One of :data:`NOISE_SOURCES`.
     sigma : float
-        Noise standard deviation in mu (the rms of ``mu_std`` for that source); NaN for ``"none"``.
+        Noise standard deviation in mu (the rms of ``mu_std`` for that source; with ``trend``, the level at the
+        geometric mean friction level); NaN for ``"none"``.
     dof : float
         Degrees of freedom of the estimate (``inf`` for ``mu_std``; Satterthwaite's for local differences).
     row_sigma : ndarray
-        Noise standard deviation per row (``mu_std``, else ``sigma`` everywhere).
+        Noise standard deviation per row (``mu_std``; with ``trend``, sigma (mu_i / mu_ref)^trend; else ``sigma``
+        everywhere).
     pure_error : float
-        Pure-error sum of squares (replicates only, else NaN).
+        Pure-error sum of squares (replicates only, else NaN; with ``trend``, of the residuals scaled to the level
+        ``sigma``).
     n_groups : int
         Distinct conditions (replicates only, else 0).
     description : str
@@ -455,7 +456,7 @@ def _with_trend(est: NoiseEstimate, ss, d, level, scale: float, row_level) -> No
     d : ndarray (K,)
         Their degrees of freedom.
     level : ndarray (K,)
-        The friction level of each unit (mean measured mu).
+        The friction level of each unit (the mean level of its rows); units at a level of 0 or below are left out.
     scale : float
         Factor on the likelihood-ratio statistic for units that are not independent (Satterthwaite's degrees of
         freedom over the number of units; 1 for independent units).
