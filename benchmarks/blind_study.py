@@ -16,7 +16,8 @@ Each case is drawn at random and made by a path independent of the diagnosis:
   ``filler`` (the default), a Cole-Cole filler relaxation of the compound that shifts with an Arrhenius law
   instead of WLF; ``shift``, a compound whose true WLF constants are not those of the master curve the case is
   given (each of C1 and C2 off by a factor 0.7-1.4: a master curve shifted with another compound's or a textbook's
-  constants); ``mixed``, either at random;
+  constants); ``pressure``, a friction that falls with the nominal pressure as a power law (exponent 0.1-0.3,
+  :class:`PressureLaw`) beyond what the engine's contact mechanics give; ``mixed``, filler or shift at random;
 * **truth**: the engine on a converged grid (6x the default wavevector nodes, 3x the modulus table, a 2.5x finer
   temperature table, a brush model with 1601 nodes), never the diagnosis's settings;
 * **noise**: Gaussian (with ``--noise proportional``, each row's standard deviation in proportion to its true mu,
@@ -104,7 +105,7 @@ class BlindCase:
 
 # ==========================================================================================================
 #: The kinds of physics outside the candidate list (``--outside``; module docstring).
-OUTSIDE = ("filler", "shift", "mixed")
+OUTSIDE = ("filler", "shift", "pressure", "mixed")
 #: The noise models (``--noise``; module docstring).
 NOISE = ("constant", "proportional")
 
@@ -179,6 +180,10 @@ def draw(index: int, seed: int, outside: str = "filler", noise: str = "constant"
                       "alpha": rng.uniform(0.3, 0.5), "E_a": rng.uniform(40e3, 80e3)}
             truth_material = ArrheniusFiller(material, **filler)
             notes["filler"] = filler
+        elif outside == "pressure":
+            law = {"exponent": rng.uniform(0.1, 0.3), "p_ref": 0.3e6}
+            truth_effects.append(PressureLaw(**law))
+            notes["pressure"] = law
         else:
             wlf = material.wlf
             shift = {"C1": wlf.C1 * 10 ** rng.uniform(math.log10(0.7), math.log10(1.4)),
@@ -321,6 +326,28 @@ class ArrheniusFiller:
         tau = np.exp(self.E_a / 8.314462618 * (1.0 / (T + 273.15) - 1.0 / 293.15)) / (2 * math.pi * self.f_ref_Hz)
         x = (1j * omega * tau) ** self.alpha
         return self.base.E(omega, T) + self.delta_E * x / (1.0 + x)
+
+
+@dataclass(frozen=True)
+class PressureLaw(fx.Effect):
+    r"""Friction that falls with the nominal pressure as a power law beyond what the engine's contact mechanics
+    give: the hysteresis friction times :math:`(\sigma_0/\sigma_{ref})^{-n}` (an empirical load law of the kind
+    fitted to tread-block data, e.g. Schallamach, Wear 6, 375 (1963), not a candidate of the diagnosis). The
+    local pressure along a contact patch is the ``sigma_0`` of each point of it."""
+
+    parameters = (fx.Parameter("exponent", 0.2, (0.0, 1.0), "1", "n of the power law"),
+                  fx.Parameter("p_ref", 0.3e6, (1e3, 1e8), "Pa", "pressure at which the factor is 1"))
+    exponent: float = 0.2
+    p_ref: float = 0.3e6
+
+    def friction_term(self, state):
+        factor = (np.asarray(state.conditions.pressure, dtype=float) / self.p_ref) ** (-self.exponent)
+        return state.mu_hysteresis * (factor - 1.0)
+
+
+# named after the class is made: an effect class that names itself in its body registers as a candidate of every
+# diagnosis (persson.effects), and this one is physics the candidates must not contain
+PressureLaw.name = "outside_pressure"
 
 
 def _surfaces(rng, micro: bool):
