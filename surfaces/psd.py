@@ -381,10 +381,12 @@ class PSD:
             Hurst exponent of the tail. Default: fitted (log-log least squares) on ``fit_band``.
         fit_band : (float, float), optional
             Band (rad/m) for the fit of H. Default: the last decade below ``q_s``, above the roll-off where the PSD
-            records one (``q_rolloff``: the flat part below it is not the tail's power law); where that band is not
-            self-affine (a roll-off inside it that the PSD does not record), the roll-off law -- flat below
-            :math:`q_0`, the power law above -- fitted on the whole table below ``q_s``
-            (:func:`surfaces.powerlaw.rolloff_line`), whose H is that of the part above the roll-off.
+            records one (``q_rolloff``: the flat part below it is not the tail's power law). Where that band is not
+            self-affine or holds too few points (a scan whose limit lies just past the roll-off), the exponent the
+            PSD records (:attr:`hurst`: from the model that made the table, or the file's metadata); where it
+            records none, the roll-off law -- flat below :math:`q_0`, the power law above -- fitted on the whole
+            table below ``q_s`` (:func:`surfaces.powerlaw.rolloff_line`), whose H is that of the part above the
+            roll-off (a roll-off inside the band that the PSD does not record).
         n_per_decade : int
             Points per decade of the new tail.
 
@@ -422,6 +424,11 @@ class PSD:
         try:
             return self_affine_line(self.q, self.C_values, "isotropic", max(lo, self.q0), q_s, where=where).hurst
         except InputError as first:
+            # the last decade is not a power law: the exponent recorded with the table (by the model that made it,
+            # or in the file's metadata) is better knowledge of the tail than a roll-off law fitted to a table that
+            # may hold one or two points of it past the roll-off
+            if self.hurst is not None:
+                return float(self.hurst)
             try:
                 return rolloff_line(self.q, self.C_values, "isotropic", None, q_s, where=where).hurst
             except InputError:

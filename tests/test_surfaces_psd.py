@@ -152,6 +152,27 @@ def test_extrapolate_fits_the_tail_above_a_rolloff_inside_the_last_decade():
         surfaces.PSD(q, np.full(q.size, C0)).extrapolate(6e5)
 
 
+
+def test_extrapolate_takes_the_recorded_hurst_where_the_table_cannot_give_one():
+    """A scan whose limit lies just past the roll-off (a fine sandpaper, roll-off at 3e4 rad/m, measured to
+    3.17e4): one point of the power law past the roll-off, too few for any fit. The exponent the table records (here from the model
+    that made it, as a file's metadata would) continues the tail; the closed form C = C0 (q/q0)^(-2(1+H)) is the
+    reference. Without a recorded exponent the roll-off law fitted to the table gives an H past 1 from its one
+    point, and the extrapolation is refused; where the table can give H, its own fit wins over a recorded value."""
+    H, q0, C0 = 0.71, 3.0e4, 1e-22
+    q = np.append(np.geomspace(2.0e3, q0, 20), 3.17e4)
+    C = C0 * np.where(q < q0, 1.0, (q / q0) ** (-2 * (1 + H)))
+    truth = C0 * (np.array([1e5, 4.8e5]) / q0) ** (-2 * (1 + H))
+    ext = surfaces.PSD(q, C, q_rolloff=q0, hurst=H).extrapolate(4.8e5)
+    assert ext.hurst == pytest.approx(H, abs=1e-12)
+    np.testing.assert_allclose(ext.C([1e5, 4.8e5]), truth, rtol=1e-9)
+    with pytest.raises(surfaces.InputError, match="H <= 1"):   # the roll-off law's H from one point: 1.009
+        surfaces.PSD(q, C, q_rolloff=q0).extrapolate(4.8e5)
+    # a table that holds a decade of the power law (H = 0.8) keeps its own exponent over a recorded 0.5
+    table = SURFACE.with_cutoff(q1=1e5).tabulate(32)
+    ext = surfaces.PSD(table.q, table.C_values, q_r=5e4, hurst=0.5).extrapolate(1e6)
+    assert ext.hurst == pytest.approx(0.8, abs=1e-6)
+
 def test_selfaffine_carries_cutoffs():
     c = SURFACE.cutoffs
     assert (c.qL, c.q0, c.q_r, c.q1, c.extrapolated) == (1e2, 1e3, None, 1e6, False)

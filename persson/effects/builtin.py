@@ -266,8 +266,9 @@ class Microtexture(Effect):
 
     (self-affine fractal PSD, Persson et al., J. Phys.: Condens. Matter 17, R1 (2005), Eq. 10), through
     :meth:`surfaces.PSD.extrapolate`: H is fitted on the last decade below q_r (or the table end) by least
-    squares in log-log, above the roll-off where that lies inside the decade, unless given. A
-    :class:`surfaces.SelfAffine` continues its own power law.
+    squares in log-log, above the roll-off where that lies inside the decade, unless given; where that part of
+    the table is too short or not a power law, the exponent the PSD records (``hurst`` in its file's metadata)
+    serves. A :class:`surfaces.SelfAffine` continues its own power law.
 
     Parameters
     ----------
