@@ -875,6 +875,43 @@ def test_an_answer_at_the_noise_that_is_not_credible_has_the_subsets_of_the_sets
     assert search.reduced == ["b + c (20.0 BIC units better than a + b; a subset of a set within reach of it)"]
 
 
+def test_a_subset_whose_fit_stopped_at_its_budget_far_behind_is_refitted_from_the_set_within_reach(monkeypatch):
+    """A subset fitted on the way but stopped at its budget reports only an upper bound on its BIC (blind case
+    26-93: adhesion fitted on top of the flash temperature stopped 600 units behind, while flash temperature +
+    strain softening + adhesion tied with the answer; refitted from that set's values, flash temperature + adhesion,
+    the hidden pair, came out best). It is refitted once, from the values of the set within reach, and the better
+    of its two fits is kept; a subset that reached its optimum is not fitted again, and a refit that does worse
+    leaves the first fit in place."""
+    from validation.refit import BUDGET_NOTE
+    from validation.select import SetSearch
+
+    search = SetSearch(None, (), None)
+    answer = _stand_in_set(("a", "b"), 0.0, at_noise=True, issue="on the upper search bound")
+    stopped = _stand_in_set(("a", "c"), 600.0, notes=(BUDGET_NOTE,))
+    finished = _stand_in_set(("b", "c"), 50.0)
+    for s in (answer, _stand_in_set(("a", "b", "c"), 0.0, at_noise=True), stopped, finished):
+        search.sets[s.key] = s
+    warm_from = []
+
+    def fit(effects, warm):
+        warm_from.append((frozenset(effects), tuple(w.key for w in warm)))
+        return _stand_in_set(effects, -8.0 if set(effects) == {"a", "c"} else 900.0, at_noise=True)
+
+    monkeypatch.setattr(search, "_fit", fit)
+    assert search.reduce(("a", "b")) is None           # 8 units better: not the 10 an effect needs to stay
+    assert warm_from == [(frozenset("ac"), (frozenset("abc"),))]
+    assert search.sets[frozenset("ac")].bic == -8.0 and search.sets[frozenset("bc")] is finished
+    # once only (a second look fits the subsets of a + c, now within reach itself); a refit that does worse keeps
+    # the first fit
+    search.reduce(("a", "b"))
+    assert [k for k, _ in warm_from].count(frozenset("ac")) == 1
+    search2 = SetSearch(None, (), None)
+    for s in (answer, _stand_in_set(("a", "b", "c"), 0.0, at_noise=True), stopped):
+        search2.sets[s.key] = s
+    monkeypatch.setattr(search2, "_fit", lambda effects, warm: _stand_in_set(effects, 700.0, at_noise=True))
+    assert search2.reduce(("a", "b")) is None and search2.sets[frozenset("ac")] is stopped
+
+
 def test_a_step_diagnosis_computes_its_baseline_intervals_and_explanation_when_read(effects):
     """The diagnoses of a search's later steps refit the set the search fitted already (their baseline): its
     intervals, and the explanation that shows them, are computed when first read, with the model evaluations they

@@ -75,8 +75,10 @@ by). The search (:func:`validation.improve`) is stepwise:
    adhesion: the adhesion is fitted first, the microtexture next, and the flash temperature on top of both only
    ties; the pair without the adhesion was never fitted). When the search ends with an answer that misses the
    noise or is not credible, every set fitted with two or more effects within :data:`EQUAL` BIC units of it
-   (credible or not) has each of its effects dropped in turn; the subsets not fitted yet are refitted jointly from
-   its values, the subsets of the better sets first, within half the model evaluations the search took. A credible
+   (credible or not) has each of its effects dropped in turn; the subsets not fitted yet, and those whose fit
+   stopped at its budget of model evaluations (its BIC only an upper bound: a candidate fitted on top of a step's set
+   varies its own parameters first, and may stop far from the pair's optimum), are refitted jointly from its
+   values, the subsets of the better sets first, within half the model evaluations the search took. A credible
    subset that fits better than the answer by more than :data:`STAY` replaces it (a step ``"reduced"``); the others
    count for the equally supported sets. Done under the conditions of item 6.
 8. **the best set fitted**: the path's answer is the set its steps reached, and a set fitted on the way off the
@@ -474,6 +476,7 @@ class SetSearch:
         self.preferred: list[str] = []
         self.replaced: list[str] = []
         self._continued: dict[frozenset, int] = {}    # set -> times its fit was continued
+        self._refitted: set[frozenset] = set()        # sets whose budget-stopped fit was redone from a superset
         self._jacobians: dict[str, np.ndarray] = {}   # effect -> weighted Jacobian of its single fit
 
     # ---- recording fits made by diagnoses --------------------------------------------------------------
@@ -850,10 +853,10 @@ class SetSearch:
 
         When ``current`` misses the noise or is not credible, every fitted set of two or more effects within
         :data:`EQUAL` BIC units of it (credible or not, ``current`` itself left to the backward elimination) has each
-        effect dropped in turn; each subset not fitted yet is refitted jointly from that set's values (:meth:`get`),
-        the subsets of the better sets first, until ``budget`` model evaluations are spent. Returns the effects of the
-        best credible subset fitted here when it fits better than ``current`` by more than :data:`STAY` BIC units,
-        else None.
+        effect dropped in turn; each subset not fitted yet, or fitted only until its budget stopped it, is refitted
+        jointly from that set's values (:meth:`get`; the better of the two fits is kept), the subsets of the better
+        sets first, until ``budget`` model evaluations are spent. Returns the effects of the best credible subset
+        fitted here when it fits better than ``current`` by more than :data:`STAY` BIC units, else None.
         """
         current = tuple(current)
         now = self.get(current)
@@ -864,7 +867,7 @@ class SetSearch:
                          and t.bic < now.bic + EQUAL), key=lambda t: t.bic)
         todo = [(sub, (t,), f"refitting {' + '.join(sub)}, a subset of {t.label}")
                 for t in within for sub in (tuple(e for e in t.effects if e != f) for f in t.effects)]
-        fitted, stopped = self._fit_in_turn(todo, budget, start, progress)
+        fitted, stopped = self._fit_in_turn(todo, budget, start, progress, refit_stopped=True)
         if stopped:
             self.reduced.append(f"the subsets of the sets within reach stopped at their budget of {budget} model "
                                 f"evaluations ({len(fitted)} fitted)")
@@ -989,19 +992,28 @@ class SetSearch:
                 out.append(c)
         return out
 
-    def _fit_in_turn(self, todo, budget: int | None, start: int, progress=None) -> tuple[list, bool]:
+    def _fit_in_turn(self, todo, budget: int | None, start: int, progress=None,
+                     refit_stopped: bool = False) -> tuple[list, bool]:
         """Fit the sets ``todo`` (``(effects, warm, message)`` each; :meth:`get`) not fitted yet, in turn, until
         ``budget`` model evaluations counted from ``start`` (:attr:`n_evals` then) are spent; returns the sets
-        fitted and whether the budget stopped them."""
+        fitted and whether the budget stopped them. With ``refit_stopped``, a set whose fit stopped at its budget is
+        fitted again from the ``warm`` sets' values (once; the better fit is kept)."""
         fitted = []
         for effects, warm, message in todo:
-            if frozenset(effects) in self.sets:
+            key = frozenset(effects)
+            old = self.sets.get(key)
+            again = refit_stopped and old is not None and old.budget_stopped and key not in self._refitted
+            if old is not None and not again:
                 continue
             if budget is not None and self.n_evals - start >= budget:
                 return fitted, True
             if progress is not None:
                 progress(message)
-            fitted.append(self.get(effects, warm=warm))
+            if again:
+                self._refitted.add(key)
+                fitted.append(self._keep(self._fit(tuple(effects), warm)))
+            else:
+                fitted.append(self.get(effects, warm=warm))
         return fitted, False
 
     def _continue(self, s: EffectSet) -> EffectSet:

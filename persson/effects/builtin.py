@@ -284,7 +284,8 @@ class Microtexture(Effect):
         Parameter("q1", 1.0e7, (1.0e2, 1.0e10), "rad/m", "short-distance cut-off of the extrapolated tail",
                   log_scale=True, plausible=(1.2e4, 1.0e9)),
         Parameter("hurst", 0.0, (0.0, 1.0), "1", "Hurst exponent of the tail (0: fitted)",
-                  plausible=(0.5, 1.0), sentinel=0.0, sentinel_doc="fitted on the PSD's last decade"),
+                  plausible=(0.5, 1.0), sentinel=0.0,
+                  sentinel_doc="fitted on the PSD's last decade, or the one the PSD records"),
     )
     q1: float = 1.0e7
     hurst: float = 0.0
