@@ -1352,3 +1352,26 @@ def test_replacing_an_unidentified_effect_stops_at_its_budget_and_leaves_an_iden
     search, first = _replacing(sets, fits, candidates)
     search.replace_unidentified(("A", "B"), first)
     assert search.asked == [] and search.replaced == []
+
+
+def test_a_candidate_not_credible_alone_is_explored_with_each_credible_significant_one():
+    """The path took L, a look-alike of the pair A + M, and nothing credible came on top of it (blind case 27-29:
+    strain softening took the place of a microtexture + adhesion whose peak lies at the slowest speeds). A was
+    significant alone but not credible (the adhesion's peak speed ran to its bound), M credible but behind L, so A
+    was never M's alternative and the pair was never fitted. Exploring pairs fits A with each credible significant
+    candidate (the gain rule applies: together they gain at least half of what the path gained); A + M, 40 units
+    better than L, is the answer. The set of two candidates not credible alone is not fitted where a credible one
+    exists."""
+    sets = [_Fitted(("L",), -100.0), _Fitted(("M",), -98.0), _Fitted(("A",), -60.0, plausible=False),
+            _Fitted(("W",), -55.0, plausible=False), _Fitted((), 0.0)]
+    fits = {frozenset("AM"): _Fitted(("A", "M"), -140.0), frozenset("AL"): _Fitted(("A", "L"), -101.0),
+            frozenset("LM"): _Fitted(("L", "M"), -102.0), frozenset("WM"): _Fitted(("W", "M"), -99.0),
+            frozenset("WL"): _Fitted(("W", "L"), -99.0)}
+    search, _ = _replacing(sets, fits, ())
+    first = type("Diagnosis", (), {"candidates": tuple(_Candidate(e, b) for e, b in
+                                                       (("L", -100.0), ("M", -98.0), ("A", -60.0), ("W", -55.0))),
+                                   "baseline": _Fitted((), 0.0)})()
+    assert set(search.explore(("L",), first)) == {"A", "M"}
+    asked = {frozenset(e) for e, _ in search.asked}
+    assert frozenset("AM") in asked and frozenset("AW") not in asked
+    assert "A + M (40.0 BIC units better than L" in search.explored[0]

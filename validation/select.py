@@ -618,8 +618,10 @@ class SetSearch:
         by BIC) is paired with every candidate that fitted but showed nothing alone, or had no signature at all (an
         effect invisible until another is in: the pairs a stepwise path cannot reach once a look-alike of the
         partner is in), and with the other credible significant ones, where the two single fits together gain at
-        least half of what the path gained over the baseline; with no significant candidate, the pairs of credible
-        quiet ones are screened (:meth:`screen_pair`). Each pair not fitted yet is refitted jointly, from the
+        least half of what the path gained over the baseline; the significant candidates that are not credible
+        alone (the three best) are paired with the credible significant ones under the same rule, or, where none is
+        credible, with each other; with no significant candidate, the pairs of credible quiet ones are screened
+        (:meth:`screen_pair`). Each pair not fitted yet is refitted jointly, from the
         values of its single fits, the pairs of the better single fits first, until ``budget`` model evaluations
         are spent. Returns the effects of the best
         credible pair fitted here when it fits better than ``current`` by more than :data:`STAY` BIC units (the
@@ -647,13 +649,23 @@ class SetSearch:
                     key = frozenset({a.effect, b.effect})
                     if key not in self.sets and key not in pairs and gain(a) + gain(b) >= need:
                         pairs[key] = ((a.effect, b.effect), min(a.bic, b.bic if b.status == "ok" else math.inf))
-            if not significant:
-                # every significant candidate is implausible alone, so the path added nothing: each may be standing
-                # in for a partner it lacks (an adhesion whose peak speed runs off to 1e6 m/s, a microtexture whose
-                # H sits on 1, while together they fit at the noise), and a partner may make it credible, as in
-                # the swaps; the pairs of the three best are fitted jointly, the better single fits first
-                aside = sorted((c for c in ok if c.significant and not self.sets[frozenset({c.effect})].plausible),
-                               key=lambda c: c.bic)[:top]
+            # a significant candidate that is implausible alone may be standing in for a partner it lacks (an
+            # adhesion whose peak speed runs off to 1e6 m/s, a microtexture whose H sits on 1, while together they
+            # fit at the noise), and a partner may make it credible, as in the swaps
+            aside = sorted((c for c in ok if c.significant and not self.sets[frozenset({c.effect})].plausible),
+                           key=lambda c: c.bic)[:top]
+            if significant:
+                # with each credible significant candidate (the path took a look-alike of the pair, and the
+                # implausible member, fitting worse alone, was never its alternative: an adhesion with its peak at
+                # the slowest speeds beside a microtexture, behind a strain softening), where the gain rule allows
+                for a in aside:
+                    for b in significant:
+                        key = frozenset({a.effect, b.effect})
+                        if key not in self.sets and key not in pairs and gain(a) + gain(b) >= need:
+                            pairs[key] = ((b.effect, a.effect), min(a.bic, b.bic))
+            else:
+                # every significant candidate is implausible alone, so the path added nothing: the pairs of the
+                # three best are fitted jointly, the better single fits first
                 for i, a in enumerate(aside):
                     for b in aside[i + 1:]:
                         key = frozenset({a.effect, b.effect})
