@@ -619,8 +619,8 @@ class SetSearch:
         effect invisible until another is in: the pairs a stepwise path cannot reach once a look-alike of the
         partner is in), and with the other credible significant ones, where the two single fits together gain at
         least half of what the path gained over the baseline; the significant candidates that are not credible
-        alone (the three best) are paired with the credible significant ones under the same rule, or, where none is
-        credible, with each other; with no significant candidate, the pairs of credible quiet ones are screened
+        alone (the three best) are paired with the credible significant ones under the same rule (fitted after the
+        pairs of credible candidates), or, where none is credible, with each other; with no significant candidate, the pairs of credible quiet ones are screened
         (:meth:`screen_pair`). Each pair not fitted yet is refitted jointly, from the
         values of its single fits, the pairs of the better single fits first, until ``budget`` model evaluations
         are spent. Returns the effects of the best
@@ -640,6 +640,7 @@ class SetSearch:
             return max(base_bic - c.bic, 0.0) if c.status == "ok" and math.isfinite(c.bic) else 0.0
 
         pairs = {}
+        behind = set()   # pairs fitted after the others: a member not credible alone is the weaker hypothesis
         if not at_noise:
             # with every quiet candidate, and with each other: the path may have taken a look-alike of both members
             # of a pair (a strain softening fitting as well as an adhesion or a microtexture alone), on top of which
@@ -657,12 +658,14 @@ class SetSearch:
             if significant:
                 # with each credible significant candidate (the path took a look-alike of the pair, and the
                 # implausible member, fitting worse alone, was never its alternative: an adhesion with its peak at
-                # the slowest speeds beside a microtexture, behind a strain softening), where the gain rule allows
+                # the slowest speeds beside a microtexture, behind a strain softening), where the gain rule allows,
+                # after the pairs of credible candidates
                 for a in aside:
                     for b in significant:
                         key = frozenset({a.effect, b.effect})
                         if key not in self.sets and key not in pairs and gain(a) + gain(b) >= need:
                             pairs[key] = ((b.effect, a.effect), min(a.bic, b.bic))
+                            behind.add(key)
             else:
                 # every significant candidate is implausible alone, so the path added nothing: the pairs of the
                 # three best are fitted jointly, the better single fits first
@@ -672,7 +675,8 @@ class SetSearch:
                         if key not in self.sets and key not in pairs:
                             pairs[key] = ((a.effect, b.effect), min(a.bic, b.bic))
         start = self.n_evals
-        order = sorted(pairs.values(), key=lambda t: t[1])
+        order = (sorted((v for k, v in pairs.items() if k not in behind), key=lambda t: t[1])
+                 + sorted((pairs[k] for k in behind), key=lambda t: t[1]))
         # superadditive pairs the gain rule cannot see: screened by a linearized joint fit; a candidate that changed
         # no prediction at all alone (a flash temperature on a PSD that stops short of the scales it heats) is
         # screened with every credible candidate that showed nothing either (the microtexture that makes it act)
