@@ -329,12 +329,14 @@ class ArrheniusFiller:
 
 
 @dataclass(frozen=True)
-class PressureLaw(fx.Effect):
+class PressureLaw(fx.Effect, register=False):
     r"""Friction that falls with the nominal pressure as a power law beyond what the engine's contact mechanics
     give: the hysteresis friction times :math:`(\sigma_0/\sigma_{ref})^{-n}` (an empirical load law of the kind
     fitted to tread-block data, e.g. Schallamach, Wear 6, 375 (1963), not a candidate of the diagnosis). The
     local pressure along a contact patch is the ``sigma_0`` of each point of it."""
 
+    # not registered: physics the candidates must not contain
+    name = "outside_pressure"
     parameters = (fx.Parameter("exponent", 0.2, (0.0, 1.0), "1", "n of the power law"),
                   fx.Parameter("p_ref", 0.3e6, (1e3, 1e8), "Pa", "pressure at which the factor is 1"))
     exponent: float = 0.2
@@ -344,10 +346,6 @@ class PressureLaw(fx.Effect):
         factor = (np.asarray(state.conditions.pressure, dtype=float) / self.p_ref) ** (-self.exponent)
         return state.mu_hysteresis * (factor - 1.0)
 
-
-# named after the class is made: an effect class that names itself in its body registers as a candidate of every
-# diagnosis (persson.effects), and this one is physics the candidates must not contain
-PressureLaw.name = "outside_pressure"
 
 
 def _surfaces(rng, micro: bool):

@@ -195,6 +195,28 @@ def test_user_defined_effect_works_without_package_changes():
     assert model.with_effect(ConstantShear()).without("test_constant_shear").effect_names == ()
 
 
+def test_an_effect_defined_with_register_false_acts_but_is_no_candidate():
+    """``class E(Effect, register=False)``: the effect acts in a model exactly as a registered one (the same
+    constant term), but it is not in the registry, so no diagnosis tries it and no case file finds it by name."""
+
+    @dataclass(frozen=True)
+    class HiddenShear(Effect, register=False):
+        name = "test_hidden_shear"
+        parameters = (Parameter("mu0", 0.05, (0.0, 1.0), "1", "extra friction"),)
+        mu0: float = 0.05
+
+        def friction_term(self, state):
+            return np.full_like(state.conditions.speed, self.mu0)
+
+    assert "test_hidden_shear" not in persson.effects.available()
+    with pytest.raises(ValueError, match="test_hidden_shear"):
+        persson.effects.effect_class("test_hidden_shear")
+    model = persson.Model(ROAD, TREAD)
+    r0 = model.friction([0.01, 1.0], pressure=SIGMA0)
+    r1 = model.with_effect(HiddenShear(mu0=0.07)).friction([0.01, 1.0], pressure=SIGMA0)
+    np.testing.assert_allclose(r1.mu - r0.mu, 0.07, rtol=1e-12)
+
+
 def test_effect_parameters_are_validated_and_listed():
     assert {"flash_temperature", "adhesion", "microtexture", "strain_softening", "wet"} <= set(
         persson.effects.available())

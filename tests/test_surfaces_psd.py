@@ -157,8 +157,9 @@ def test_extrapolate_takes_the_recorded_hurst_where_the_table_cannot_give_one():
     """A scan whose limit lies just past the roll-off (a fine sandpaper, roll-off at 3e4 rad/m, measured to
     3.17e4): one point of the power law past the roll-off, too few for any fit. The exponent the table records (here
     from the model that made it, as a file's metadata would) continues the tail; the closed form
-    C = C0 (q/q0)^(-2(1+H)) is the reference. Without a recorded exponent the roll-off law fitted to the table gives an H past 1 from its one
-    point, and the extrapolation is refused; where the table can give H, its own fit wins over a recorded value."""
+    C = C0 (q/q0)^(-2(1+H)) is the reference. Without a recorded exponent the roll-off law fitted to the table gives
+    an H past 1 from its one point, and the extrapolation is refused; where the table can give H, its own fit wins
+    over a recorded value."""
     H, q0, C0 = 0.71, 3.0e4, 1e-22
     q = np.append(np.geomspace(2.0e3, q0, 20), 3.17e4)
     C = C0 * np.where(q < q0, 1.0, (q / q0) ** (-2 * (1 + H)))

@@ -30,7 +30,10 @@ by). The search (:func:`validation.improve`) is stepwise:
    was significant alone, every pair of credible candidates that changed the predictions alone is screened as in
    item 5 (two effects that each fit too little alone may fit together); when candidates were significant alone
    but none credible, the pairs of the three best of them are fitted jointly first (each may stand in for the
-   partner it lacks: an adhesion whose peak speed runs off to 1e6 m/s beside a microtexture whose H sits on 1).
+   partner it lacks: an adhesion whose peak speed runs off to 1e6 m/s beside a microtexture whose H sits on 1);
+   when some were credible, each of the three best that are not is paired with each credible significant one
+   under the gain rule, after the pairs of credible candidates (an adhesion peaking at the slowest speeds beside a
+   microtexture, both passed over for a strain softening that mimics the pair).
    Last, within the same budget, each of the credible significant candidates with every candidate whose
    parameters the data do not identify alone: such a partner may act only once the first moves far from its own
    single fit (a flash temperature beside a microtexture whose cut-off must reach several times past where it
@@ -620,10 +623,10 @@ class SetSearch:
         partner is in), and with the other credible significant ones, where the two single fits together gain at
         least half of what the path gained over the baseline; the significant candidates that are not credible
         alone (the three best) are paired with the credible significant ones under the same rule (fitted after the
-        pairs of credible candidates), or, where none is credible, with each other; with no significant candidate, the pairs of credible quiet ones are screened
-        (:meth:`screen_pair`). Each pair not fitted yet is refitted jointly, from the
-        values of its single fits, the pairs of the better single fits first, until ``budget`` model evaluations
-        are spent. Returns the effects of the best
+        pairs of credible candidates), or, where none is credible, with each other; with no significant candidate,
+        the pairs of credible quiet ones are screened (:meth:`screen_pair`). Each pair not fitted yet is refitted
+        jointly, from the values of its single fits, the pairs of the better single fits first, until ``budget``
+        model evaluations are spent. Returns the effects of the best
         credible pair fitted here when it fits better than ``current`` by more than :data:`STAY` BIC units (the
         evidence an effect needs to stay), else None.
         """

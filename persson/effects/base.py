@@ -32,7 +32,9 @@ A user effect is written in a script with no change to the package::
         def friction_term(self, state):
             return self.k * np.log10(state.conditions.speed / 1e-3).clip(0)
 
-Defining the class registers it, so :func:`available` and :func:`validation.diagnose` see it.
+Defining the class registers it, so :func:`available` and :func:`validation.diagnose` see it; a class defined as
+``class Ploughing(Effect, register=False)`` is not registered (a model can use it, but no diagnosis tries it as a
+candidate and no case file finds it by name).
 """
 
 from __future__ import annotations
@@ -128,10 +130,12 @@ class Effect:
     #: Key under which ``friction_term`` is reported; ``"adhesion"`` feeds ``FrictionResult.mu_adhesion``.
     term_kind: ClassVar[str | None] = None
 
-    def __init_subclass__(cls, **kwargs):
+    def __init_subclass__(cls, register: bool = True, **kwargs):
+        # ``class E(Effect, register=False)``: an effect kept out of the registry (not a candidate of a diagnosis,
+        # not found by name), e.g. physics a study hides from the diagnosis it tests
         super().__init_subclass__(**kwargs)
         name = cls.__dict__.get("name")
-        if name:
+        if name and register:
             taken = _REGISTRY.get(name)
             if taken is not None and _is_builtin(taken) and not _same_class(taken, cls):
                 raise InputError(f"effect {cls.__qualname__}: the name {name!r} is taken by the built-in effect "
