@@ -17,7 +17,9 @@ Each case is drawn at random and made by a path independent of the diagnosis:
   instead of WLF; ``shift``, a compound whose true WLF constants are not those of the master curve the case is
   given (each of C1 and C2 off by a factor 0.7-1.4: a master curve shifted with another compound's or a textbook's
   constants); ``pressure``, a friction that falls with the nominal pressure as a power law (exponent 0.1-0.3,
-  :class:`PressureLaw`) beyond what the engine's contact mechanics give; ``mixed``, filler or shift at random;
+  :class:`PressureLaw`) beyond what the engine's contact mechanics give; ``slip``, slip rows made by another
+  model than the brush model, a Magic Formula curve (:func:`magic_formula_rows`: peak at 3-20 % slip, 1.0-1.4 times
+  the friction at the sweep's largest slip, which it meets there); ``mixed``, filler or shift at random;
 * **truth**: the engine on a converged grid (6x the default wavevector nodes, 3x the modulus table, a 2.5x finer
   temperature table, a brush model with 1601 nodes), never the diagnosis's settings;
 * **noise**: Gaussian (with ``--noise proportional``, each row's standard deviation in proportion to its true mu,
@@ -38,9 +40,10 @@ Each case is drawn at random and made by a path independent of the diagnosis:
 The diagnosis sees the case as a user would (:func:`validation.improve` with the default candidates) and the
 outcome is compared with the truth. Printed: the confusion matrix (hidden physics against the set of effects
 found), the misses named among the equally supported sets, false alarms on null and wet cases, calibration errors of
-the rig named as rivals (none of the cases has one), physics outside the candidates called ``explained``, detection
-against the effect-to-noise and the distinguishable ratios, and the coverage of the reported 68 % and 95 %
-intervals of the parameters of a hidden effect found alone.
+the rig named as rivals (none of the cases has one), physics outside the candidates called ``explained``, the
+verdicts that place the misfit in one family of rows (:mod:`validation.localize`), detection against the
+effect-to-noise and the distinguishable ratios, and the coverage of the reported 68 % and 95 % intervals of the
+parameters of a hidden effect found alone.
 
 A case that raises (in its drawing or its diagnosis) is printed and recorded with its error and traceback, the study
 goes on, the summary lists it first and leaves it out of every figure, and a later run on the same ``--out`` file
@@ -105,7 +108,7 @@ class BlindCase:
 
 # ==========================================================================================================
 #: The kinds of physics outside the candidate list (``--outside``; module docstring).
-OUTSIDE = ("filler", "shift", "pressure", "mixed")
+OUTSIDE = ("filler", "shift", "pressure", "slip", "mixed")
 #: The noise models (``--noise``; module docstring).
 NOISE = ("constant", "proportional")
 
@@ -133,7 +136,7 @@ def draw(index: int, seed: int, outside: str = "filler", noise: str = "constant"
     pressures = np.sort(rng.choice([0.15e6, 0.25e6, 0.4e6, 0.6e6], size=2 if temps.size < 3 else
                                    int(rng.integers(1, 3)), replace=False))
     speeds = np.geomspace(10 ** rng.uniform(-4.0, -3.0), 10 ** rng.uniform(0.0, 0.5), int(rng.integers(7, 10)))
-    with_slip = "patch_heating" in hidden_names or rng.random() < 0.6
+    with_slip = "patch_heating" in hidden_names or rng.random() < 0.6 or (kind == "outside" and outside == "slip")
     wet_rows = kind == "wet" or (kind in ("null", "single") and rng.random() < 0.2 and "adhesion" not in hidden_names)
     replicate = rng.random() < 0.2
     use_std = not replicate and rng.random() < 0.375
@@ -184,6 +187,8 @@ def draw(index: int, seed: int, outside: str = "filler", noise: str = "constant"
             law = {"exponent": rng.uniform(0.1, 0.3), "p_ref": 0.3e6}
             truth_effects.append(PressureLaw(**law))
             notes["pressure"] = law
+        elif outside == "slip":
+            pass    # the slip rows of the truth are replaced below, once computed
         else:
             wlf = material.wlf
             shift = {"C1": wlf.C1 * 10 ** rng.uniform(math.log10(0.7), math.log10(1.4)),
@@ -194,6 +199,9 @@ def draw(index: int, seed: int, outside: str = "filler", noise: str = "constant"
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         mu_true = validation.predict(truth, skeleton, contact_truth).mu
+        if kind == "outside" and outside == "slip":
+            # drawn apart from the case's own generator, so that the rest of the case is that of the other kinds
+            mu_true, notes["slip"] = magic_formula_rows(slip, mu_true, np.random.default_rng([seed, index, 2]))
         # the size of the hidden physics: the truth's change of mu when it is taken away (for a pair, each effect
         # alone, and the weaker one counts)
         withouts, free = [], []
@@ -348,6 +356,53 @@ class PressureLaw(fx.Effect, register=False):
 
 
 
+def magic_formula_rows(slip, mu, rng) -> tuple[np.ndarray, dict]:
+    r"""``mu`` with its slip rows (slip < 1) replaced by a Magic Formula curve, physics of another model than the
+    brush model the diagnosis uses: :math:`\mu(s) = D \sin(C \arctan(B s - E (B s - \arctan B s)))` (Pacejka &
+    Bakker, Vehicle System Dynamics 21 (sup1), 1 (1992); the longitudinal force against the slip ratio), C drawn
+    from 1.3-1.8, E from -1 to 0.3, the peak at a slip drawn log-uniformly from 0.03-0.2 (which sets B), and D such
+    that the curve meets the given ``mu`` at the largest slip of the rows (the rows of one sweep: one rolling speed,
+    temperature and pressure); the draw is repeated until the peak is at most 1.4 times that value.
+
+    Returns
+    -------
+    (ndarray, dict)
+        The new ``mu`` and the curve's parameters.
+    """
+    from scipy.optimize import brentq
+
+    rows = np.flatnonzero(np.asarray(slip) < 1.0)
+    out = np.array(mu, dtype=float)
+    if rows.size == 0:
+        return out, {}
+    s_last = float(np.asarray(slip)[rows].max())
+    last = rows[np.argmax(np.asarray(slip)[rows])]
+    # drawn until the peak is 1.0-1.4 times the value at the largest slip (a C near 2 with a peak at small slip
+    # would fall to a third of its peak at large slip, which tread rubber on a road does not)
+    while True:
+        C, E = rng.uniform(1.3, 1.8), rng.uniform(-1.0, 0.3)
+        s_peak = 10 ** rng.uniform(math.log10(0.03), math.log10(0.2))
+        # the peak: C arctan(phi(B s)) = pi / 2 (phi increases with x for E <= 1)
+        x_peak = brentq(lambda x: _phi(x, E) - math.tan(math.pi / (2.0 * C)), 1e-9, 1e6)
+        B = x_peak / s_peak
+        over = 1.0 / _mf_shape(s_last, B, C, E)
+        if over <= 1.4:
+            break
+    D = float(mu[last] * over)
+    out[rows] = D * _mf_shape(np.asarray(slip)[rows], B, C, E)
+    return out, {"B": float(B), "C": float(C), "D": D, "E": float(E), "peak_slip": float(s_peak),
+                 "peak_over_last": float(over)}
+
+
+def _phi(x, E):
+    return x - E * (x - np.arctan(x))
+
+
+def _mf_shape(s, B, C, E):
+    """The Magic Formula's sin(C arctan(B s - E (B s - arctan B s))) (:func:`magic_formula_rows`)."""
+    return np.sin(C * np.arctan(_phi(B * np.asarray(s, dtype=float), E)))
+
+
 def _surfaces(rng, micro: bool):
     """(truth surface, case surface): a sandpaper or a road, tabulated; with the microtexture hidden the case's
     table stops at a profilometer limit q_r while the truth continues the power law."""
@@ -420,9 +475,10 @@ def run(case: BlindCase) -> dict:
            "resumed": list(imp.selection.resumed) if imp.selection else [],
            "calibration_rivals": [f"{f.describe()} on {f.on}" for f in imp.selection.calibration.rivals]
            if imp.selection is not None and imp.selection.calibration is not None else [],
+           "localized": None if imp.localized is None else imp.localized.family,
            "coverage": []}
     if case.kind == "outside":
-        out["outside"] = "shift" if "shift" in case.notes else "filler"
+        out["outside"] = next((k for k in ("shift", "pressure", "slip") if k in case.notes), "filler")
     if case.kind in ("single", "pair") and set(found) == set(truth):
         est = {e.key: e for e in imp.selection.best.estimates}
         for eff, params in case.hidden.items():
@@ -523,6 +579,11 @@ def summarize(results: list) -> str:
     if tied:
         lines.append("  of those, absorbed by a set of two candidates (separable ratio < 2): " + ", ".join(
             f"case {r['index']} {'+'.join(r['closest'])} {r['separable']:.2f} {r['verdict']}" for r in tied))
+    placed = [r for r in results if r.get("localized")]
+    if any("localized" in r for r in results):
+        lines.append(f"Misfit placed in one family of rows by the verdict (validation.localize): {len(placed)} of "
+                     f"{len(results)}" + (" (" + ", ".join(f"case {r['index']} {r['kind']} {r['localized']}"
+                                                           for r in placed) + ")" if placed else ""))
     for key, title in (("ratio", "the effect-to-noise ratio (the truth's change of mu without the effect)"),
                        ("distinguishable", "the distinguishable ratio (what a refit of the other parameters leaves "
                                            "of that change)")):

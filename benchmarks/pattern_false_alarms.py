@@ -15,8 +15,11 @@ noise here is small (about 1 % of mu). Every simulated residual is pure noise, s
 
 Prints, per case: the number of simulations, the false-alarm rate of the pattern tests (any family), of each
 family, of the lack-of-fit test, and of either (what would turn a right ``explained`` into ``partly_explained``),
-with the binomial 95 % upper bound; and the rate at which :func:`validation.outliers.outlying_rows` names a row
-(its nominal level is :data:`validation.outliers.ALPHA`).
+with the binomial 95 % upper bound; the rate at which :func:`validation.outliers.outlying_rows` names a row
+(its nominal level is :data:`validation.outliers.ALPHA`); and the rate at which
+:func:`validation.localize.localize_misfit` places a misfit in one family of rows (sliding, with slip, wet; its
+nominal level is at most :data:`validation.localize.ALPHA`; a verdict states it only when it misses the data, so
+this is an upper bound of the rate at which a verdict would).
 """
 
 from __future__ import annotations
@@ -32,6 +35,8 @@ import validation
 from validation.fitting import Fitter, ParameterSpace
 from validation.noise import _group_findings, _runs_finding, _trend_findings, estimate_noise, lack_of_fit
 from validation.noise import remaining_pattern
+from validation.localize import ALPHA as LOCALIZE_ALPHA
+from validation.localize import localize_misfit
 from validation.outliers import ALPHA, outlying_rows
 
 DEFAULT_CASES = ("example", "hidden_flash", "hidden_adhesion", "hidden_microtexture", "hidden_strain_softening",
@@ -72,7 +77,8 @@ def simulate(case, n_sim: int, rng) -> dict:
     # the refit's residual: the noise minus its weighted projection onto the Jacobian's columns
     if k:
         Q = np.linalg.qr(Jw)[0]
-    counts = {"pattern": 0, "groups": 0, "runs": 0, "trends": 0, "lack_of_fit": 0, "either": 0, "outliers": 0}
+    counts = {"pattern": 0, "groups": 0, "runs": 0, "trends": 0, "lack_of_fit": 0, "either": 0, "outliers": 0,
+              "localized": 0}
     for _ in range(n_sim):
         eps = rng.normal(0.0, sigma)
         ew = eps * w
@@ -90,6 +96,7 @@ def simulate(case, n_sim: int, rng) -> dict:
         counts["lack_of_fit"] += not lof.consistent
         counts["either"] += pat.found or not lof.consistent
         counts["outliers"] += outlying_rows(r, noise, sim, "the model") is not None
+        counts["localized"] += localize_misfit(r, noise, sim, "the model", n_params=k) is not None
     return {"case": case.name, "n": n_sim, "noise_source": ne.source, "model": " + ".join(
         (dx.explaining.effect,) if dx.explaining else ("baseline",)), **counts}
 
@@ -131,22 +138,24 @@ def main(argv=None) -> None:
     for case in cases:
         rows.append(simulate(case, args.n, rng))
     print(f"{'case':<26}{'model':<20}{'noise':<18}{'n':>5}{'pattern':>9}{'(95% up)':>9}{'groups':>8}{'runs':>7}"
-          f"{'trends':>8}{'LOF':>7}{'either':>8}{'rows':>7}")
-    tot = {k: 0 for k in ("pattern", "lack_of_fit", "either", "outliers", "n")}
+          f"{'trends':>8}{'LOF':>7}{'either':>8}{'rows':>7}{'family':>8}")
+    tot = {k: 0 for k in ("pattern", "lack_of_fit", "either", "outliers", "localized", "n")}
     for r in rows:
         n = r["n"]
         print(f"{r['case']:<26}{r['model']:<20}{r['noise_source']:<18}{n:>5}{100 * r['pattern'] / n:>8.1f}%"
               f"{100 * upper95(r['pattern'], n):>8.1f}%{100 * r['groups'] / n:>7.1f}%{100 * r['runs'] / n:>6.1f}%"
               f"{100 * r['trends'] / n:>7.1f}%{100 * r['lack_of_fit'] / n:>6.1f}%{100 * r['either'] / n:>7.1f}%"
-              f"{100 * r['outliers'] / n:>6.1f}%")
+              f"{100 * r['outliers'] / n:>6.1f}%{100 * r['localized'] / n:>7.1f}%")
         for k in tot:
             tot[k] += r[k]
     n = tot["n"]
     print(f"{'all':<64}{n:>5}{100 * tot['pattern'] / n:>8.1f}%{100 * upper95(tot['pattern'], n):>8.1f}%"
           f"{'':>22}{100 * tot['lack_of_fit'] / n:>7.1f}%{100 * tot['either'] / n:>7.1f}%"
-          f"{100 * tot['outliers'] / n:>6.1f}% ({100 * upper95(tot['outliers'], n):.1f}% up)")
+          f"{100 * tot['outliers'] / n:>6.1f}% ({100 * upper95(tot['outliers'], n):.1f}% up)"
+          f"{100 * tot['localized'] / n:>7.1f}% ({100 * upper95(tot['localized'], n):.1f}% up)")
     print(f"({time.perf_counter() - t0:.0f} s; pattern alarms per case must stay at or below 2 %; rows named as "
-          f"outlying: nominal {100 * ALPHA:g} % per case)")
+          f"outlying: nominal {100 * ALPHA:g} % per case; a misfit placed in one family of rows: at most "
+          f"{100 * LOCALIZE_ALPHA:g} %)")
 
 
 if __name__ == "__main__":

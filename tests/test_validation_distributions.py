@@ -25,6 +25,19 @@ def test_f_with_two_numerator_degrees_of_freedom_is_a_power_law(F, d2):
     assert d.f_sf(F, 2, d2) == pytest.approx((1 + 2 * F / d2) ** (-d2 / 2), rel=1e-12)
 
 
+@pytest.mark.parametrize("x, k", [(0.01, 2), (0.7, 2), (3.0, 4.5), (25.0, 30.0)])
+def test_the_chi2_distribution_function_is_one_less_its_tail_and_exponential_with_two_dof(x, k):
+    assert d.chi2_cdf(x, k) + d.chi2_sf(x, k) == pytest.approx(1.0, rel=1e-13)
+    if k == 2:
+        assert d.chi2_cdf(x, 2) == pytest.approx(-math.expm1(-x / 2), rel=1e-12)
+
+
+@pytest.mark.parametrize("F, d2", [(0.3, 4.0), (2.0, 17.5), (9.0, 120.0)])
+def test_the_f_distribution_function_is_one_less_the_power_law_tail(F, d2):
+    assert d.f_cdf(F, 2, d2) == pytest.approx(1 - (1 + 2 * F / d2) ** (-d2 / 2), rel=1e-12)
+    assert d.f_cdf(F, 5.5, d2) + d.f_sf(F, 5.5, d2) == pytest.approx(1.0, rel=1e-13)
+
+
 @pytest.mark.parametrize("t", [-3.0, 0.0, 0.5, 40.0])
 def test_t_with_one_degree_of_freedom_is_cauchy(t):
     assert d.t_sf(t, 1) == pytest.approx(0.5 - math.atan(t) / math.pi, rel=1e-13)
@@ -49,6 +62,7 @@ def test_normal_tails_are_erfc(z):
 def test_a_statistic_at_or_below_zero_has_survival_probability_one():
     assert d.chi2_sf(0.0, 3) == 1.0 and d.chi2_sf(-1.0, 3) == 1.0
     assert d.f_sf(0.0, 2, 5) == 1.0 and d.f_sf(-0.5, 2, 5) == 1.0
+    assert d.chi2_cdf(0.0, 3) == 0.0 and d.f_cdf(-0.5, 2, 5) == 0.0
 
 
 def test_halton_points_stratify_each_coordinate_and_depend_on_the_seed():

@@ -38,10 +38,11 @@ from .errors import InputError
 from .fitting import CONTACT, FreeParameter, ParameterSpace, contact_parameters, free_parameters
 from .measurements import Measurements
 from .noise import NoiseEstimate, estimate_noise, lack_of_fit, remaining_pattern
+from .localize import localize_misfit
 from .outliers import outlying_rows
 from .predict import Predictor, mostly_extrapolated
 from .refit import data_range, issues_at, with_uncertainty
-from .verdict import Verdict, decide, explain, with_calibration, with_noise_trend, with_outliers
+from .verdict import Verdict, decide, explain, with_calibration, with_localized, with_noise_trend, with_outliers
 
 __all__ = ["Diagnosis", "Baseline", "Candidate", "Ambiguity", "Separation", "diagnose_single", "SIGNIFICANCE_RULE",
            "DELTA_BIC_THRESHOLD", "P_THRESHOLD", "COSINE_THRESHOLD"]
@@ -87,6 +88,10 @@ class Diagnosis:
     outliers : validation.outliers.Outliers or None
         Rows farther from the verdict's model than noise would put any row (named in the verdict; JSON
         ``outliers``); None when there are none.
+    localized : validation.localize.Localized or None
+        ``unexplained`` and ``partly_explained``: the family of rows (sliding, with slip, wet) the verdict's model
+        misses while it fits the other rows (named in the verdict; JSON ``localized``); None when the misfit does
+        not sit in one family.
     """
 
     measurements: Measurements
@@ -108,6 +113,7 @@ class Diagnosis:
     modulus_extrapolated_share: np.ndarray | None = field(default=None, repr=False)
     calibration: object = field(default=None, repr=False)
     outliers: object = None
+    localized: object = None
 
     @property
     def noise_known(self) -> bool:
@@ -181,7 +187,8 @@ class Diagnosis:
         ``delta_bic``, ``significant``, ``parameters``, ``parameters_std``, ``intervals``, ``plausible``,
         ``issues``, the test statistics and, for members of an ambiguity cluster, ``ambiguity``; ``calibration``
         (:meth:`validation.calibration.CalibrationCheck.as_dict`; with the set search, the selection's) and
-        ``outliers`` (:meth:`validation.outliers.Outliers.as_dict`, None when there are none).
+        ``outliers`` (:meth:`validation.outliers.Outliers.as_dict`, None when there are none) and ``localized``
+        (:meth:`validation.localize.Localized.as_dict`, None when the misfit does not sit in one family of rows).
         """
         b = self.baseline
         v = self.verdict
@@ -223,6 +230,7 @@ class Diagnosis:
             "candidates": cands,
             "calibration": None if self.calibration is None else self.calibration.as_dict(),
             "outliers": None if self.outliers is None else self.outliers.as_dict(),
+            "localized": None if self.localized is None else self.localized.as_dict(),
         }
         if self.selection is not None:
             out.update(self.selection.as_dict())
@@ -378,7 +386,9 @@ def diagnose_single(model, measurements: Measurements | None = None, candidates=
     calibration = _calibration_check(named, baseline, ctx, conditions=check_conditions)
     verdict = with_calibration(verdict, calibration)
     outliers = _outliers(named, baseline, m, noise)
-    verdict = with_noise_trend(with_outliers(verdict, outliers), noise)
+    localized = _localized(named, baseline, m, noise)
+    verdict = with_noise_trend(with_localized(with_outliers(verdict, outliers), localized), noise)
+    localized = localized if verdict.localized else None
     # the baseline at its optimum again, in full: its solutions are kept by the predictor, so this costs no solve
     extrapolated = predictor.predict(baseline.model, full=True).modulus_extrapolated_share
     explanation = Deferred(lambda: explain(verdict, m, baseline, results, clusters, noise,
@@ -392,7 +402,7 @@ def diagnose_single(model, measurements: Measurements | None = None, candidates=
                      sigma_known=sigma_known, noise=_noise_level(noise), n_evaluations=n_eval,
                      seconds=time.perf_counter() - t_start, name=name, verdict=verdict, noise_estimate=noise,
                      context=ctx, modulus_extrapolated_share=extrapolated, calibration=calibration,
-                     outliers=outliers)
+                     outliers=outliers, localized=localized)
 
 
 def _outliers(named, baseline, measurements, noise):
@@ -402,6 +412,16 @@ def _outliers(named, baseline, measurements, noise):
         return outlying_rows(measurements.mu - named.predicted, noise, measurements,
                              f"the baseline + {named.effect}")
     return outlying_rows(measurements.mu - baseline.predicted, noise, measurements, "the baseline")
+
+
+def _localized(named, baseline, measurements, noise):
+    """The family of rows the verdict's model (that of ``named``, else the baseline) misses while it fits the
+    others: :func:`validation.localize.localize_misfit`."""
+    if named is not None and named.predicted is not None:
+        return localize_misfit(measurements.mu - named.predicted, noise, measurements,
+                               f"the baseline + {named.effect}", n_params=named.n_params)
+    return localize_misfit(measurements.mu - baseline.predicted, noise, measurements, "the baseline",
+                           n_params=baseline.n_params)
 
 
 def _calibration_check(named, baseline, ctx, conditions=True):

@@ -18,7 +18,7 @@ import math
 import numpy as np
 from scipy import special
 
-__all__ = ["norm_sf", "norm_cdf", "t_sf", "t_isf", "chi2_sf", "f_sf", "halton"]
+__all__ = ["norm_sf", "norm_cdf", "t_sf", "t_isf", "chi2_sf", "chi2_cdf", "f_sf", "f_cdf", "halton"]
 
 
 def norm_sf(z: float) -> float:
@@ -47,6 +47,19 @@ def chi2_sf(x: float, dof: float) -> float:
     r"""Chi-square survival function :math:`P(\chi^2_k > x)`; 1 for :math:`x \le 0`."""
     x = float(x)
     return 1.0 if x <= 0.0 else float(special.chdtrc(float(dof), x))
+
+
+def chi2_cdf(x: float, dof: float) -> float:
+    r"""Chi-square distribution function :math:`P(\chi^2_k \le x)` (``scipy.special.chdtr``); 0 for
+    :math:`x \le 0`."""
+    x = float(x)
+    return 0.0 if x <= 0.0 else float(special.chdtr(float(dof), x))
+
+
+def f_cdf(F: float, dfn: float, dfd: float) -> float:
+    r"""F distribution function :math:`P(F_{d_1, d_2} \le F)` (``scipy.special.fdtr``); 0 for :math:`F \le 0`."""
+    F = float(F)
+    return 0.0 if F <= 0.0 else float(special.fdtr(float(dfn), float(dfd), F))
 
 
 def f_sf(F: float, dfn: float, dfd: float) -> float:

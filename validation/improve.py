@@ -36,10 +36,12 @@ from .band import band_note
 from .compare import Comparison, comparison_from, json_text
 from .diagnose import Diagnosis, _unpack, diagnose_single
 from .errors import InputError
+from .localize import localize_misfit
 from .outliers import outlying_rows
 from .predict import Prediction, Predictor
 from .select import Selection, SetSearch, fits_at_noise
-from .verdict import Verdict, judge, misfit_share, with_calibration, with_noise_trend, with_outliers
+from .verdict import (Verdict, judge, misfit_share, with_calibration, with_localized, with_noise_trend,
+                      with_outliers)
 
 __all__ = ["Improvement", "Step", "improve", "diagnose"]
 
@@ -181,6 +183,10 @@ class Improvement:
     outliers : validation.outliers.Outliers or None
         Rows farther from the best set's model than noise would put any row (named in the verdict); None when
         there are none.
+    localized : validation.localize.Localized or None
+        ``unexplained`` and ``partly_explained``: the family of rows (sliding, with slip, wet) the best set's model
+        misses while it fits the other rows (named in the verdict); None when the misfit does not sit in one
+        family.
     """
 
     steps: tuple
@@ -197,6 +203,7 @@ class Improvement:
     final: Verdict | None = None
     n_evaluations: int = 0
     outliers: object = None
+    localized: object = None
 
     @property
     def added(self) -> tuple:
@@ -252,14 +259,16 @@ class Improvement:
             ``name``, ``verdict``, ``noise`` (None when unknown), ``noise_source``, ``added``, ``steps`` (each
             :meth:`Step.as_dict`), ``stopped``, ``seconds`` and ``n_evaluations``; with a final verdict also
             ``verdict_reason`` and ``verdict_detail`` (:meth:`validation.verdict.Verdict.as_dict`); ``outliers``
-            (:meth:`validation.outliers.Outliers.as_dict`, None when there are none); with a selection the keys of
-            :meth:`validation.select.Selection.as_dict`.
+            (:meth:`validation.outliers.Outliers.as_dict`, None when there are none); ``localized``
+            (:meth:`validation.localize.Localized.as_dict`, None when the misfit does not sit in one family of
+            rows); with a selection the keys of :meth:`validation.select.Selection.as_dict`.
         """
         out = {"name": self.name, "verdict": self.verdict,
                "noise": self.noise if math.isfinite(self.noise) else None, "noise_source": self.noise_source,
                "added": list(self.added), "steps": [s.as_dict() for s in self.steps], "stopped": self.stopped,
                "seconds": self.seconds, "n_evaluations": self.n_evaluations,
-               "outliers": None if self.outliers is None else self.outliers.as_dict()}
+               "outliers": None if self.outliers is None else self.outliers.as_dict(),
+               "localized": None if self.localized is None else self.localized.as_dict()}
         if self.final is not None:
             out["verdict_reason"] = self.final.reason
             out["verdict_detail"] = self.final.as_dict()
@@ -298,7 +307,7 @@ class Improvement:
         return replace(dx, verdict=v, selection=self.selection, explanation=explanation,
                        seconds=self.seconds, n_evaluations=self.n_evaluations,
                        calibration=self.selection.calibration if self.selection is not None else dx.calibration,
-                       outliers=self.outliers)
+                       outliers=self.outliers, localized=self.localized)
 
 
 def diagnose(model, measurements=None, candidates=None, contact=None, *, search: str = "single",
@@ -563,7 +572,10 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
     best = selection.best
     outliers = outlying_rows(measurements.mu - best.predicted, noise, measurements,
                              "the baseline" + "".join(f" + {e}" for e in best.effects))
-    final = with_noise_trend(with_outliers(final, outliers), noise)
+    localized = localize_misfit(measurements.mu - best.predicted, noise, measurements,
+                                "the baseline" + "".join(f" + {e}" for e in best.effects), n_params=best.n_params)
+    final = with_noise_trend(with_localized(with_outliers(final, outliers), localized), noise)
+    localized = localized if final.localized else None
     if stopped.startswith("explained") and final.verdict != "explained":
         # the loop stops at the noise; the verdict also weighs identification, credibility and the share of the
         # misfit removed, and can say less: the stop text names it, so that the two never read as a contradiction
@@ -574,7 +586,7 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
                        noise=float(noise.sigma) if noise.known else math.nan, stopped=stopped,
                        seconds=time.perf_counter() - t0, name=name, verdict=final.verdict,
                        noise_source=noise.source, selection=selection, final=final, n_evaluations=n_evals,
-                       outliers=outliers)
+                       outliers=outliers, localized=localized)
 
 
 # ==========================================================================================================

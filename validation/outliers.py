@@ -31,7 +31,7 @@ from frictioncite import doi
 from .distributions import t_isf
 from .errors import InputError
 
-__all__ = ["Outliers", "outlying_rows", "ALPHA", "MAX_SHARE", "MAX_ROWS"]
+__all__ = ["Outliers", "outlying_rows", "scaled_residual", "ALPHA", "MAX_SHARE", "MAX_ROWS"]
 
 #: Probability that a data set of pure Gaussian noise has any row named.
 ALPHA = 0.01
@@ -115,19 +115,12 @@ def outlying_rows(residual, noise, measurements, model: str) -> Outliers | None:
     InputError
         ``residual`` does not have one finite value per row of ``measurements`` and of the noise.
     """
-    if not noise.known:
+    z = scaled_residual(residual, noise, measurements)
+    if z is None:
         return None
-    r = np.asarray(residual, dtype=float)
-    n = r.size
-    sigma = np.asarray(noise.row_sigma, dtype=float)
-    if r.ndim != 1 or n != measurements.n or sigma.shape != r.shape or not np.all(np.isfinite(r)):
-        raise InputError(f"residual: expected one finite value per row ({measurements.n} rows, noise levels for "
-                         f"{sigma.size}), got shape {r.shape}")
-    if n == 0 or not np.all(np.isfinite(sigma) & (sigma > 0)):
-        return None
+    n = z.size
     tail = ALPHA / (2.0 * n)
     t = t_isf(tail, noise.dof if not math.isfinite(noise.dof) else max(noise.dof, 1.0))
-    z = r / sigma
     far = np.flatnonzero(np.abs(z) > t)
     if far.size == 0 or far.size > min(MAX_ROWS, max(1, math.floor(MAX_SHARE * n))):
         return None
@@ -137,3 +130,37 @@ def outlying_rows(residual, noise, measurements, model: str) -> Outliers | None:
                     lines=tuple(int(lines[i]) if lines is not None else 0 for i in far),
                     z=tuple(float(z[i]) for i in far), threshold=t, model=model,
                     source=str(getattr(measurements, "source", "") or ""))
+
+
+def scaled_residual(residual, noise, measurements) -> np.ndarray | None:
+    """Each row's residual over its noise level, :math:`z_i = r_i / \sigma_i`.
+
+    Parameters
+    ----------
+    residual : array_like (n,)
+        Measured - predicted mu.
+    noise : validation.noise.NoiseEstimate
+        Per-row noise levels (``row_sigma``).
+    measurements : validation.Measurements
+        The rows the residual is of.
+
+    Returns
+    -------
+    ndarray (n,) or None
+        None without a noise estimate, without rows, or when a row's noise level is not a positive number.
+
+    Raises
+    ------
+    InputError
+        ``residual`` does not have one finite value per row of ``measurements`` and of the noise.
+    """
+    if not noise.known:
+        return None
+    r = np.asarray(residual, dtype=float)
+    sigma = np.asarray(noise.row_sigma, dtype=float)
+    if r.ndim != 1 or r.size != measurements.n or sigma.shape != r.shape or not np.all(np.isfinite(r)):
+        raise InputError(f"residual: expected one finite value per row ({measurements.n} rows, noise levels for "
+                         f"{sigma.size}), got shape {r.shape}")
+    if r.size == 0 or not np.all(np.isfinite(sigma) & (sigma > 0)):
+        return None
+    return r / sigma

@@ -364,8 +364,8 @@ def _verdict_banner(items) -> str:
         text = (f"Verdict: {imp.verdict.replace('_', ' ').upper()} -- effects added: {added}; RMSE "
                 f"{imp.rmse[0]:.4g} -> {imp.rmse[-1]:.4g} {noise}. {imp.stopped}.")
         if imp.final is not None:
-            text += " " + imp.final.reason + "".join(" " + t for t in (imp.final.calibration, imp.final.outliers)
-                                                     if t)
+            text += " " + imp.final.reason + "".join(" " + t for t in (imp.final.calibration, imp.final.outliers,
+                                                                       imp.final.localized) if t)
         sel = imp.selection
         if sel is not None and sel.supported:
             text += (" Equally supported (within 10 BIC units): " + ", ".join(s.label for s in sel.supported)

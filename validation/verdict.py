@@ -45,7 +45,7 @@ from .candidates import KASS_RAFTERY_1995, SIGNIFICANCE_RULE
 from .predict import mostly_extrapolated
 
 __all__ = ["Verdict", "decide", "explain", "VERDICTS", "CLOSE_CALL", "PARTLY_SHARE", "misfit_share",
-           "with_calibration", "with_outliers", "with_noise_trend"]
+           "with_calibration", "with_outliers", "with_noise_trend", "with_localized"]
 
 #: Lack-of-fit p-values above this (and below the test's 0.01) are marginal: an ``unexplained`` verdict that rests
 #: on such a misfit alone, with no pattern and no candidate taking it up, says the noise estimate may be low.
@@ -108,6 +108,10 @@ class Verdict:
         Parameters of the explaining effects that are credible but deserve a second look, each as
         ``"effect.parameter = value unit: why"`` (a best value outside the plausible range whose 68 % interval reaches
         into it, :attr:`validation.refit.Estimate.caveat`); the reason names them too.
+    localized : str
+        ``unexplained`` and ``partly_explained``: the family of rows (sliding, with slip, wet) that the verdict's
+        model misses while the other rows are at the noise, and what rests on those rows, in words; empty when the
+        misfit does not sit in one family (:mod:`validation.localize`).
     """
 
     verdict: str
@@ -125,6 +129,7 @@ class Verdict:
     calibration: str = ""
     outliers: str = ""
     caveats: tuple = ()
+    localized: str = ""
 
     @property
     def headline(self) -> str:
@@ -134,7 +139,7 @@ class Verdict:
         alt = (f" -- or as well by {', '.join(self.alternatives)} (within {CLOSE_CALL:g} BIC units: the data "
                "cannot tell them apart)" if self.alternatives else "")
         ind = f" ({', '.join(self.indicated)} indicated)" if self.indicated else ""
-        cal = "".join(f" {t}" for t in (self.calibration, self.outliers) if t)
+        cal = "".join(f" {t}" for t in (self.calibration, self.outliers, self.localized) if t)
         return (f"Verdict: {_WORDS[self.verdict]}" + (f" by {named}" if named else "") + ind + alt
                 + f". {self.reason}{cal}")
 
@@ -147,13 +152,15 @@ class Verdict:
             ``verdict``, ``effect``, ``effects``, ``lack_of_fit_p``, ``remaining_pattern``, ``reason``,
             ``alternatives``, ``indicated``, ``not_identified``, ``share``, ``closest``, ``calibration`` (the rival
             calibration error in words, empty when none), ``outliers`` (the outlying rows in words, empty when
-            none) and ``caveats`` (credible parameters that deserve a second look, empty when none).
+            none), ``caveats`` (credible parameters that deserve a second look, empty when none) and ``localized``
+            (the family of rows the misfit sits in, in words, empty when none).
         """
         return {"verdict": self.verdict, "effect": self.effect, "effects": list(self.effects),
                 "lack_of_fit_p": self.lack_of_fit_p, "remaining_pattern": self.remaining_pattern,
                 "reason": self.reason, "alternatives": list(self.alternatives), "indicated": list(self.indicated),
                 "not_identified": list(self.not_identified), "share": self.share, "closest": self.closest,
-                "calibration": self.calibration, "outliers": self.outliers, "caveats": list(self.caveats)}
+                "calibration": self.calibration, "outliers": self.outliers, "caveats": list(self.caveats),
+                "localized": self.localized}
 
 
 def with_calibration(verdict: Verdict, check) -> Verdict:
@@ -167,6 +174,15 @@ def with_calibration(verdict: Verdict, check) -> Verdict:
 def with_outliers(verdict: Verdict, outliers) -> Verdict:
     """``verdict`` naming the rows of ``outliers`` (a :class:`validation.outliers.Outliers`, or None)."""
     return replace(verdict, outliers="" if outliers is None else outliers.text())
+
+
+def with_localized(verdict: Verdict, localized) -> Verdict:
+    """``verdict`` naming the family of rows its model misses (``localized``, a
+    :class:`validation.localize.Localized`, or None), for ``unexplained`` and ``partly_explained`` verdicts only:
+    where the model fits the noise there is no misfit to place."""
+    if localized is None or verdict.verdict not in ("unexplained", "partly_explained"):
+        return replace(verdict, localized="")
+    return replace(verdict, localized=localized.text())
 
 
 def with_noise_trend(verdict: Verdict, noise) -> Verdict:

@@ -1,0 +1,216 @@
+r"""Where the misfit sits: the rows of one kind of measurement that a model misses while it fits the others.
+
+The rows of a DRFT-style data set rest on different parts of the model: sliding rows (slip = 1, dry) on the
+friction law alone; rows with slip (slip < 1, dry) also on the slip model (the brush contact: its stiffness, length
+and pressure distribution, and patch heating); wet rows also on the wet model. When a model misses the data and
+its misfit sits in one of these families while the other rows are at the noise, the missing physics acts there --
+a slip curve of another shape than the brush model gives, say -- and the verdict says so; no candidate effect need
+be named for that.
+
+The lack-of-fit statistic of the whole data set is split over the families (a partition of the residual sum of
+squares, as in the lack-of-fit tests of Draper & Smith, Applied Regression Analysis, 3rd ed. 1998, Sec. 2.1):
+with :math:`z_i = r_i/\sigma_i` (the row's noise level) and :math:`S_f = \sum_{i \in f} z_i^2` over the
+:math:`n_f` rows of family :math:`f`, the :math:`k` fitted parameters are shared out in proportion to the rows,
+:math:`d_f = n_f (n - k)/n` degrees of freedom, and
+
+* with the noise given per row (``mu_std``), :math:`S_f \sim \chi^2(d_f)`;
+* with a noise estimated from the data (:math:`\nu` degrees of freedom), :math:`(S_f/d_f) \sim F(d_f, \nu)`.
+
+A family is *missed* when its test gives :math:`p < \alpha/m` (:data:`ALPHA`, Bonferroni over the :math:`m`
+families with at least :data:`MIN_ROWS` rows). The misfit is placed in a family when it alone is missed and the
+rows outside it, tested the same way, are at the noise (:math:`p \ge` :data:`REST_P`); nothing is reported when
+more than one family is missed, or none, or only one family is measured.
+
+A noise estimated from local differences (:mod:`validation.noise`) is made on the data less the baseline's
+prediction; where the baseline misses one family by a curve, the curvature of that misfit enters the estimate and
+inflates it. The other rows then scatter less than the estimate allows, and where they do beyond chance (the lower
+tail of their test below :data:`ALPHA`) the text says so: the tests of the verdict are then conservative.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from frictioncite import doi
+
+from .distributions import chi2_cdf, chi2_sf, f_cdf, f_sf
+from .outliers import scaled_residual
+
+__all__ = ["Localized", "localize_misfit", "FAMILIES", "ALPHA", "REST_P", "MIN_ROWS"]
+
+#: Level of the test that a family is missed (shared over the families, Bonferroni).
+ALPHA = 0.01
+#: Least p-value of the rows outside the family for them to count as at the noise.
+REST_P = 0.05
+#: Least number of rows of a family for it to be tested.
+MIN_ROWS = 3
+#: The families of rows, in order: ``(key, label)``.
+FAMILIES = (("sliding", "sliding rows (slip = 1, dry)"), ("slip", "rows with slip (slip < 1, dry)"),
+            ("wet", "wet rows"))
+#: N. R. Draper, H. Smith, Applied Regression Analysis, 3rd ed., Wiley, New York (1998).
+DRAPER_SMITH_1998 = "isbn:9780471170822"
+
+_HINTS = {
+    "slip": ("Rows with slip rest on the slip model (the brush contact: its stiffness, length and pressure "
+             "distribution; patch heating) besides the friction law the sliding rows test: refit the contact "
+             "(contact.stiffness, contact.length in the fit), or the slip model misses something (a slip curve of "
+             "another shape than the brush model gives: its peak, or its fall beyond the peak)."),
+    "wet": ("Wet rows rest on the wet model (water sealing the texture) besides the dry friction law the other "
+            "rows test: the wet candidate, or water physics it lacks (e.g. viscous hydroplaning at speed)."),
+    "sliding": ("The sliding rows test the friction law over the whole range of sliding speeds; the rows with "
+                "slip slide slowly over most of the patch: the missing physics acts at the sliding speeds or "
+                "temperatures of the sliding rows."),
+}
+
+
+@dataclass(frozen=True)
+class Localized:
+    """A family of rows that the model misses while the other rows are at the noise.
+
+    Attributes
+    ----------
+    family : str
+        Its key in :data:`FAMILIES` (``"sliding"``, ``"slip"`` or ``"wet"``).
+    n_rows : int
+        Its number of rows.
+    ratio : float
+        Its residual over the noise (root mean square of :math:`z_i` over its degrees of freedom).
+    p_value : float
+        Its test's p-value.
+    share : float
+        Its share of the model's misfit (sum of :math:`z_i^2`).
+    rest_rows : int
+        The number of the other rows.
+    rest_ratio : float
+        Their residual over the noise.
+    rest_p : float
+        Their test's p-value.
+    model : str
+        The model the residuals are of.
+    noise_source : str
+        The source of the noise estimate (:data:`validation.noise.NOISE_SOURCES`).
+    rest_low_p : float
+        The lower tail of the other rows' test: small when they scatter less than the noise estimate allows.
+    """
+
+    family: str
+    n_rows: int
+    ratio: float
+    p_value: float
+    share: float
+    rest_rows: int
+    rest_ratio: float
+    rest_p: float
+    model: str
+    noise_source: str = ""
+    rest_low_p: float = math.nan
+
+    @property
+    def label(self) -> str:
+        """The family in words."""
+        return dict(FAMILIES)[self.family]
+
+    @property
+    def noise_inflated(self) -> bool:
+        """Whether the other rows scatter less than a local-difference noise estimate allows, beyond chance (module
+        docstring)."""
+        return self.noise_source == "local differences" and self.rest_low_p < ALPHA
+
+    def text(self) -> str:
+        """Where the misfit sits (with the tests' figures), what rests on those rows, and whether the noise
+        estimate looks inflated by the misfit."""
+        out = (f"The misfit of {self.model} sits in the {self.n_rows} {self.label}: residual / noise "
+               f"{self.ratio:.2f} (p = {self.p_value:.2g}), {self.share:.0%} of the misfit, while the other "
+               f"{self.rest_rows} rows are at the noise ({self.rest_ratio:.2f}, p = {self.rest_p:.2g}). "
+               + _HINTS[self.family])
+        if self.noise_inflated:
+            out += (f" The other rows scatter less than the noise estimate allows (lower-tail p = "
+                    f"{self.rest_low_p:.2g}): the estimate from local differences is likely inflated by the "
+                    f"curvature of the misfit in the {self.label}, and the tests are conservative.")
+        return out
+
+    def as_dict(self) -> dict:
+        """``family``, ``n_rows``, ``ratio``, ``p_value``, ``share``, ``rest_rows``, ``rest_ratio``, ``rest_p``,
+        ``model``, ``noise_source``, ``noise_inflated`` and ``text``."""
+        return {"family": self.family, "n_rows": self.n_rows, "ratio": self.ratio, "p_value": self.p_value,
+                "share": self.share, "rest_rows": self.rest_rows, "rest_ratio": self.rest_ratio,
+                "rest_p": self.rest_p, "model": self.model, "noise_source": self.noise_source,
+                "noise_inflated": self.noise_inflated, "text": self.text()}
+
+
+# ==========================================================================================================
+@doi(DRAPER_SMITH_1998)
+def localize_misfit(residual, noise, measurements, model: str, n_params: int = 0) -> Localized | None:
+    """The family of rows that ``model`` misses while it fits the others (module docstring), or None.
+
+    Parameters
+    ----------
+    residual : array_like (n,)
+        Measured - predicted mu of the model.
+    noise : validation.noise.NoiseEstimate
+        Per-row noise levels (``row_sigma``), the source and its degrees of freedom.
+    measurements : validation.Measurements
+        For the rows' slip and wet flags.
+    model : str
+        What the residual is of, for the text (e.g. ``"the baseline + flash_temperature"``).
+    n_params : int
+        Parameters fitted to these rows (shared out over the families in proportion to their rows).
+
+    Returns
+    -------
+    Localized or None
+        None without a noise estimate, with fewer than two families of :data:`MIN_ROWS` rows, and when no family
+        is missed alone.
+
+    Raises
+    ------
+    InputError
+        From :func:`validation.outliers.scaled_residual`: the residual is not one finite value per row.
+    """
+    z = scaled_residual(residual, noise, measurements)
+    if z is None:           # no noise estimate to judge a misfit by
+        return None
+    z2 = z * z
+    n = z2.size
+    per_row_dof = max(n - int(n_params), 1) / n
+    masks = {key: mask for key, mask in zip((k for k, _ in FAMILIES), _family_masks(measurements))
+             if int(np.sum(mask)) >= MIN_ROWS}
+    if len(masks) < 2:
+        return None
+    known = noise.source == "mu_std"
+    tests = {key: _test(z2[mask], per_row_dof, known, noise.dof) for key, mask in masks.items()}
+    missed = [key for key, (_, p) in tests.items() if p < ALPHA / len(masks)]
+    if len(missed) != 1:
+        return None
+    key = missed[0]
+    rest = ~masks[key]
+    rest_ratio, rest_p = _test(z2[rest], per_row_dof, known, noise.dof)
+    if rest_p < REST_P:
+        return None
+    ratio, p = tests[key]
+    total = float(np.sum(z2))
+    low = _test(z2[rest], per_row_dof, known, noise.dof, lower=True)[1]
+    return Localized(family=key, n_rows=int(np.sum(masks[key])), ratio=ratio, p_value=p,
+                     share=float(np.sum(z2[masks[key]]) / total) if total > 0 else 0.0,
+                     rest_rows=int(np.sum(rest)), rest_ratio=rest_ratio, rest_p=rest_p, model=model,
+                     noise_source=noise.source, rest_low_p=low)
+
+
+def _family_masks(m):
+    """The rows of each family of :data:`FAMILIES`, in its order."""
+    wet = np.asarray(m.wet, dtype=bool) if m.wet is not None else np.zeros(m.n, dtype=bool)
+    sliding = np.asarray(m.slip, dtype=float) >= 1.0
+    return sliding & ~wet, ~sliding & ~wet, wet
+
+
+def _test(z2, per_row_dof: float, known: bool, nu: float, lower: bool = False) -> tuple[float, float]:
+    """(residual / noise, p) of rows with squared scaled residuals ``z2``: chi^2 with the noise known, else F; the
+    upper tail, or with ``lower`` the lower one."""
+    d = max(z2.size * per_row_dof, 1e-9)
+    s = float(np.sum(z2))
+    ratio = math.sqrt(s / d)
+    if known or not math.isfinite(nu):
+        return ratio, chi2_cdf(s, d) if lower else chi2_sf(s, d)
+    return ratio, f_cdf(s / d, d, nu) if lower else f_sf(s / d, d, nu)
