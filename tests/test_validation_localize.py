@@ -69,6 +69,16 @@ def test_a_misfit_on_the_slip_rows_alone_is_placed_there_with_the_closed_form_te
     assert loc.as_dict()["family"] == "slip" and loc.as_dict()["text"] == text
 
 
+def test_with_the_contact_refitted_the_slip_rows_point_at_the_shape_of_the_slip_curve():
+    m = _rows()
+    r = _bump(m) + np.random.default_rng(1).normal(0.0, SIGMA, m.n)
+    loc = localize_misfit(r, _known(m.n), m, "the baseline", refitted=("contact.stiffness", "contact.length"))
+    assert "were refitted with the rest" in loc.text() and "refit the contact" not in loc.text()
+    # one of the two is not enough to rule the contact out
+    loc = localize_misfit(r, _known(m.n), m, "the baseline", refitted=("contact.stiffness",))
+    assert "refit the contact" in loc.text()
+
+
 def test_with_an_estimated_noise_the_tests_are_f_tests():
     m = _rows()
     r = _bump(m) + np.random.default_rng(2).normal(0.0, SIGMA, m.n)

@@ -386,7 +386,7 @@ def diagnose_single(model, measurements: Measurements | None = None, candidates=
     calibration = _calibration_check(named, baseline, ctx, conditions=check_conditions)
     verdict = with_calibration(verdict, calibration)
     outliers = _outliers(named, baseline, m, noise)
-    localized = _localized(named, baseline, m, noise)
+    localized = _localized(named, baseline, m, noise, refitted=tuple(_fit_names(fit, model)))
     verdict = with_noise_trend(with_localized(with_outliers(verdict, outliers), localized), noise)
     localized = localized if verdict.localized else None
     # the baseline at its optimum again, in full: its solutions are kept by the predictor, so this costs no solve
@@ -414,14 +414,14 @@ def _outliers(named, baseline, measurements, noise):
     return outlying_rows(measurements.mu - baseline.predicted, noise, measurements, "the baseline")
 
 
-def _localized(named, baseline, measurements, noise):
+def _localized(named, baseline, measurements, noise, refitted=()):
     """The family of rows the verdict's model (that of ``named``, else the baseline) misses while it fits the
-    others: :func:`validation.localize.localize_misfit`."""
+    others: :func:`validation.localize.localize_misfit` (``refitted``: the baseline parameters refitted)."""
     if named is not None and named.predicted is not None:
         return localize_misfit(measurements.mu - named.predicted, noise, measurements,
-                               f"the baseline + {named.effect}", n_params=named.n_params)
+                               f"the baseline + {named.effect}", n_params=named.n_params, refitted=refitted)
     return localize_misfit(measurements.mu - baseline.predicted, noise, measurements, "the baseline",
-                           n_params=baseline.n_params)
+                           n_params=baseline.n_params, refitted=refitted)
 
 
 def _calibration_check(named, baseline, ctx, conditions=True):

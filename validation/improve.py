@@ -573,7 +573,8 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
     outliers = outlying_rows(measurements.mu - best.predicted, noise, measurements,
                              "the baseline" + "".join(f" + {e}" for e in best.effects))
     localized = localize_misfit(measurements.mu - best.predicted, noise, measurements,
-                                "the baseline" + "".join(f" + {e}" for e in best.effects), n_params=best.n_params)
+                                "the baseline" + "".join(f" + {e}" for e in best.effects), n_params=best.n_params,
+                                refitted=tuple(base_fit))
     final = with_noise_trend(with_localized(with_outliers(final, outliers), localized), noise)
     localized = localized if final.localized else None
     if stopped.startswith("explained") and final.verdict != "explained":

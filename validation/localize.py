@@ -52,6 +52,12 @@ FAMILIES = (("sliding", "sliding rows (slip = 1, dry)"), ("slip", "rows with sli
 #: N. R. Draper, H. Smith, Applied Regression Analysis, 3rd ed., Wiley, New York (1998).
 DRAPER_SMITH_1998 = "isbn:9780471170822"
 
+#: The slip hint where the contact's stiffness and length were refitted with the rest (``refitted``).
+_SLIP_REFITTED = ("The contact's stiffness and length were refitted with the rest and the misfit stays: the slip "
+                  "curve has a shape the brush model does not give (its peak, or its fall beyond the peak), or "
+                  "physics of rolling with slip is missing.")
+_CONTACT = ("contact.stiffness", "contact.length")
+
 _HINTS = {
     "slip": ("Rows with slip rest on the slip model (the brush contact: its stiffness, length and pressure "
              "distribution; patch heating) besides the friction law the sliding rows test: refit the contact "
@@ -91,6 +97,9 @@ class Localized:
         The model the residuals are of.
     noise_source : str
         The source of the noise estimate (:data:`validation.noise.NOISE_SOURCES`).
+    refitted : tuple of str
+        The baseline parameters refitted with the model (``"contact.stiffness"``, ...): the hint for rows with slip
+        does not ask for a refit of the contact that was made.
     rest_low_p : float
         The lower tail of the other rows' test: small when they scatter less than the noise estimate allows.
     """
@@ -106,6 +115,7 @@ class Localized:
     model: str
     noise_source: str = ""
     rest_low_p: float = math.nan
+    refitted: tuple = ()
 
     @property
     def label(self) -> str:
@@ -124,7 +134,8 @@ class Localized:
         out = (f"The misfit of {self.model} sits in the {self.n_rows} {self.label}: residual / noise "
                f"{self.ratio:.2f} (p = {self.p_value:.2g}), {self.share:.0%} of the misfit, while the other "
                f"{self.rest_rows} rows are at the noise ({self.rest_ratio:.2f}, p = {self.rest_p:.2g}). "
-               + _HINTS[self.family])
+               + (_SLIP_REFITTED if self.family == "slip" and all(c in self.refitted for c in _CONTACT) else
+                  _HINTS[self.family]))
         if self.noise_inflated:
             out += (f" The other rows scatter less than the noise estimate allows (lower-tail p = "
                     f"{self.rest_low_p:.2g}): the estimate from local differences is likely inflated by the "
@@ -142,7 +153,8 @@ class Localized:
 
 # ==========================================================================================================
 @doi(DRAPER_SMITH_1998)
-def localize_misfit(residual, noise, measurements, model: str, n_params: int = 0) -> Localized | None:
+def localize_misfit(residual, noise, measurements, model: str, n_params: int = 0,
+                    refitted=()) -> Localized | None:
     """The family of rows that ``model`` misses while it fits the others (module docstring), or None.
 
     Parameters
@@ -157,6 +169,9 @@ def localize_misfit(residual, noise, measurements, model: str, n_params: int = 0
         What the residual is of, for the text (e.g. ``"the baseline + flash_temperature"``).
     n_params : int
         Parameters fitted to these rows (shared out over the families in proportion to their rows).
+    refitted : sequence of str
+        The baseline parameters refitted with the model (``fit`` names such as ``"contact.stiffness"``), for the
+        text.
 
     Returns
     -------
@@ -195,7 +210,7 @@ def localize_misfit(residual, noise, measurements, model: str, n_params: int = 0
     return Localized(family=key, n_rows=int(np.sum(masks[key])), ratio=ratio, p_value=p,
                      share=float(np.sum(z2[masks[key]]) / total) if total > 0 else 0.0,
                      rest_rows=int(np.sum(rest)), rest_ratio=rest_ratio, rest_p=rest_p, model=model,
-                     noise_source=noise.source, rest_low_p=low)
+                     noise_source=noise.source, rest_low_p=low, refitted=tuple(refitted))
 
 
 def _family_masks(m):
