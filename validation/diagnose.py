@@ -419,7 +419,8 @@ def _localized(named, baseline, measurements, noise, refitted=()):
     others: :func:`validation.localize.localize_misfit` (``refitted``: the baseline parameters refitted)."""
     if named is not None and named.predicted is not None:
         return localize_misfit(measurements.mu - named.predicted, noise, measurements,
-                               f"the baseline + {named.effect}", n_params=named.n_params, refitted=refitted)
+                               f"the baseline + {named.effect}", n_params=baseline.n_params + named.n_params,
+                               refitted=refitted)
     return localize_misfit(measurements.mu - baseline.predicted, noise, measurements, "the baseline",
                            n_params=baseline.n_params, refitted=refitted)
 
