@@ -521,10 +521,12 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
                        "exploring pairs, fits better by more than 10 BIC units")
     # when the path added effects and the answer misses the noise or is not credible (a baseline left alone is the
     # first diagnosis' judgement, with its tests), two more looks, each within half the model evaluations the search
-    # took: fits that stopped at their budget give upper bounds on their BIC, and those within reach of the answer
-    # are continued; a larger set within reach may contain a better one that no step fitted (the backward
-    # elimination acts on the path's set only), and its subsets are fitted. A set that then fits better by more than
-    # STAY takes the place of the path's.
+    # took before them (a fixed share: a budget that grew with the looks' own fits let three-effect sets with patch
+    # heating run for minutes): fits that stopped at their budget give upper bounds on their BIC, and those within
+    # reach of the answer are continued; a larger set within reach may contain a better one that no step fitted (the
+    # backward elimination acts on the path's set only), and its subsets are fitted. A set that then fits better by
+    # more than STAY takes the place of the path's.
+    half = (n_evals + search.n_evals) // 2
     for look, action, doing, checking, why in (
             (search.resume, "resumed", "continuing fits stopped at their budget",
              "checking the effects of the continued set",
@@ -535,15 +537,15 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
              "a subset of a set within reach of the answer, fits better by more than 10 BIC units")):
         if not (current and noise.known):
             break
-        better = look(current, budget=(n_evals + search.n_evals) // 2, progress=_sub(progress, doing))
+        better = look(current, budget=half, progress=_sub(progress, doing))
         if better is not None:
             current = _take(action, current, better, steps, base_fit, search, _sub(progress, checking))
             stopped = f"{stopped}; then {search.get(current).label}, {why}"
     if current and noise.known:
         # an effect whose parameters the data leave open may stand in for another candidate that the swaps never
         # tried (they try the alternatives named when it was added): each credible candidate in its place is
-        # fitted, within half the model evaluations the search took, and competes below
-        search.replace_unidentified(current, steps[0].diagnosis, budget=(n_evals + search.n_evals) // 2,
+        # fitted, within the same half of the model evaluations the search took before the looks, and competes below
+        search.replace_unidentified(current, steps[0].diagnosis, budget=half,
                                     progress=_sub(progress, "replacing an effect the data do not identify"))
     if current:
         # the best set fitted is the answer: one off the path may fit better by less than the 10 units a step needs,

@@ -66,9 +66,9 @@ by). The search (:func:`validation.improve`) is stepwise:
    speed runs to the search bound standing in for a flash temperature + microtexture pair), every such set within
    :data:`EQUAL` BIC units of it (itself included) is fitted again by a global search of all its parameters from
    the point it reached, with a budget of its own, the best first, within half the model evaluations the search
-   took (a second time if the first took it further and it stopped again; a credible fit is kept when its
-   continuation is not); a credible set that then fits better than the answer by more than :data:`STAY` replaces
-   it (a step ``"resumed"``). This is done when the path added effects and the noise is known (a baseline left
+   took before this item (a second time if the first took it further and it stopped again; a credible fit is kept
+   when its continuation is not); a credible set that then fits better than the answer by more than :data:`STAY`
+   replaces it (a step ``"resumed"``). This is done when the path added effects and the noise is known (a baseline left
    alone is the first diagnosis' judgement, made with its significance tests); a credible answer at the noise is
    left to the pair screen (item 5).
 7. **subsets of the sets within reach**: backward elimination acts on the path's own set only, and a larger set
@@ -81,9 +81,10 @@ by). The search (:func:`validation.improve`) is stepwise:
    (credible or not) has each of its effects dropped in turn; the subsets not fitted yet, and those whose fit
    stopped at its budget of model evaluations (its BIC only an upper bound: a candidate fitted on top of a step's set
    varies its own parameters first, and may stop far from the pair's optimum), are refitted jointly from its
-   values, the subsets of the better sets first, within half the model evaluations the search took. A credible
-   subset that fits better than the answer by more than :data:`STAY` replaces it (a step ``"reduced"``); the others
-   count for the equally supported sets. Done under the conditions of item 6.
+   values, the subsets of the better sets first, within the same half of the model evaluations as item 6 (those
+   taken before it: a budget that grew with the continued fits could let three-effect sets run for minutes). A
+   credible subset that fits better than the answer by more than :data:`STAY` replaces it (a step ``"reduced"``);
+   the others count for the equally supported sets. Done under the conditions of item 6.
 8. **the best set fitted**: the path's answer is the set its steps reached, and a set fitted on the way off the
    path (a pair the screen of item 5 fitted) can fit better by less than :data:`STAY`, so that no step above took
    it (an adhesion that the path took, on three parameters, against the flash temperature + microtexture pair it
