@@ -97,11 +97,11 @@ class Localized:
         The model the residuals are of.
     noise_source : str
         The source of the noise estimate (:data:`validation.noise.NOISE_SOURCES`).
+    rest_low_p : float
+        The lower tail of the other rows' test: small when they scatter less than the noise estimate allows.
     refitted : tuple of str
         The baseline parameters refitted with the model (``"contact.stiffness"``, ...): the hint for rows with slip
         does not ask for a refit of the contact that was made.
-    rest_low_p : float
-        The lower tail of the other rows' test: small when they scatter less than the noise estimate allows.
     """
 
     family: str
