@@ -36,9 +36,9 @@ from .compare import json_text
 from .deferred import Deferred, Lazy
 from .errors import InputError
 from .fitting import CONTACT, FreeParameter, ParameterSpace, contact_parameters, free_parameters
+from .localize import localize_misfit
 from .measurements import Measurements
 from .noise import NoiseEstimate, estimate_noise, lack_of_fit, remaining_pattern
-from .localize import localize_misfit
 from .outliers import outlying_rows
 from .predict import Predictor, mostly_extrapolated
 from .refit import data_range, issues_at, with_uncertainty

@@ -572,10 +572,10 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
             steps.append(_step(len(steps), "removed", None, f, search.get(current), steps[-1], base_fit, search))
     final = _final_verdict(dx0=steps[0].diagnosis, selection=selection, noise=noise)
     best = selection.best
-    outliers = outlying_rows(measurements.mu - best.predicted, noise, measurements,
-                             "the baseline" + "".join(f" + {e}" for e in best.effects))
-    localized = localize_misfit(measurements.mu - best.predicted, noise, measurements,
-                                "the baseline" + "".join(f" + {e}" for e in best.effects), n_params=best.n_params,
+    residual = measurements.mu - best.predicted
+    label = "the baseline" + "".join(f" + {e}" for e in best.effects)
+    outliers = outlying_rows(residual, noise, measurements, label)
+    localized = localize_misfit(residual, noise, measurements, label, n_params=best.n_params,
                                 refitted=tuple(base_fit))
     final = with_noise_trend(with_localized(with_outliers(final, outliers), localized), noise)
     localized = localized if final.localized else None

@@ -196,17 +196,16 @@ def localize_misfit(residual, noise, measurements, model: str, n_params: int = 0
         return None
     known = noise.source == "mu_std"
     tests = {key: _test(z2[mask], per_row_dof, known, noise.dof) for key, mask in masks.items()}
-    missed = [key for key, (_, p) in tests.items() if p < ALPHA / len(masks)]
+    missed = [key for key, (_, p, _) in tests.items() if p < ALPHA / len(masks)]
     if len(missed) != 1:
         return None
     key = missed[0]
     rest = ~masks[key]
-    rest_ratio, rest_p = _test(z2[rest], per_row_dof, known, noise.dof)
+    rest_ratio, rest_p, low = _test(z2[rest], per_row_dof, known, noise.dof)
     if rest_p < REST_P:
         return None
-    ratio, p = tests[key]
+    ratio, p, _ = tests[key]
     total = float(np.sum(z2))
-    low = _test(z2[rest], per_row_dof, known, noise.dof, lower=True)[1]
     return Localized(family=key, n_rows=int(np.sum(masks[key])), ratio=ratio, p_value=p,
                      share=float(np.sum(z2[masks[key]]) / total) if total > 0 else 0.0,
                      rest_rows=int(np.sum(rest)), rest_ratio=rest_ratio, rest_p=rest_p, model=model,
@@ -220,12 +219,12 @@ def _family_masks(m):
     return sliding & ~wet, ~sliding & ~wet, wet
 
 
-def _test(z2, per_row_dof: float, known: bool, nu: float, lower: bool = False) -> tuple[float, float]:
-    """(residual / noise, p) of rows with squared scaled residuals ``z2``: chi^2 with the noise known, else F; the
-    upper tail, or with ``lower`` the lower one."""
+def _test(z2, per_row_dof: float, known: bool, nu: float) -> tuple[float, float, float]:
+    """(residual / noise, upper-tail p, lower-tail p) of rows with squared scaled residuals ``z2``: chi^2 with the
+    noise known, else F (each tail from its own function: a small lower tail is not lost in 1 - p)."""
     d = max(z2.size * per_row_dof, 1e-9)
     s = float(np.sum(z2))
     ratio = math.sqrt(s / d)
     if known or not math.isfinite(nu):
-        return ratio, chi2_cdf(s, d) if lower else chi2_sf(s, d)
-    return ratio, f_cdf(s / d, d, nu) if lower else f_sf(s / d, d, nu)
+        return ratio, chi2_sf(s, d), chi2_cdf(s, d)
+    return ratio, f_sf(s / d, d, nu), f_cdf(s / d, d, nu)
