@@ -192,6 +192,8 @@ REFERENCES: dict[str, str] = {
     "pattern in nonlinear regression, Biometrika 73, 625 (1986).",
     "10.1093/biomet/70.1.1": "R. D. Cook, S. Weisberg, Diagnostics for heteroscedasticity in regression, "
     "Biometrika 70, 1 (1983).",
+    "10.2307/1910133": "G. C. Chow, Tests of equality between sets of coefficients in two linear regressions, "
+    "Econometrica 28, 591 (1960).",
     "10.1080/01621459.1987.10478472": "S. G. Self, K.-Y. Liang, Asymptotic properties of maximum likelihood "
     "estimators and likelihood ratio tests under nonstandard conditions, J. Am. Stat. Assoc. 82, 605 (1987).",
 }

@@ -19,7 +19,10 @@ Each case is drawn at random and made by a path independent of the diagnosis:
   constants); ``pressure``, a friction that falls with the nominal pressure as a power law (exponent 0.1-0.3,
   :class:`PressureLaw`) beyond what the engine's contact mechanics give; ``slip``, slip rows made by another
   model than the brush model, a Magic Formula curve (:func:`magic_formula_rows`: peak at 3-20 % slip, 1.0-1.4 times
-  the friction at the sweep's largest slip, which it meets there); ``mixed``, filler or shift at random;
+  the friction at the sweep's largest slip, which it meets there); ``contact``, slip rows of a brush contact whose
+  tread stiffness is 2-5 times higher or lower and whose length is 0.6-1.6 times that of the contact the case is
+  given (a wrong input rather than missing physics: the diagnosis should place the misfit in the rows with slip
+  and find that the contact refitted explains it); ``mixed``, filler or shift at random;
 * **truth**: the engine on a converged grid (6x the default wavevector nodes, 3x the modulus table, a 2.5x finer
   temperature table, a brush model with 1601 nodes), never the diagnosis's settings;
 * **noise**: Gaussian (with ``--noise proportional``, each row's standard deviation in proportion to its true mu,
@@ -41,7 +44,9 @@ The diagnosis sees the case as a user would (:func:`validation.improve` with the
 outcome is compared with the truth. Printed: the confusion matrix (hidden physics against the set of effects
 found), the misses named among the equally supported sets, false alarms on null and wet cases, calibration errors of
 the rig named as rivals (none of the cases has one), physics outside the candidates called ``explained``, the
-verdicts that place the misfit in one family of rows (:mod:`validation.localize`), detection against the
+verdicts that place the misfit in one family of rows (:mod:`validation.localize`; "after a refit" where the
+model's parameters had to be refitted to the other rows to find it) and, where that is the rows with slip, whether
+the brush contact refitted explains it (:mod:`validation.contact_refit`), detection against the
 effect-to-noise and the distinguishable ratios, and the coverage of the reported 68 % and 95 % intervals of the
 parameters of a hidden effect found alone.
 
@@ -108,7 +113,7 @@ class BlindCase:
 
 # ==========================================================================================================
 #: The kinds of physics outside the candidate list (``--outside``; module docstring).
-OUTSIDE = ("filler", "shift", "pressure", "slip", "mixed")
+OUTSIDE = ("filler", "shift", "pressure", "slip", "contact", "mixed")
 #: The noise models (``--noise``; module docstring).
 NOISE = ("constant", "proportional")
 
@@ -136,7 +141,8 @@ def draw(index: int, seed: int, outside: str = "filler", noise: str = "constant"
     pressures = np.sort(rng.choice([0.15e6, 0.25e6, 0.4e6, 0.6e6], size=2 if temps.size < 3 else
                                    int(rng.integers(1, 3)), replace=False))
     speeds = np.geomspace(10 ** rng.uniform(-4.0, -3.0), 10 ** rng.uniform(0.0, 0.5), int(rng.integers(7, 10)))
-    with_slip = "patch_heating" in hidden_names or rng.random() < 0.6 or (kind == "outside" and outside == "slip")
+    with_slip = "patch_heating" in hidden_names or rng.random() < 0.6 or (kind == "outside" and
+                                                                          outside in ("slip", "contact"))
     wet_rows = kind == "wet" or (kind in ("null", "single") and rng.random() < 0.2 and "adhesion" not in hidden_names)
     replicate = rng.random() < 0.2
     use_std = not replicate and rng.random() < 0.375
@@ -189,6 +195,15 @@ def draw(index: int, seed: int, outside: str = "filler", noise: str = "constant"
             notes["pressure"] = law
         elif outside == "slip":
             pass    # the slip rows of the truth are replaced below, once computed
+        elif outside == "contact":
+            # drawn apart from the case's own generator, so that the rest of the case is that of the other kinds
+            crng = np.random.default_rng([seed, index, 3])
+            factor = 10 ** (crng.choice((-1.0, 1.0)) * crng.uniform(math.log10(2.0), math.log10(5.0)))
+            true_contact = {"stiffness": contact_truth.stiffness * factor,
+                            "length": contact_truth.length * crng.uniform(0.6, 1.6)}
+            contact_truth = replace(contact_truth, **true_contact)
+            notes["contact"] = {"true": true_contact, "given": {"stiffness": contact_case.stiffness,
+                                                                "length": contact_case.length}}
         else:
             wlf = material.wlf
             shift = {"C1": wlf.C1 * 10 ** rng.uniform(math.log10(0.7), math.log10(1.4)),
@@ -216,8 +231,11 @@ def draw(index: int, seed: int, outside: str = "filler", noise: str = "constant"
         else:
             withouts.append(persson.Model(case_surface, material, effects=base_true, grid=TRUTH_GRID))
             free.append(tuple(fit))
-        effect_rms = min(float(np.sqrt(np.mean((mu_true - validation.predict(w, skeleton, contact_truth).mu) ** 2)))
-                         for w in withouts)
+        # for a contact given off, the hidden change is that of the contact: the withouts take the one given
+        contact_without = contact_truth if "contact" not in notes else replace(contact_truth,
+                                                                                **notes["contact"]["given"])
+        effect_rms = min(float(np.sqrt(np.mean((mu_true - validation.predict(w, skeleton, contact_without).mu)
+                                               ** 2))) for w in withouts)
         unabsorbed, known = math.nan, {}
         # the sets are added to this (tau_f0 refitted)
         baseline = persson.Model(case_surface, material, effects=base_true)
@@ -476,9 +494,12 @@ def run(case: BlindCase) -> dict:
            "calibration_rivals": [f"{f.describe()} on {f.on}" for f in imp.selection.calibration.rivals]
            if imp.selection is not None and imp.selection.calibration is not None else [],
            "localized": None if imp.localized is None else imp.localized.family,
+           "contact_refit": None if imp.localized is None or imp.localized.contact is None else
+           imp.localized.contact.outcome,
+           "traded": 0 if imp.localized is None else imp.localized.traded,
            "coverage": []}
     if case.kind == "outside":
-        out["outside"] = next((k for k in ("shift", "pressure", "slip") if k in case.notes), "filler")
+        out["outside"] = next((k for k in ("shift", "pressure", "slip", "contact") if k in case.notes), "filler")
     if case.kind in ("single", "pair") and set(found) == set(truth):
         est = {e.key: e for e in imp.selection.best.estimates}
         for eff, params in case.hidden.items():
@@ -582,8 +603,17 @@ def summarize(results: list) -> str:
     placed = [r for r in results if r.get("localized")]
     if any("localized" in r for r in results):
         lines.append(f"Misfit placed in one family of rows by the verdict (validation.localize): {len(placed)} of "
-                     f"{len(results)}" + (" (" + ", ".join(f"case {r['index']} {r['kind']} {r['localized']}"
-                                                           for r in placed) + ")" if placed else ""))
+                     f"{len(results)}" + (" (" + ", ".join(
+                         f"case {r['index']} {r['kind']} {r['localized']}" + (" after a refit" if r.get("traded")
+                                                                              else "")
+                         for r in placed) + ")" if placed else ""))
+    refits = [r for r in results if r.get("contact_refit")]
+    if refits:
+        lines.append(f"  the brush contact refitted where it is in the rows with slip: explains the misfit in "
+                     f"{sum(r['contact_refit'] == 'explains' for r in refits)} of {len(refits)}, takes most of it in "
+                     f"{sum(r['contact_refit'] == 'takes_most' for r in refits)}" + " (" + ", ".join(
+                         f"case {r['index']} {r.get('outside', r['kind'])} {r['contact_refit']}" for r in refits)
+                     + ")")
     for key, title in (("ratio", "the effect-to-noise ratio (the truth's change of mu without the effect)"),
                        ("distinguishable", "the distinguishable ratio (what a refit of the other parameters leaves "
                                            "of that change)")):

@@ -8,13 +8,14 @@ fitted parameters shared out over the families in proportion to their rows), the
 
 import dataclasses
 import math
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
 from scipy import stats
 
 import validation
-from validation.localize import ALPHA, localize_misfit
+from validation.localize import ALPHA, REFIT_STEPS, localize_misfit
 from validation.report import render_report
 from validation.noise import NoiseEstimate
 from validation.verdict import Verdict, with_localized
@@ -169,6 +170,115 @@ def test_only_a_verdict_that_misses_the_data_names_the_family():
     assert with_localized(unexplained, None).localized == ""
 
 
+def _trade_jacobian(m):
+    """d mu / d u of a linear model whose two parameters act on every row (an offset) and on the sliding rows (a
+    trend in log speed): fitted to every row, the offset trades a misfit of the rows with slip for one elsewhere."""
+    return np.column_stack([np.ones(m.n), np.where(m.slip >= 1, np.log10(m.speed), 0.0)])
+
+
+def _fitted(y, J):
+    """The residual of the least-squares fit of the columns ``J`` to ``y`` (the joint fit)."""
+    return y - J @ np.linalg.lstsq(J, y, rcond=None)[0]
+
+
+def test_parameters_that_trade_the_slip_rows_misfit_are_refitted_to_the_other_rows_as_in_chows_test():
+    m = _rows()
+    J = _trade_jacobian(m)
+    r = _fitted(_bump(m, 25 * SIGMA) + np.random.default_rng(1).normal(0.0, SIGMA, m.n), J)
+    # at the joint fit every family is missed: without the refit nothing is placed
+    assert localize_misfit(r, _known(m.n), m, "m", n_params=2) is None
+    loc = localize_misfit(r, _known(m.n), m, "m", n_params=2, refit=SimpleNamespace(jacobian=J))
+    assert loc is not None and loc.family == "slip" and loc.traded == 2 and loc.n_evals == 0
+    # Chow's predictive test, computed independently: the rest refitted alone, the family tested on what it adds
+    s = m.slip < 1
+    rss_rest = float(np.sum(_fitted(r[~s], J[~s]) ** 2)) / SIGMA ** 2
+    total = float(np.sum(r ** 2)) / SIGMA ** 2
+    assert loc.rest_p == pytest.approx(stats.chi2.sf(rss_rest, 46 - 2), rel=1e-9)
+    assert loc.rest_ratio == pytest.approx(math.sqrt(rss_rest / 44), rel=1e-9)
+    assert loc.p_value == pytest.approx(stats.chi2.sf(total - rss_rest, 10), rel=1e-6, abs=1e-300)
+    assert loc.share == pytest.approx((total - rss_rest) / total, rel=1e-9)
+    assert loc.rest_p >= 0.05 and loc.p_value < ALPHA
+    text = loc.text()
+    assert "refitted to the other 46 rows alone, its 2 fitted parameters" in text and "trade" in text
+    assert loc.as_dict()["traded"] == 2
+
+
+def test_with_an_estimated_noise_the_refit_tests_are_f_tests():
+    m = _rows()
+    J = _trade_jacobian(m)
+    r = _fitted(_bump(m, 25 * SIGMA) + np.random.default_rng(2).normal(0.0, SIGMA, m.n), J)
+    loc = localize_misfit(r, _estimated(m.n, dof=17.0), m, "m", n_params=2, refit=SimpleNamespace(jacobian=J))
+    s = m.slip < 1
+    rss_rest = float(np.sum(_fitted(r[~s], J[~s]) ** 2)) / SIGMA ** 2
+    total = float(np.sum(r ** 2)) / SIGMA ** 2
+    assert loc.family == "slip"
+    assert loc.rest_p == pytest.approx(stats.f.sf(rss_rest / 44, 44, 17.0), rel=1e-9)
+    assert loc.p_value == pytest.approx(stats.f.sf((total - rss_rest) / 10, 10, 17.0), rel=1e-6)
+
+
+def test_a_nonlinear_model_is_refitted_to_the_other_rows_by_evaluated_gauss_newton_steps():
+    """mu = a + exp(b) x: the refit's evaluated steps reach the optimum a least-squares solver finds."""
+    from scipy.optimize import least_squares
+
+    m = _rows()
+    x = np.log10(m.speed) + 3.0
+
+    def mu_of(u, rows=slice(None)):
+        return u[0] + np.exp(u[1]) * x[rows]
+
+    truth = mu_of(np.array([0.4, math.log(0.05)]))
+    y = truth + _bump(m, 25 * SIGMA) + np.random.default_rng(7).normal(0.0, SIGMA, m.n)
+    u_joint = least_squares(lambda u: mu_of(u) - y, [0.5, math.log(0.03)], xtol=1e-14, ftol=1e-14).x
+    J = np.column_stack([np.ones(m.n), np.exp(u_joint[1]) * x])
+    calls = []
+
+    def predict(du, measurements):
+        calls.append(du)
+        return mu_of(u_joint + du)
+
+    mm = m.with_mu(y)
+    r = y - mu_of(u_joint)
+    loc = localize_misfit(r, _known(m.n), mm, "m", n_params=2, refit=SimpleNamespace(jacobian=J, predict=predict))
+    assert loc is not None and loc.family == "slip" and 1 <= loc.n_evals <= 3 * REFIT_STEPS   # three families
+    rest = m.slip >= 1
+    u_rest = least_squares(lambda u: mu_of(u, rest) - y[rest], u_joint, xtol=1e-14, ftol=1e-14).x
+    rss_rest = float(np.sum((y[rest] - mu_of(u_rest, rest)) ** 2)) / SIGMA ** 2
+    assert loc.rest_ratio == pytest.approx(math.sqrt(rss_rest / (rest.sum() - 2)), rel=1e-3)
+    # a step the model cannot take places nothing
+    assert localize_misfit(r, _known(m.n), mm, "m", n_params=2,
+                           refit=SimpleNamespace(jacobian=J, predict=lambda du, mmm: None)) is None
+
+
+def test_on_pure_noise_the_refit_adds_at_most_alpha_to_the_false_placements():
+    m = _rows()
+    J = _trade_jacobian(m)
+    refit = SimpleNamespace(jacobian=J)
+    rng = np.random.default_rng(12)
+    n_sim = 3000
+    plain = with_refit = 0
+    for _ in range(n_sim):
+        r = _fitted(rng.normal(0.0, SIGMA, m.n), J)
+        plain += localize_misfit(r, _known(m.n), m, "m", n_params=2) is not None
+        with_refit += localize_misfit(r, _known(m.n), m, "m", n_params=2, refit=refit) is not None
+    # each path is a Bonferroni test at ALPHA over the families; their union at most 2 ALPHA (sd 5.4 at 3000)
+    assert with_refit - plain <= n_sim * ALPHA + 3 * math.sqrt(n_sim * ALPHA)
+    assert with_refit <= 2 * n_sim * ALPHA + 3 * math.sqrt(2 * n_sim * ALPHA)
+
+
+def test_the_refit_needs_other_rows_to_spare_beyond_the_parameters():
+    def placed(n_sliding):
+        m = _rows(n_sliding=n_sliding, n_slip=10, n_wet=0)
+        lv = np.where(m.slip >= 1, np.log10(m.speed), 0.0)
+        J = np.column_stack([np.ones(m.n), lv, lv ** 2])
+        r = _fitted(_bump(m, 25 * SIGMA) + np.random.default_rng(4).normal(0.0, SIGMA, m.n), J)
+        return localize_misfit(r, _known(m.n), m, "m", n_params=3, refit=SimpleNamespace(jacobian=J))
+
+    # four sliding rows, three parameters: one degree of freedom left, fewer than MIN_ROWS
+    assert placed(4) is None or placed(4).traded == 0
+    # twelve: nine to spare, and the misfit is placed after the refit
+    assert placed(12) is not None and placed(12).family == "slip" and placed(12).traded == 3
+
+
 @pytest.fixture(scope="module")
 def magic_formula_case():
     """The shipped null case (nothing hidden) with its slip sweep replaced by a Magic Formula curve (Pacejka &
@@ -183,6 +293,13 @@ def magic_formula_case():
     return dataclasses.replace(case, measurements=m.with_mu(mu))
 
 
+@pytest.fixture(scope="module")
+def traded_case(magic_formula_case):
+    """The same, with the adhesion's interfacial shear strength fitted with the model: fitted to every row, it
+    trades the misfit of the slip rows for one on the sliding rows."""
+    return dataclasses.replace(magic_formula_case, fit=("adhesion.tau_f0",))
+
+
 def test_the_diagnosis_places_a_slip_curve_of_another_model_in_the_slip_rows(magic_formula_case):
     dx = validation.diagnose(magic_formula_case, probe=False)
     assert dx.verdict.verdict in ("unexplained", "partly_explained")
@@ -190,12 +307,28 @@ def test_the_diagnosis_places_a_slip_curve_of_another_model_in_the_slip_rows(mag
     assert dx.verdict.localized and dx.verdict.localized in dx.explanation
     assert dx.as_dict()["localized"]["family"] == "slip"
     assert "sits in the 10 rows with slip" in render_report([dx])
+    # the brush contact refitted with the rest leaves the misfit: the slip curve's shape is what the model lacks
+    assert dx.localized.contact is not None and not dx.localized.contact.explains
+    assert "shape of the slip curve" in dx.verdict.localized
 
 
-def test_the_loop_places_it_there_too_in_its_verdict_json_and_report(magic_formula_case):
-    imp = validation.improve(magic_formula_case, probe=False)
+def test_where_a_fitted_parameter_trades_the_misfit_the_diagnosis_refits_it_to_the_other_rows(
+        traded_case):
+    dx = validation.diagnose(traded_case, probe=False)
+    assert dx.verdict.verdict in ("unexplained", "partly_explained")
+    # at the joint fit adhesion.tau_f0 moves the sliding rows off the noise to meet the slip rows
+    b = dx.baseline
+    assert localize_misfit(traded_case.measurements.mu - b.predicted, dx.noise_estimate, traded_case.measurements,
+                           "the baseline", n_params=b.n_params) is None
+    assert dx.localized is not None and dx.localized.family == "slip" and dx.localized.traded == 1
+    assert "refitted to the other 60 rows alone, its 1 fitted parameter leaves" in dx.verdict.localized
+    assert dx.as_dict()["localized"]["traded"] == 1
+
+
+def test_the_loop_places_it_there_too_in_its_verdict_json_and_report(traded_case):
+    imp = validation.improve(traded_case, probe=False)
     assert imp.verdict in ("unexplained", "partly_explained")
-    assert imp.localized is not None and imp.localized.family == "slip"
+    assert imp.localized is not None and imp.localized.family == "slip" and imp.localized.traded == 1
     assert imp.final.localized in imp.final.headline
     assert imp.as_dict()["localized"]["family"] == "slip"
     assert imp.as_diagnosis().localized is imp.localized

@@ -33,6 +33,7 @@ from .calibration import SetFit, check_calibration
 from .candidates import (DELTA_BIC_THRESHOLD, P_THRESHOLD, SIGNIFICANCE_RULE, Baseline, BaselineFit, Candidate,
                          FitSettings, bic, finish_candidate, fit_baseline, fit_candidate, note_kind)
 from .compare import json_text
+from .contact_refit import refit_contact
 from .deferred import Deferred, Lazy
 from .errors import InputError
 from .fitting import CONTACT, FreeParameter, ParameterSpace, contact_parameters, free_parameters
@@ -42,7 +43,8 @@ from .noise import NoiseEstimate, estimate_noise, lack_of_fit, remaining_pattern
 from .outliers import outlying_rows
 from .predict import Predictor, mostly_extrapolated
 from .refit import data_range, issues_at, with_uncertainty
-from .verdict import Verdict, decide, explain, with_calibration, with_localized, with_noise_trend, with_outliers
+from .verdict import (MISSES, Verdict, decide, explain, with_calibration, with_localized, with_noise_trend,
+                      with_outliers)
 
 __all__ = ["Diagnosis", "Baseline", "Candidate", "Ambiguity", "Separation", "diagnose_single", "SIGNIFICANCE_RULE",
            "DELTA_BIC_THRESHOLD", "P_THRESHOLD", "COSINE_THRESHOLD"]
@@ -122,15 +124,17 @@ class Diagnosis:
 
     @property
     def citations(self) -> tuple:
-        """References of the statistics (BIC, evidence scale, noise, pattern tests) and of the physics of the
-        baseline and the candidates."""
+        """References of the statistics (BIC, evidence scale, noise, pattern tests, and where the verdict places the
+        misfit, its tests and the contact's refit) and of the physics of the baseline and the candidates."""
         from frictioncite import citations_of
 
         from .noise import estimate_noise, remaining_pattern
         from .verdict import decide
 
         effects = [type(c.instance) for c in self.candidates if c.instance is not None]
-        return citations_of(bic, decide, estimate_noise, remaining_pattern, type(self.baseline.model),
+        placed = () if self.localized is None else (localize_misfit,) + (
+            () if self.localized.contact is None else (refit_contact,))
+        return citations_of(bic, decide, estimate_noise, remaining_pattern, *placed, type(self.baseline.model),
                             *(type(e) for e in self.baseline.model.effects), *effects)
 
     def references(self) -> list:
@@ -386,9 +390,14 @@ def diagnose_single(model, measurements: Measurements | None = None, candidates=
     calibration = _calibration_check(named, baseline, ctx, conditions=check_conditions)
     verdict = with_calibration(verdict, calibration)
     outliers = _outliers(named, baseline, m, noise)
-    localized = _localized(named, baseline, m, noise, refitted=tuple(_fit_names(fit, model)))
+    localized = _localized(named, baseline, m, noise, refitted=tuple(_fit_names(fit, model)),
+                           contact=contact, refit=verdict.verdict in MISSES)
+    if localized is not None and localized.family == "slip" and verdict.verdict in MISSES:
+        localized = _with_contact_refit(localized, named, baseline, ctx, contact)
+        n_eval += localized.contact.n_evals if localized.contact is not None else 0
     verdict = with_noise_trend(with_localized(with_outliers(verdict, outliers), localized), noise)
     localized = localized if verdict.localized else None
+    n_eval += localized.n_evals if localized is not None else 0
     # the baseline at its optimum again, in full: its solutions are kept by the predictor, so this costs no solve
     extrapolated = predictor.predict(baseline.model, full=True).modulus_extrapolated_share
     explanation = Deferred(lambda: explain(verdict, m, baseline, results, clusters, noise,
@@ -414,15 +423,40 @@ def _outliers(named, baseline, measurements, noise):
     return outlying_rows(measurements.mu - baseline.predicted, noise, measurements, "the baseline")
 
 
-def _localized(named, baseline, measurements, noise, refitted=()):
+def _localized(named, baseline, measurements, noise, refitted=(), contact=None, refit=False):
     """The family of rows the verdict's model (that of ``named``, else the baseline) misses while it fits the
-    others: :func:`validation.localize.localize_misfit` (``refitted``: the baseline parameters refitted)."""
+    others: :func:`validation.localize.localize_misfit` (``refitted``: the baseline parameters refitted). With
+    ``refit``, where no family is missed alone, also after a refit of the model's parameters to the rows outside
+    each family (``contact``: the settings' contact, for a model fitted without one of its own)."""
     if named is not None and named.predicted is not None:
+        refit = None if not refit else SetFit.of(named.model, named.contact or contact, named.covariance,
+                                                 named.jacobian)
         return localize_misfit(measurements.mu - named.predicted, noise, measurements,
                                f"the baseline + {named.effect}", n_params=baseline.n_params + named.n_params,
-                               refitted=refitted)
+                               refitted=refitted, refit=refit)
+    fit = baseline.fit
+    refit = None if not refit or fit is None else SetFit.of(baseline.model, baseline.contact or contact,
+                                                            fit.covariance, fit.jacobian)
     return localize_misfit(measurements.mu - baseline.predicted, noise, measurements, "the baseline",
-                           n_params=baseline.n_params, refitted=refitted)
+                           n_params=baseline.n_params, refitted=refitted, refit=refit)
+
+
+def _with_contact_refit(localized, named, baseline, ctx, contact):
+    """``localized`` (a misfit placed in the rows with slip) with the verdict's model (that of ``named``, else the
+    baseline) refitted with the brush contact's stiffness and length: :func:`validation.contact_refit.refit_contact`
+    (left as it is when the model's fit cannot be restarted)."""
+    if named is not None and named.predicted is not None:
+        start = SetFit.of(named.model, named.contact or contact, named.covariance, named.jacobian)
+        if start is None:
+            return localized
+        model, at, space, predicted = named.model, named.contact or contact, start.space, named.predicted
+    else:
+        fit = baseline.fit
+        if fit is not None and fit.covariance is None:
+            return localized
+        space = ParameterSpace(()) if fit is None else fit.covariance.space
+        model, at, predicted = baseline.model, baseline.contact or contact, baseline.predicted
+    return replace(localized, contact=refit_contact(model, at, space, predicted, ctx))
 
 
 def _calibration_check(named, baseline, ctx, conditions=True):

@@ -33,14 +33,17 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from .band import band_note
+from .calibration import SetFit
 from .compare import Comparison, comparison_from, json_text
+from .contact_refit import refit_contact
 from .diagnose import Diagnosis, _unpack, diagnose_single
 from .errors import InputError
+from .fitting import ParameterSpace
 from .localize import localize_misfit
 from .outliers import outlying_rows
 from .predict import Prediction, Predictor
 from .select import Selection, SetSearch, fits_at_noise
-from .verdict import (Verdict, judge, misfit_share, with_calibration, with_localized, with_noise_trend,
+from .verdict import (MISSES, Verdict, judge, misfit_share, with_calibration, with_localized, with_noise_trend,
                       with_outliers)
 
 __all__ = ["Improvement", "Step", "improve", "diagnose"]
@@ -575,10 +578,19 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
     residual = measurements.mu - best.predicted
     label = "the baseline" + "".join(f" + {e}" for e in best.effects)
     outliers = outlying_rows(residual, noise, measurements, label)
+    refit = SetFit.of(best.model, best.contact or contact, best.covariance, best.jacobian) \
+        if final.verdict in MISSES else None
     localized = localize_misfit(residual, noise, measurements, label, n_params=best.n_params,
-                                refitted=tuple(base_fit))
+                                refitted=tuple(base_fit), refit=refit)
+    # where the misfit sits in the rows with slip: the brush contact refitted with the set (none fitted: alone)
+    space = refit.space if refit is not None else (ParameterSpace(()) if best.n_params == 0 else None)
+    if localized is not None and localized.family == "slip" and final.verdict in MISSES and space is not None:
+        localized = replace(localized, contact=refit_contact(best.model, best.contact or contact, space,
+                                                             best.predicted, search.ctx))
+        n_evals += localized.contact.n_evals if localized.contact is not None else 0
     final = with_noise_trend(with_localized(with_outliers(final, outliers), localized), noise)
     localized = localized if final.localized else None
+    n_evals += localized.n_evals if localized is not None else 0
     if stopped.startswith("explained") and final.verdict != "explained":
         # the loop stops at the noise; the verdict also weighs identification, credibility and the share of the
         # misfit removed, and can say less: the stop text names it, so that the two never read as a contradiction

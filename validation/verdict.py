@@ -45,13 +45,15 @@ from .candidates import KASS_RAFTERY_1995, SIGNIFICANCE_RULE
 from .predict import mostly_extrapolated
 
 __all__ = ["Verdict", "decide", "explain", "VERDICTS", "CLOSE_CALL", "PARTLY_SHARE", "misfit_share",
-           "with_calibration", "with_outliers", "with_noise_trend", "with_localized"]
+           "with_calibration", "with_outliers", "with_noise_trend", "with_localized", "MISSES"]
 
 #: Lack-of-fit p-values above this (and below the test's 0.01) are marginal: an ``unexplained`` verdict that rests
 #: on such a misfit alone, with no pattern and no candidate taking it up, says the noise estimate may be low.
 MARGINAL_P = 1e-3
 
 VERDICTS = ("nothing_missing", "explained", "partly_explained", "unexplained", "undetermined")
+#: The verdicts of a model that misses the data (its misfit is then placed: :func:`with_localized`).
+MISSES = ("partly_explained", "unexplained")
 #: Delta BIC below which the top two candidates are a close call.
 CLOSE_CALL = 10.0
 #: Least share of the misfit above the noise a candidate must remove for ``partly_explained``: a quarter. Two
@@ -180,7 +182,7 @@ def with_localized(verdict: Verdict, localized) -> Verdict:
     """``verdict`` naming the family of rows its model misses (``localized``, a
     :class:`validation.localize.Localized`, or None), for ``unexplained`` and ``partly_explained`` verdicts only:
     where the model fits the noise there is no misfit to place."""
-    if localized is None or verdict.verdict not in ("unexplained", "partly_explained"):
+    if localized is None or verdict.verdict not in MISSES:
         return replace(verdict, localized="")
     return replace(verdict, localized=localized.text())
 

@@ -1,0 +1,94 @@
+"""validation: where a model's misfit sits in the rows with slip, the brush contact is refitted with the model's
+parameters, and the verdict tells a contact given off (the refit brings every row to the noise, and the product of
+stiffness and length the rows fix is the truth's) from a slip curve of another shape (the misfit stays).
+
+The slip rows of the test case come from the engine on a converged grid (six times the default wavevector nodes,
+a brush of 1601 nodes) with a softer, longer contact than the case gives: never from the diagnosis's own settings.
+"""
+
+import dataclasses
+import math
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+import persson
+import validation
+from validation.contact_refit import EARN, ContactRefit, refit_contact
+from validation.fitting import ParameterSpace, contact_parameters
+
+#: A converged grid for the truth (finer than the diagnosis's default in every direction).
+FINE = persson.GridSettings(q_per_decade=96, n_phi=64, omega_per_decade=120, temperature_step=0.1)
+
+
+@pytest.fixture(scope="module")
+def contact_off_case():
+    """The shipped null case (nothing hidden) whose slip rows come from a contact a quarter as stiff and 1.5 times
+    as long as the one the case gives."""
+    case = validation.load_case("null")
+    m = case.measurements
+    s = m.slip < 1
+    truth = dataclasses.replace(case.contact, stiffness=0.25 * case.contact.stiffness,
+                                length=1.5 * case.contact.length, n_points=1601)
+    mu_true = validation.predict(case.model.replace(grid=FINE), m, truth).mu
+    mu = m.mu.copy()
+    mu[s] = mu_true[s] + np.random.default_rng(5).normal(0.0, 0.004, int(s.sum()))
+    return dataclasses.replace(case, measurements=m.with_mu(mu)), truth
+
+
+def test_a_contact_given_off_is_found_by_the_refit_with_the_product_of_stiffness_and_length_it_fixes(
+        contact_off_case):
+    case, truth = contact_off_case
+    dx = validation.diagnose(case, probe=False)
+    assert dx.verdict.verdict in ("unexplained", "partly_explained")
+    loc = dx.localized
+    assert loc is not None and loc.family == "slip"
+    cr = loc.contact
+    assert isinstance(cr, ContactRefit) and cr.names == ("stiffness", "length")
+    assert cr.explains and cr.delta_bic <= -EARN and cr.p_value >= 0.01
+    # the brush model's slip curve depends on stiffness x length: that product is the truth's, each factor need not be
+    assert cr.correlation < -0.9
+    assert cr.fitted[0] * cr.fitted[1] == pytest.approx(truth.stiffness * truth.length, rel=0.1)
+    text = dx.verdict.localized
+    assert "the contact given is off" in text and "product of stiffness and length" in text
+    assert dx.as_dict()["localized"]["contact_refit"]["explains"] is True
+    # the report can cite what the sentence rests on: Chow's test and the brush model
+    refs = " ".join(dx.references())
+    assert "Chow" in refs and "Pacejka" in refs
+    # its figures are those of the model predicted again with the refitted contact, independently of the fit
+    fitted = dataclasses.replace(case.contact, stiffness=cr.fitted[0], length=cr.fitted[1])
+    r = case.measurements.mu - validation.predict(dx.baseline.model, case.measurements, fitted).mu
+    z = r / dx.noise_estimate.row_sigma
+    s = case.measurements.slip < 1
+    assert cr.slip_ratio == pytest.approx(math.sqrt(np.mean(z[s] ** 2)), rel=1e-6)
+
+
+def test_the_refit_is_not_made_again_where_the_contact_was_fitted_already():
+    case = validation.load_case("null")
+    space = ParameterSpace(contact_parameters(case.contact, ("stiffness", "length")))
+    context = SimpleNamespace(settings=None, measurements=case.measurements)
+    assert refit_contact(case.model, case.contact, space, case.measurements.mu, context) is None
+    assert refit_contact(case.model, None, ParameterSpace(()), case.measurements.mu, context) is None
+
+
+def test_the_text_of_a_contact_that_leaves_the_misfit_names_the_shape_of_the_slip_curve():
+    stays = ContactRefit(names=("stiffness", "length"), given=(3e9, 0.02), fitted=(1.4e9, 0.026), p_value=2e-15,
+                         ratio=4.97, slip_ratio=12.9, delta_bic=7.6, correlation=-0.999)
+    assert not stays.explains
+    assert "shape of the slip curve" in stays.text() and "3.64e+07 Pa against 6e+07 given" in stays.text()
+    # a lower BIC is not enough: every row must be at the noise too
+    assert not dataclasses.replace(stays, delta_bic=-50.0).explains
+    assert dataclasses.replace(stays, delta_bic=-50.0, p_value=0.3).explains
+    assert stays.as_dict()["correlation"] == -0.999 and stays.as_dict()["explains"] is False
+    assert stays.outcome == "stays"
+
+
+def test_a_contact_that_takes_most_of_the_misfit_but_not_all_says_so():
+    most = ContactRefit(names=("stiffness", "length"), given=(3e9, 0.02), fitted=(1.3e8, 0.17), p_value=0.0095,
+                        ratio=1.27, slip_ratio=1.40, delta_bic=-894.5, correlation=-0.999, slip_ratio_before=10.7)
+    assert not most.explains and most.takes_most and most.outcome == "takes_most"
+    assert "takes most of the misfit" in most.text() and "10.70 -> 1.40" in most.text()
+    # more than half of the slip rows' residual left: the contact does not take most of it
+    assert dataclasses.replace(most, slip_ratio=6.0).outcome == "stays"
+    assert most.as_dict()["outcome"] == "takes_most"

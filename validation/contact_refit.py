@@ -1,0 +1,223 @@
+r"""Is it the contact or the slip model? The brush contact refitted where the misfit sits in the rows with slip.
+
+Rows with slip rest on the brush model (Pacejka, Tire and Vehicle Dynamics, 3rd ed. 2012, Sec. 3.2; Persson's
+slip model, :mod:`persson.slip`) besides the friction law the sliding rows test. When the verdict places a model's
+misfit in them (:mod:`validation.localize`), two explanations remain: the contact the case gives is off (its
+tread stiffness sets the initial slope of the slip curve, its length where the patch starts to slide), or the slip
+curve has a shape no brush contact gives. The first is checked here, as a calibration error of the rig is
+(:mod:`validation.calibration`): the model is refitted with the contact's stiffness and length added to its
+fitted parameters (those of the contact not fitted already), from the fitted values and a design over the contact's
+coordinates (:func:`validation.refit.global_fit` with ``screen_dims``, every local fit joint), and judged by
+
+* the lack-of-fit test of every row against the noise (:func:`validation.noise.lack_of_fit`, with the two
+  parameters more), and
+* Schwarz's criterion (BIC), which the contact must lower by :data:`EARN` units, as any added effect must
+  (Kass & Raftery, J. Am. Stat. Assoc. 90, 773 (1995)).
+
+The contact *explains* the misfit when both hold; it *takes most* of it when BIC falls by :data:`EARN` and the
+rows with slip come to at most :data:`MOST` of their residual over the noise without every row coming to the noise
+(the contact given is off, and something else is missing too); else the misfit stays where it was placed, and the
+rows with slip after the refit are reported (their residual over the noise), so that the verdict can say the slip
+curve's shape is what the brush model lacks.
+
+In the brush model a slip curve depends on the tread stiffness :math:`k` and the patch length :math:`l` only
+through :math:`k l` (Pacejka 2012, Sec. 3.2: written in :math:`x/l`, a bristle sticks while
+:math:`k\,\theta\,l\,(x/l) < \mu\,p(x)`, and the stuck zone adds :math:`k\,\theta\,l\,(x_c/l)^2/(2\sigma_0)`
+to :math:`\mu`), patch heating aside, which depends on the time :math:`l/V` a point spends in the patch: the rows fix
+the product :math:`k l` and hardly each factor, and the text then gives that product.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from frictioncite import doi
+
+from .candidates import KASS_RAFTERY_1995, bic
+from .fitting import CONTACT, Fitter, ParameterSpace, contact_parameters, contact_value
+from .refit import global_fit
+
+__all__ = ["ContactRefit", "refit_contact", "CONTACT_NAMES", "EARN", "MOST"]
+
+#: The contact's parameters refitted (those of :data:`validation.fitting.CONTACT_PARAMETERS` that shape a slip
+#: curve of the brush model: its initial slope and the slip at which the patch slides).
+CONTACT_NAMES = ("stiffness", "length")
+#: Least decrease of BIC for the refitted contact to count (the rule for an added effect).
+EARN = 10.0
+#: Most residual over the noise of the rows with slip, as a share of the one before, for a refitted contact that does
+#: not bring every row to the noise to count as taking most of the misfit.
+MOST = 0.5
+#: Correlation of the two contact parameters' estimates beyond which the text says that the rows fix only a
+#: combination of them.
+TRADE_OFF = 0.9
+#: H. B. Pacejka, Tire and Vehicle Dynamics, 3rd ed., Butterworth-Heinemann (2012).
+PACEJKA_2012 = "isbn:9780080970165"
+
+_UNITS = {"stiffness": "Pa/m", "length": "m"}
+
+
+@dataclass(frozen=True)
+class ContactRefit:
+    """The brush contact refitted with a model's other fitted parameters.
+
+    Attributes
+    ----------
+    names : tuple of str
+        The contact parameters refitted (``"stiffness"``, ``"length"``).
+    given, fitted : tuple of float
+        Their values as given and as refitted (SI: Pa/m, m).
+    p_value : float
+        The lack-of-fit test of every row after the refit (NaN without a test).
+    ratio : float
+        Residual over the noise of every row after the refit.
+    slip_ratio : float
+        Residual over the noise of the rows with slip after the refit (root mean square of r / sigma).
+    slip_ratio_before : float
+        The same before the refit.
+    delta_bic : float
+        BIC after the refit less BIC before (negative: better).
+    correlation : float
+        The correlation of the two contact parameters' estimates (from the weighted Jacobian at the optimum; NaN
+        with one): near +-1 the rows fix a combination of them, not each.
+    n_evals : int
+        Model evaluations of the refit.
+    """
+
+    names: tuple
+    given: tuple
+    fitted: tuple
+    p_value: float
+    ratio: float
+    slip_ratio: float
+    delta_bic: float
+    correlation: float = math.nan
+    n_evals: int = 0
+    slip_ratio_before: float = math.nan
+
+    @property
+    def explains(self) -> bool:
+        """The refitted contact brings every row to the noise (lack of fit p >= 0.01) and lowers BIC by at least
+        :data:`EARN`."""
+        return math.isfinite(self.p_value) and self.p_value >= 0.01 and self.delta_bic <= -EARN
+
+    @property
+    def takes_most(self) -> bool:
+        """Short of :attr:`explains`, the refitted contact lowers BIC by at least :data:`EARN` and takes the rows with
+        slip to at most half their residual over the noise: the contact given is off, and something else too."""
+        return (not self.explains and self.delta_bic <= -EARN
+                and self.slip_ratio <= MOST * self.slip_ratio_before)
+
+    @property
+    def outcome(self) -> str:
+        """``"explains"``, ``"takes_most"`` or ``"stays"``."""
+        return "explains" if self.explains else "takes_most" if self.takes_most else "stays"
+
+    def values_text(self) -> str:
+        """``"stiffness 3.2e+08 Pa/m against 1e+08 given, length 0.12 m against 0.1"``."""
+        return ", ".join(f"{n} {f:.3g} {_UNITS.get(n, '')} against {g:.3g}" + (" given" if i == 0 else "")
+                         for i, (n, g, f) in enumerate(zip(self.names, self.given, self.fitted)))
+
+    def text(self) -> str:
+        """What the refit says: the contact given is off, or the misfit is the slip curve's shape."""
+        values = self.values_text()
+        if self.correlation <= -TRADE_OFF and self.names == CONTACT_NAMES:
+            given, fitted = (float(np.prod(v)) for v in (self.given, self.fitted))
+            values = (f"the product of stiffness and length {fitted:.3g} Pa against {given:.3g} given, which the "
+                      f"rows fix rather than each: {values}, correlation {self.correlation:+.2f}")
+        elif abs(self.correlation) >= TRADE_OFF:
+            values += f"; the rows fix a combination of the two, not each: correlation {self.correlation:+.2f}"
+        if self.explains:
+            return (f"Refitted with the rest ({values}), the brush contact brings every row to the "
+                    f"noise (residual / noise {self.ratio:.2f}, lack of fit p = {self.p_value:.2g}, BIC "
+                    f"{self.delta_bic:+.1f}): the contact given is off, not the slip model; refit it "
+                    f"(contact.stiffness, contact.length in the fit) or measure it.")
+        if self.takes_most:
+            return (f"Refitted with the rest ({values}), the brush contact takes most of the misfit of the rows with "
+                    f"slip (residual / noise {self.slip_ratio_before:.2f} -> {self.slip_ratio:.2f}, BIC "
+                    f"{self.delta_bic:+.1f}) but not all (every row {self.ratio:.2f}, lack of fit p = "
+                    f"{self.p_value:.2g}): the contact given is off, and what remains may be the shape of the slip "
+                    f"curve or physics of rolling with slip that the model lacks.")
+        return (f"Refitted with the rest ({values}), the brush contact leaves the rows with slip at "
+                f"residual / noise {self.slip_ratio:.2f} (every row {self.ratio:.2f}, lack of fit p = "
+                f"{self.p_value:.2g}, BIC {self.delta_bic:+.1f}): not the contact's stiffness or length but the "
+                f"shape of the slip curve is what the brush model misses (its peak, or its fall beyond the peak), "
+                f"or physics of rolling with slip.")
+
+    def as_dict(self) -> dict:
+        """``names``, ``given``, ``fitted``, ``p_value``, ``ratio``, ``slip_ratio``, ``slip_ratio_before``,
+        ``delta_bic``, ``explains``, ``outcome``, ``correlation`` (null with one parameter), ``n_evaluations`` and
+        ``text``."""
+        return {"names": list(self.names), "given": list(self.given), "fitted": list(self.fitted),
+                "p_value": self.p_value, "ratio": self.ratio, "slip_ratio": self.slip_ratio,
+                "slip_ratio_before": self.slip_ratio_before, "outcome": self.outcome,
+                "delta_bic": self.delta_bic, "explains": self.explains,
+                "correlation": self.correlation if math.isfinite(self.correlation) else None,
+                "n_evaluations": self.n_evals,
+                "text": self.text()}
+
+
+# ==========================================================================================================
+@doi(PACEJKA_2012, KASS_RAFTERY_1995)
+def refit_contact(model, contact, space, predicted, context, *, names=CONTACT_NAMES) -> ContactRefit | None:
+    """The model refitted with the brush contact's ``names`` added to its fitted parameters (module docstring).
+
+    Parameters
+    ----------
+    model : persson.Model
+        The model at its fitted parameters.
+    contact : persson.slip.Contact or None
+        Its contact at the fitted parameters.
+    space : validation.fitting.ParameterSpace
+        The parameters fitted with it (empty: none); the refit starts from their values in ``model``.
+    predicted : array_like (n,)
+        The model's prediction of the rows (before the refit).
+    context : validation.diagnose.FitContext
+        The settings (predictor, data, weights), the noise and its test.
+    names : sequence of str
+        The contact parameters to refit; those already in ``space`` are left out.
+
+    Returns
+    -------
+    ContactRefit or None
+        None without a contact, without rows with slip, or when every one of ``names`` is fitted already.
+    """
+    s = context.settings
+    m = context.measurements
+    slip = np.asarray(m.slip, dtype=float) < 1.0
+    names = tuple(n for n in names if f"{CONTACT}.{n}" not in space.keys)
+    if contact is None or not names or not np.any(slip):
+        return None
+    y, w = np.asarray(s.y, dtype=float), np.asarray(s.w, dtype=float)
+    full = space + ParameterSpace(contact_parameters(contact, names))
+    fitter = Fitter(s.predictor, y, w, model, full, max_evals=s.budget(len(full)), contact=contact)
+    fit = global_fit(fitter, full.u_of(model, contact), seed=s.seed, n_local=s.n_local,
+                     screen_dims=range(len(space), len(full)))
+    k0 = len(space)
+    # the derivatives at the optimum belong to the result, not to the search: they never run out of budget
+    fitter.max_evals = max(fitter.max_evals, fitter.n_evals + 2 * len(full))
+    correlation = _correlation(fitter.jacobian(fit.u) * w[:, None], k0) if len(names) == 2 else math.nan
+    rss0 = float(np.sum(((y - np.asarray(predicted, dtype=float)) * w) ** 2))
+    rss = float(np.sum(((y - fit.mu) * w) ** 2))
+    residual = y - fit.mu
+    lof = context.lack_of_fit(residual, k0 + len(names))
+    noise = context.noise
+    sigma = np.asarray(noise.row_sigma, dtype=float) if noise.known else np.full(y.size, math.nan)
+    z = residual[slip] / sigma[slip]
+    z0 = (y - np.asarray(predicted, dtype=float))[slip] / sigma[slip]
+    return ContactRefit(names=names, given=tuple(contact_value(contact, n) for n in names),
+                        fitted=tuple(contact_value(fit.contact, n) for n in names), p_value=float(lof.p_value),
+                        ratio=float(lof.ratio), slip_ratio=float(np.sqrt(np.mean(z * z))),
+                        delta_bic=bic(rss, y.size, k0 + len(names), s.sigma_known) - bic(rss0, y.size, k0,
+                                                                                          s.sigma_known),
+                        correlation=correlation, n_evals=fitter.n_evals,
+                        slip_ratio_before=float(np.sqrt(np.mean(z0 * z0))))
+
+
+def _correlation(J, first: int) -> float:
+    """The correlation of the estimates of the coordinates ``first`` and ``first + 1`` from the weighted Jacobian
+    ``J`` (the pseudo-inverse of J^T J; NaN where either is not determined)."""
+    cov = np.linalg.pinv(J.T @ J)
+    a, b, c = cov[first, first], cov[first + 1, first + 1], cov[first, first + 1]
+    return float(c / math.sqrt(a * b)) if a > 0 and b > 0 else math.nan
