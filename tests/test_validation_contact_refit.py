@@ -56,12 +56,18 @@ def test_a_contact_given_off_is_found_by_the_refit_with_the_product_of_stiffness
     # the report can cite what the sentence rests on: Chow's test and the brush model
     refs = " ".join(dx.references())
     assert "Chow" in refs and "Pacejka" in refs
+    # the noise from local differences of every row is inflated by the misfit: the refit is judged against that of
+    # the rows without slip, where the model fits
+    m = case.measurements
+    s = m.slip < 1
+    assert dx.noise_estimate.source == "local differences" and cr.noise_from_rest
+    rest = validation.estimate_noise(m.subset(~s), reference=dx.baseline.predicted[~s])
+    assert cr.noise == pytest.approx(rest.sigma, rel=1e-12) and cr.noise < dx.noise_estimate.sigma
+    assert "estimated from the rows without slip alone" in text
     # its figures are those of the model predicted again with the refitted contact, independently of the fit
     fitted = dataclasses.replace(case.contact, stiffness=cr.fitted[0], length=cr.fitted[1])
-    r = case.measurements.mu - validation.predict(dx.baseline.model, case.measurements, fitted).mu
-    z = r / dx.noise_estimate.row_sigma
-    s = case.measurements.slip < 1
-    assert cr.slip_ratio == pytest.approx(math.sqrt(np.mean(z[s] ** 2)), rel=1e-6)
+    r = m.mu - validation.predict(dx.baseline.model, m, fitted).mu
+    assert cr.slip_ratio == pytest.approx(math.sqrt(np.mean((r[s] / cr.noise) ** 2)), rel=1e-6)
 
 
 def test_the_refit_is_not_made_again_where_the_contact_was_fitted_already():

@@ -329,6 +329,7 @@ def test_the_loop_places_it_there_too_in_its_verdict_json_and_report(traded_case
     imp = validation.improve(traded_case, probe=False)
     assert imp.verdict in ("unexplained", "partly_explained")
     assert imp.localized is not None and imp.localized.family == "slip" and imp.localized.traded == 1
+    assert imp.localized.contact is not None and imp.localized.contact.outcome == "stays"
     assert imp.final.localized in imp.final.headline
     assert imp.as_dict()["localized"]["family"] == "slip"
     assert imp.as_diagnosis().localized is imp.localized

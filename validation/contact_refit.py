@@ -14,6 +14,12 @@ coordinates (:func:`validation.refit.global_fit` with ``screen_dims``, every loc
 * Schwarz's criterion (BIC), which the contact must lower by :data:`EARN` units, as any added effect must
   (Kass & Raftery, J. Am. Stat. Assoc. 90, 773 (1995)).
 
+A noise estimated from local differences along the rows' series is made on the data less the model's prediction,
+and where the model misses the rows with slip by a curve, the curvature of that misfit inflates it
+(:mod:`validation.localize`); the refit is then judged against the same estimate made on the other rows alone,
+where the model fits (the rows with slip left out; as the original where the other rows cannot give one). A noise
+given per row (``mu_std``) or estimated from replicate rows does not depend on the model and is used as it is.
+
 The contact *explains* the misfit when both hold; it *takes most* of it when BIC falls by :data:`EARN` and the
 rows with slip come to at most :data:`MOST` of their residual over the noise without every row coming to the noise
 (the contact given is off, and something else is missing too); else the misfit stays where it was placed, and the
@@ -29,6 +35,7 @@ the product :math:`k l` and hardly each factor, and the text then gives that pro
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
@@ -37,6 +44,7 @@ from frictioncite import doi
 
 from .candidates import KASS_RAFTERY_1995, bic
 from .fitting import CONTACT, Fitter, ParameterSpace, contact_parameters, contact_value
+from .noise import estimate_noise, lack_of_fit
 from .refit import global_fit
 
 __all__ = ["ContactRefit", "refit_contact", "CONTACT_NAMES", "EARN", "MOST"]
@@ -78,6 +86,10 @@ class ContactRefit:
         The same before the refit.
     delta_bic : float
         BIC after the refit less BIC before (negative: better).
+    noise : float
+        The noise level the refit is judged against (its reference level where it changes with mu).
+    noise_from_rest : bool
+        That level was estimated from local differences of the rows without slip alone (module docstring).
     correlation : float
         The correlation of the two contact parameters' estimates (from the weighted Jacobian at the optimum; NaN
         with one): near +-1 the rows fix a combination of them, not each.
@@ -95,6 +107,8 @@ class ContactRefit:
     correlation: float = math.nan
     n_evals: int = 0
     slip_ratio_before: float = math.nan
+    noise: float = math.nan
+    noise_from_rest: bool = False
 
     @property
     def explains(self) -> bool:
@@ -122,6 +136,8 @@ class ContactRefit:
     def text(self) -> str:
         """What the refit says: the contact given is off, or the misfit is the slip curve's shape."""
         values = self.values_text()
+        against = (f"; against a noise of {self.noise:.3g} estimated from the rows without slip alone, where the "
+                   f"model fits" if self.noise_from_rest else "")
         if self.correlation <= -TRADE_OFF and self.names == CONTACT_NAMES:
             given, fitted = (float(np.prod(v)) for v in (self.given, self.fitted))
             values = (f"the product of stiffness and length {fitted:.3g} Pa against {given:.3g} given, which the "
@@ -131,27 +147,28 @@ class ContactRefit:
         if self.explains:
             return (f"Refitted with the rest ({values}), the brush contact brings every row to the "
                     f"noise (residual / noise {self.ratio:.2f}, lack of fit p = {self.p_value:.2g}, BIC "
-                    f"{self.delta_bic:+.1f}): the contact given is off, not the slip model; refit it "
+                    f"{self.delta_bic:+.1f}{against}): the contact given is off, not the slip model; refit it "
                     f"(contact.stiffness, contact.length in the fit) or measure it.")
         if self.takes_most:
             return (f"Refitted with the rest ({values}), the brush contact takes most of the misfit of the rows with "
                     f"slip (residual / noise {self.slip_ratio_before:.2f} -> {self.slip_ratio:.2f}, BIC "
                     f"{self.delta_bic:+.1f}) but not all (every row {self.ratio:.2f}, lack of fit p = "
-                    f"{self.p_value:.2g}): the contact given is off, and what remains may be the shape of the slip "
-                    f"curve or physics of rolling with slip that the model lacks.")
+                    f"{self.p_value:.2g}{against}): the contact given is off, and what remains may be the shape of "
+                    f"the slip curve or physics of rolling with slip that the model lacks.")
         return (f"Refitted with the rest ({values}), the brush contact leaves the rows with slip at "
                 f"residual / noise {self.slip_ratio:.2f} (every row {self.ratio:.2f}, lack of fit p = "
-                f"{self.p_value:.2g}, BIC {self.delta_bic:+.1f}): not the contact's stiffness or length but the "
-                f"shape of the slip curve is what the brush model misses (its peak, or its fall beyond the peak), "
-                f"or physics of rolling with slip.")
+                f"{self.p_value:.2g}, BIC {self.delta_bic:+.1f}{against}): not the contact's stiffness or length but "
+                f"the shape of the slip curve is what the brush model misses (its peak, or its fall beyond the "
+                f"peak), or physics of rolling with slip.")
 
     def as_dict(self) -> dict:
         """``names``, ``given``, ``fitted``, ``p_value``, ``ratio``, ``slip_ratio``, ``slip_ratio_before``,
-        ``delta_bic``, ``explains``, ``outcome``, ``correlation`` (null with one parameter), ``n_evaluations`` and
-        ``text``."""
+        ``delta_bic``, ``explains``, ``outcome``, ``noise``, ``noise_from_rest``, ``correlation`` (null with one
+        parameter), ``n_evaluations`` and ``text``."""
         return {"names": list(self.names), "given": list(self.given), "fitted": list(self.fitted),
                 "p_value": self.p_value, "ratio": self.ratio, "slip_ratio": self.slip_ratio,
-                "slip_ratio_before": self.slip_ratio_before, "outcome": self.outcome,
+                "slip_ratio_before": self.slip_ratio_before, "outcome": self.outcome, "noise": self.noise,
+                "noise_from_rest": self.noise_from_rest,
                 "delta_bic": self.delta_bic, "explains": self.explains,
                 "correlation": self.correlation if math.isfinite(self.correlation) else None,
                 "n_evaluations": self.n_evals,
@@ -174,7 +191,7 @@ def refit_contact(model, contact, space, predicted, context, *, names=CONTACT_NA
     predicted : array_like (n,)
         The model's prediction of the rows (before the refit).
     context : validation.diagnose.FitContext
-        The settings (predictor, data, weights), the noise and its test.
+        The settings (predictor, data, weights) and the noise.
     names : sequence of str
         The contact parameters to refit; those already in ``space`` are left out.
 
@@ -201,8 +218,8 @@ def refit_contact(model, contact, space, predicted, context, *, names=CONTACT_NA
     rss0 = float(np.sum(((y - np.asarray(predicted, dtype=float)) * w) ** 2))
     rss = float(np.sum(((y - fit.mu) * w) ** 2))
     residual = y - fit.mu
-    lof = context.lack_of_fit(residual, k0 + len(names))
-    noise = context.noise
+    noise, from_rest = _judging_noise(context, predicted, slip)
+    lof = lack_of_fit(residual, k0 + len(names), noise)
     sigma = np.asarray(noise.row_sigma, dtype=float) if noise.known else np.full(y.size, math.nan)
     z = residual[slip] / sigma[slip]
     z0 = (y - np.asarray(predicted, dtype=float))[slip] / sigma[slip]
@@ -212,7 +229,26 @@ def refit_contact(model, contact, space, predicted, context, *, names=CONTACT_NA
                         delta_bic=bic(rss, y.size, k0 + len(names), s.sigma_known) - bic(rss0, y.size, k0,
                                                                                           s.sigma_known),
                         correlation=correlation, n_evals=fitter.n_evals,
-                        slip_ratio_before=float(np.sqrt(np.mean(z0 * z0))))
+                        slip_ratio_before=float(np.sqrt(np.mean(z0 * z0))), noise=float(noise.sigma),
+                        noise_from_rest=from_rest)
+
+
+def _judging_noise(context, predicted, slip):
+    """(noise, from the other rows): the noise to judge the refit by (module docstring): with a local-difference
+    estimate, the same estimate made on the rows without slip alone (with the model's prediction as reference),
+    its level carried to every row in the proportions of the original; else, or where those rows give none, the
+    context's."""
+    noise = context.noise
+    if noise.source != "local differences" or not noise.known or np.all(slip):
+        return noise, False
+    rest = ~slip
+    est = estimate_noise(context.measurements.subset(rest), reference=np.asarray(predicted, dtype=float)[rest])
+    if est.source != "local differences" or not est.known or not noise.sigma > 0:
+        return noise, False
+    factor = est.sigma / noise.sigma
+    return dataclasses.replace(noise, sigma=est.sigma, dof=est.dof,
+                               row_sigma=np.asarray(noise.row_sigma, dtype=float) * factor,
+                               description=f"{est.description}, on the rows without slip"), True
 
 
 def _correlation(J, first: int) -> float:

@@ -87,9 +87,11 @@ _HINTS = {
              "another shape than the brush model gives: its peak, or its fall beyond the peak)."),
     "wet": ("Wet rows rest on the wet model (water sealing the texture) besides the dry friction law the other "
             "rows test: the wet candidate, or water physics it lacks (e.g. viscous hydroplaning at speed)."),
-    "sliding": ("The sliding rows test the friction law over the whole range of sliding speeds; the rows with "
-                "slip slide slowly over most of the patch: the missing physics acts at the sliding speeds or "
-                "temperatures of the sliding rows."),
+    "sliding": ("The sliding rows test the friction law over the whole range of sliding speeds, at the "
+                "temperatures and pressures they were measured at; the rows with slip slide slowly over most of the "
+                "patch, at the conditions of their sweeps: the missing physics acts at the sliding speeds, "
+                "temperatures or pressures of the sliding rows (a law of speed, temperature or load the model "
+                "lacks)."),
 }
 
 
