@@ -497,6 +497,8 @@ def run(case: BlindCase) -> dict:
            "contact_refit": None if imp.localized is None or imp.localized.contact is None else
            imp.localized.contact.outcome,
            "traded": 0 if imp.localized is None else imp.localized.traded,
+           # BIC units by which the refitted contact beats an offset of the slip ratios (negative: the offset wins)
+           "contact_vs_offset": _contact_vs_offset(imp.localized),
            "coverage": []}
     if case.kind == "outside":
         out["outside"] = next((k for k in ("shift", "pressure", "slip", "contact") if k in case.notes), "filler")
@@ -517,6 +519,14 @@ def run(case: BlindCase) -> dict:
                                         "interval": [lo, hi], "interval95": [lo95, hi95], "in68": bool(in68),
                                         "in95": bool(in95), "in95_gauss": bool(in95_gauss)})
     return out
+
+
+def _contact_vs_offset(localized):
+    """-delta BIC of the refitted contact less the slip offset's gain (None without both)."""
+    c = None if localized is None else localized.contact
+    if c is None or not math.isfinite(c.slip_offset_gain):
+        return None
+    return float(-c.delta_bic - c.slip_offset_gain)
 
 
 def right(r: dict) -> bool:
@@ -614,6 +624,11 @@ def summarize(results: list) -> str:
                      f"{sum(r['contact_refit'] == 'takes_most' for r in refits)}" + " (" + ", ".join(
                          f"case {r['index']} {r.get('outside', r['kind'])} {r['contact_refit']}" for r in refits)
                      + ")")
+        vs = [r["contact_vs_offset"] for r in refits if r.get("contact_vs_offset") is not None]
+        if vs:
+            lines.append(f"  against an offset of the slip ratios fitted on the same model: the contact better by 10 "
+                         f"BIC units or more in {sum(v >= 10 for v in vs)}, the offset in {sum(v <= -10 for v in vs)}, "
+                         f"within 10 in {sum(abs(v) < 10 for v in vs)} (of {len(vs)})")
     for key, title in (("ratio", "the effect-to-noise ratio (the truth's change of mu without the effect)"),
                        ("distinguishable", "the distinguishable ratio (what a refit of the other parameters leaves "
                                            "of that change)")):

@@ -53,6 +53,10 @@ def test_a_contact_given_off_is_found_by_the_refit_with_the_product_of_stiffness
     text = dx.verdict.localized
     assert "the contact given is off" in text and "product of stiffness and length" in text
     assert dx.as_dict()["localized"]["contact_refit"]["explains"] is True
+    # an offset of the slip ratios moves the rise of a slip curve too: the rows prefer the contact here
+    off = next(f for f in dx.calibration.fits if f.kind == "slip" and f.effects == ())
+    assert cr.slip_offset == off.value and cr.slip_offset_gain == off.gain_over_set
+    assert -cr.delta_bic - cr.slip_offset_gain >= EARN and "fits these rows less well" in text
     # the report can cite what the sentence rests on: Chow's test and the brush model
     refs = " ".join(dx.references())
     assert "Chow" in refs and "Pacejka" in refs
@@ -98,3 +102,18 @@ def test_a_contact_that_takes_most_of_the_misfit_but_not_all_says_so():
     # more than half of the slip rows' residual left: the contact does not take most of it
     assert dataclasses.replace(most, slip_ratio=6.0).outcome == "stays"
     assert most.as_dict()["outcome"] == "takes_most"
+
+
+def test_the_text_says_whether_the_rows_prefer_the_contact_or_an_offset_of_the_slip_ratios():
+    refit = ContactRefit(names=("stiffness", "length"), given=(3e9, 0.02), fitted=(1.4e9, 0.015), p_value=0.4,
+                         ratio=1.0, slip_ratio=1.0, delta_bic=-100.0, correlation=-0.999, slip_ratio_before=6.0)
+    assert "offset of the slip ratios" not in refit.text()
+    better = dataclasses.replace(refit, slip_offset=-0.003, slip_offset_gain=50.0)
+    assert "less well: the refitted contact by 50.0 BIC units" in better.text()
+    worse = dataclasses.replace(refit, slip_offset=-0.003, slip_offset_gain=130.0)
+    assert "better, by 30.0 BIC units: check the slip measurement" in worse.text()
+    tie = dataclasses.replace(refit, slip_offset=-0.003, slip_offset_gain=95.0)
+    assert "cannot tell a contact given off from an offset" in tie.text()
+    # an offset that earns less than the rule for an added parameter is not worth naming
+    assert "offset" not in dataclasses.replace(refit, slip_offset=-0.003, slip_offset_gain=5.0).text()
+    assert tie.as_dict()["slip_offset"] == -0.003 and refit.as_dict()["slip_offset"] is None

@@ -47,7 +47,7 @@ from .fitting import CONTACT, Fitter, ParameterSpace, contact_parameters, contac
 from .noise import estimate_noise, lack_of_fit
 from .refit import global_fit
 
-__all__ = ["ContactRefit", "refit_contact", "CONTACT_NAMES", "EARN", "MOST"]
+__all__ = ["ContactRefit", "refit_contact", "with_slip_offset", "CONTACT_NAMES", "EARN", "MOST"]
 
 #: The contact's parameters refitted (those of :data:`validation.fitting.CONTACT_PARAMETERS` that shape a slip
 #: curve of the brush model: its initial slope and the slip at which the patch slides).
@@ -90,6 +90,11 @@ class ContactRefit:
         The noise level the refit is judged against (its reference level where it changes with mu).
     noise_from_rest : bool
         That level was estimated from local differences of the rows without slip alone (module docstring).
+    slip_offset, slip_offset_gain : float
+        An offset of the recorded slip ratios fitted on the same model by the calibration check
+        (:mod:`validation.calibration`), and what it lowers BIC by (NaN: none fitted; :func:`with_slip_offset`): at
+        small slips it moves a slip curve's rise as a softer contact does, and the text says which the rows
+        prefer.
     correlation : float
         The correlation of the two contact parameters' estimates (from the weighted Jacobian at the optimum; NaN
         with one): near +-1 the rows fix a combination of them, not each.
@@ -109,6 +114,8 @@ class ContactRefit:
     slip_ratio_before: float = math.nan
     noise: float = math.nan
     noise_from_rest: bool = False
+    slip_offset: float = math.nan
+    slip_offset_gain: float = math.nan
 
     @property
     def explains(self) -> bool:
@@ -134,7 +141,24 @@ class ContactRefit:
                          for i, (n, g, f) in enumerate(zip(self.names, self.given, self.fitted)))
 
     def text(self) -> str:
-        """What the refit says: the contact given is off, or the misfit is the slip curve's shape."""
+        """What the refit says: the contact given is off, or the misfit is the slip curve's shape; and whether the
+        rows prefer it to an offset of the slip ratios."""
+        return self._refit_text() + self._offset_text()
+
+    def _offset_text(self) -> str:
+        if not (self.slip_offset_gain >= EARN):   # NaN too: no offset fitted, or one that earns nothing
+            return ""
+        diff = -self.delta_bic - self.slip_offset_gain
+        offset = f" An offset of the slip ratios ({self.slip_offset:+.3g}, the calibration check's) fits these rows"
+        if diff >= EARN:
+            return f"{offset} less well: the refitted contact by {diff:.1f} BIC units."
+        if diff <= -EARN:
+            return (f"{offset} better, by {-diff:.1f} BIC units: check the slip measurement (the wheel's effective "
+                    f"rolling radius, the slip's zero at free rolling) before the contact.")
+        return (f"{offset} as well (within {EARN:g} BIC units): the rows cannot tell a contact given off from an "
+                f"offset of the rig's slip.")
+
+    def _refit_text(self) -> str:
         values = self.values_text()
         against = (f"; against a noise of {self.noise:.3g} estimated from the rows without slip alone, where the "
                    f"model fits" if self.noise_from_rest else "")
@@ -163,12 +187,15 @@ class ContactRefit:
 
     def as_dict(self) -> dict:
         """``names``, ``given``, ``fitted``, ``p_value``, ``ratio``, ``slip_ratio``, ``slip_ratio_before``,
-        ``delta_bic``, ``explains``, ``outcome``, ``noise``, ``noise_from_rest``, ``correlation`` (null with one
-        parameter), ``n_evaluations`` and ``text``."""
+        ``delta_bic``, ``explains``, ``outcome``, ``noise``, ``noise_from_rest``, ``slip_offset`` and
+        ``slip_offset_gain`` (null without one), ``correlation`` (null with one parameter), ``n_evaluations`` and
+        ``text``."""
         return {"names": list(self.names), "given": list(self.given), "fitted": list(self.fitted),
                 "p_value": self.p_value, "ratio": self.ratio, "slip_ratio": self.slip_ratio,
                 "slip_ratio_before": self.slip_ratio_before, "outcome": self.outcome, "noise": self.noise,
                 "noise_from_rest": self.noise_from_rest,
+                "slip_offset": self.slip_offset if math.isfinite(self.slip_offset) else None,
+                "slip_offset_gain": self.slip_offset_gain if math.isfinite(self.slip_offset_gain) else None,
                 "delta_bic": self.delta_bic, "explains": self.explains,
                 "correlation": self.correlation if math.isfinite(self.correlation) else None,
                 "n_evaluations": self.n_evals,
@@ -231,6 +258,26 @@ def refit_contact(model, contact, space, predicted, context, *, names=CONTACT_NA
                         correlation=correlation, n_evals=fitter.n_evals,
                         slip_ratio_before=float(np.sqrt(np.mean(z0 * z0))), noise=float(noise.sigma),
                         noise_from_rest=from_rest)
+
+
+def with_slip_offset(refit: ContactRefit | None, calibration, effects) -> ContactRefit | None:
+    """``refit`` with the offset of the slip ratios that the calibration check fitted on the same model (the set of
+    ``effects``), for the text's comparison; ``refit`` itself when there is none.
+
+    Parameters
+    ----------
+    refit : ContactRefit or None
+    calibration : validation.calibration.CalibrationCheck or None
+    effects : sequence of str
+        The effects of the model the contact was refitted with (empty: the baseline).
+    """
+    if refit is None or calibration is None:
+        return refit
+    fits = [f for f in calibration.fits if f.kind == "slip" and frozenset(f.effects) == frozenset(effects)]
+    if not fits:
+        return refit
+    best = max(fits, key=lambda f: f.gain_over_set)
+    return dataclasses.replace(refit, slip_offset=float(best.value), slip_offset_gain=float(best.gain_over_set))
 
 
 def _judging_noise(context, predicted, slip):

@@ -33,7 +33,7 @@ from .calibration import SetFit, check_calibration
 from .candidates import (DELTA_BIC_THRESHOLD, P_THRESHOLD, SIGNIFICANCE_RULE, Baseline, BaselineFit, Candidate,
                          FitSettings, bic, finish_candidate, fit_baseline, fit_candidate, note_kind)
 from .compare import json_text
-from .contact_refit import refit_contact
+from .contact_refit import refit_contact, with_slip_offset
 from .deferred import Deferred, Lazy
 from .errors import InputError
 from .fitting import CONTACT, FreeParameter, ParameterSpace, contact_parameters, free_parameters
@@ -393,7 +393,7 @@ def diagnose_single(model, measurements: Measurements | None = None, candidates=
     localized = _localized(named, baseline, m, noise, refitted=tuple(_fit_names(fit, model)),
                            contact=contact, refit=verdict.verdict in MISSES)
     if localized is not None and localized.family == "slip" and verdict.verdict in MISSES:
-        localized = _with_contact_refit(localized, named, baseline, ctx, contact)
+        localized = _with_contact_refit(localized, named, baseline, ctx, contact, calibration)
         n_eval += localized.contact.n_evals if localized.contact is not None else 0
     verdict = with_noise_trend(with_localized(with_outliers(verdict, outliers), localized), noise)
     localized = localized if verdict.localized else None
@@ -441,10 +441,11 @@ def _localized(named, baseline, measurements, noise, refitted=(), contact=None, 
                            n_params=baseline.n_params, refitted=refitted, refit=refit)
 
 
-def _with_contact_refit(localized, named, baseline, ctx, contact):
+def _with_contact_refit(localized, named, baseline, ctx, contact, calibration=None):
     """``localized`` (a misfit placed in the rows with slip) with the verdict's model (that of ``named``, else the
     baseline) refitted with the brush contact's stiffness and length: :func:`validation.contact_refit.refit_contact`
-    (left as it is when the model's fit cannot be restarted)."""
+    (left as it is when the model's fit cannot be restarted), compared with the offset of the slip ratios that
+    ``calibration`` fitted on the same model."""
     if named is not None and named.predicted is not None:
         start = SetFit.of(named.model, named.contact or contact, named.covariance, named.jacobian)
         if start is None:
@@ -456,7 +457,9 @@ def _with_contact_refit(localized, named, baseline, ctx, contact):
             return localized
         space = ParameterSpace(()) if fit is None else fit.covariance.space
         model, at, predicted = baseline.model, baseline.contact or contact, baseline.predicted
-    return replace(localized, contact=refit_contact(model, at, space, predicted, ctx))
+    effects = (named.effect,) if named is not None and named.predicted is not None else ()
+    return replace(localized, contact=with_slip_offset(refit_contact(model, at, space, predicted, ctx), calibration,
+                                                       effects))
 
 
 def _calibration_check(named, baseline, ctx, conditions=True):

@@ -35,7 +35,7 @@ import numpy as np
 from .band import band_note
 from .calibration import SetFit
 from .compare import Comparison, comparison_from, json_text
-from .contact_refit import refit_contact
+from .contact_refit import refit_contact, with_slip_offset
 from .diagnose import Diagnosis, _unpack, diagnose_single
 from .errors import InputError
 from .fitting import ParameterSpace
@@ -585,8 +585,8 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
     # where the misfit sits in the rows with slip: the brush contact refitted with the set (none fitted: alone)
     space = refit.space if refit is not None else (ParameterSpace(()) if best.n_params == 0 else None)
     if localized is not None and localized.family == "slip" and final.verdict in MISSES and space is not None:
-        localized = replace(localized, contact=refit_contact(best.model, best.contact or contact, space,
-                                                             best.predicted, search.ctx))
+        contact_refit = refit_contact(best.model, best.contact or contact, space, best.predicted, search.ctx)
+        localized = replace(localized, contact=with_slip_offset(contact_refit, selection.calibration, best.effects))
         n_evals += localized.contact.n_evals if localized.contact is not None else 0
     final = with_noise_trend(with_localized(with_outliers(final, outliers), localized), noise)
     localized = localized if final.localized else None
