@@ -244,9 +244,15 @@ def test_a_nonlinear_model_is_refitted_to_the_other_rows_by_evaluated_gauss_newt
     u_rest = least_squares(lambda u: mu_of(u, rest) - y[rest], u_joint, xtol=1e-14, ftol=1e-14).x
     rss_rest = float(np.sum((y[rest] - mu_of(u_rest, rest)) ** 2)) / SIGMA ** 2
     assert loc.rest_ratio == pytest.approx(math.sqrt(rss_rest / (rest.sum() - 2)), rel=1e-3)
-    # a step the model cannot take places nothing
-    assert localize_misfit(r, _known(m.n), mm, "m", n_params=2,
+    # a step the model cannot take places nothing; the evaluations it cost are told all the same
+    told = []
+    assert localize_misfit(r, _known(m.n), mm, "m", n_params=2, on_evals=told.append,
                            refit=SimpleNamespace(jacobian=J, predict=lambda du, mmm: None)) is None
+    assert sum(told) >= 1
+    told = []
+    loc = localize_misfit(r, _known(m.n), mm, "m", n_params=2, on_evals=told.append,
+                          refit=SimpleNamespace(jacobian=J, predict=predict))
+    assert sum(told) == loc.n_evals
 
 
 def test_on_pure_noise_the_refit_adds_at_most_alpha_to_the_false_placements():

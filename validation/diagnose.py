@@ -390,14 +390,15 @@ def diagnose_single(model, measurements: Measurements | None = None, candidates=
     calibration = _calibration_check(named, baseline, ctx, conditions=check_conditions)
     verdict = with_calibration(verdict, calibration)
     outliers = _outliers(named, baseline, m, noise)
+    spent = []          # the model evaluations of the localization's refits, placed or not
     localized = _localized(named, baseline, m, noise, refitted=tuple(_fit_names(fit, model)),
-                           contact=contact, refit=verdict.verdict in MISSES)
+                           contact=contact, refit=verdict.verdict in MISSES, on_evals=spent.append)
+    n_eval += sum(spent)
     if localized is not None and localized.family == "slip" and verdict.verdict in MISSES:
         localized = _with_contact_refit(localized, named, baseline, ctx, contact, calibration)
         n_eval += localized.contact.n_evals if localized.contact is not None else 0
     verdict = with_noise_trend(with_localized(with_outliers(verdict, outliers), localized), noise)
     localized = localized if verdict.localized else None
-    n_eval += localized.n_evals if localized is not None else 0
     # the baseline at its optimum again, in full: its solutions are kept by the predictor, so this costs no solve
     extrapolated = predictor.predict(baseline.model, full=True).modulus_extrapolated_share
     explanation = Deferred(lambda: explain(verdict, m, baseline, results, clusters, noise,
@@ -423,22 +424,23 @@ def _outliers(named, baseline, measurements, noise):
     return outlying_rows(measurements.mu - baseline.predicted, noise, measurements, "the baseline")
 
 
-def _localized(named, baseline, measurements, noise, refitted=(), contact=None, refit=False):
+def _localized(named, baseline, measurements, noise, refitted=(), contact=None, refit=False, on_evals=None):
     """The family of rows the verdict's model (that of ``named``, else the baseline) misses while it fits the
     others: :func:`validation.localize.localize_misfit` (``refitted``: the baseline parameters refitted). With
     ``refit``, where no family is missed alone, also after a refit of the model's parameters to the rows outside
-    each family (``contact``: the settings' contact, for a model fitted without one of its own)."""
+    each family (``contact``: the settings' contact, for a model fitted without one of its own; ``on_evals``: told
+    the model evaluations of that refit)."""
     if named is not None and named.predicted is not None:
         refit = None if not refit else SetFit.of(named.model, named.contact or contact, named.covariance,
                                                  named.jacobian)
         return localize_misfit(measurements.mu - named.predicted, noise, measurements,
                                f"the baseline + {named.effect}", n_params=baseline.n_params + named.n_params,
-                               refitted=refitted, refit=refit)
+                               refitted=refitted, refit=refit, on_evals=on_evals)
     fit = baseline.fit
     refit = None if not refit or fit is None else SetFit.of(baseline.model, baseline.contact or contact,
                                                             fit.covariance, fit.jacobian)
     return localize_misfit(measurements.mu - baseline.predicted, noise, measurements, "the baseline",
-                           n_params=baseline.n_params, refitted=refitted, refit=refit)
+                           n_params=baseline.n_params, refitted=refitted, refit=refit, on_evals=on_evals)
 
 
 def _with_contact_refit(localized, named, baseline, ctx, contact, calibration=None):

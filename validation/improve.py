@@ -580,8 +580,10 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
     outliers = outlying_rows(residual, noise, measurements, label)
     refit = SetFit.of(best.model, best.contact or contact, best.covariance, best.jacobian) \
         if final.verdict in MISSES else None
+    spent = []          # the model evaluations of the localization's refits, placed or not
     localized = localize_misfit(residual, noise, measurements, label, n_params=best.n_params,
-                                refitted=tuple(base_fit), refit=refit)
+                                refitted=tuple(base_fit), refit=refit, on_evals=spent.append)
+    n_evals += sum(spent)
     # where the misfit sits in the rows with slip: the brush contact refitted with the set (none fitted: alone)
     space = refit.space if refit is not None else (ParameterSpace(()) if best.n_params == 0 else None)
     if localized is not None and localized.family == "slip" and final.verdict in MISSES and space is not None:
@@ -590,7 +592,6 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
         n_evals += localized.contact.n_evals if localized.contact is not None else 0
     final = with_noise_trend(with_localized(with_outliers(final, outliers), localized), noise)
     localized = localized if final.localized else None
-    n_evals += localized.n_evals if localized is not None else 0
     if stopped.startswith("explained") and final.verdict != "explained":
         # the loop stops at the noise; the verdict also weighs identification, credibility and the share of the
         # misfit removed, and can say less: the stop text names it, so that the two never read as a contradiction

@@ -205,7 +205,7 @@ class Localized:
 # ==========================================================================================================
 @doi(DRAPER_SMITH_1998, CHOW_1960)
 def localize_misfit(residual, noise, measurements, model: str, n_params: int = 0,
-                    refitted=(), refit=None) -> Localized | None:
+                    refitted=(), refit=None, on_evals=None) -> Localized | None:
     """The family of rows that ``model`` misses while it fits the others (module docstring), or None.
 
     Parameters
@@ -229,6 +229,8 @@ def localize_misfit(residual, noise, measurements, model: str, n_params: int = 0
         the prediction (unweighted, rows x parameters), and optionally ``predict(du, measurements)``, the
         prediction with the parameters at u + du (None where the model fails;
         :class:`validation.calibration.SetFit`). Without ``predict`` the refit is linear. None: no refit.
+    on_evals : callable or None
+        Called with the model evaluations the refit spent, whether or not it places the misfit.
 
     Returns
     -------
@@ -251,7 +253,7 @@ def localize_misfit(residual, noise, measurements, model: str, n_params: int = 0
     found = _missed_alone(z, noise, masks, model, n_params, refitted)
     if found is not None or refit is None:
         return found
-    return _missed_after_refit(z, noise, measurements, masks, model, refit, refitted)
+    return _missed_after_refit(z, noise, measurements, masks, model, refit, refitted, on_evals)
 
 
 def _missed_alone(z, noise, masks, model, n_params, refitted):
@@ -279,7 +281,7 @@ def _missed_alone(z, noise, masks, model, n_params, refitted):
                      noise_source=noise.source, rest_low_p=low, refitted=tuple(refitted))
 
 
-def _missed_after_refit(z, noise, measurements, masks, model, refit, refitted):
+def _missed_after_refit(z, noise, measurements, masks, model, refit, refitted, on_evals=None):
     """The family that Chow's predictive test finds missed when the model's parameters are refitted to the other
     rows alone, with those rows at the noise (module docstring); None unless exactly one family is."""
     J = np.asarray(getattr(refit, "jacobian", None), dtype=float)
@@ -311,6 +313,8 @@ def _missed_after_refit(z, noise, measurements, masks, model, refit, refitted):
                                    rest_rows=n_rest, rest_ratio=rest_ratio, rest_p=rest_p, model=model,
                                    noise_source=noise.source, rest_low_p=low, refitted=tuple(refitted),
                                    traded=rank_rest))
+    if on_evals is not None and n_evals:
+        on_evals(n_evals)
     if len(found) != 1:
         return None
     return dataclasses.replace(found[0], n_evals=n_evals)
