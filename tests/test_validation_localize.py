@@ -156,6 +156,15 @@ def test_a_residual_that_does_not_match_the_rows_is_refused_naming_the_argument(
     r[0] = math.inf
     with pytest.raises(validation.InputError, match="residual"):
         localize_misfit(r, _known(m.n), m, "m")
+    # a Jacobian that does not match the rows is refused naming it (one that refits nothing places nothing)
+    r = _fitted(_bump(m, 25 * SIGMA), _trade_jacobian(m))
+    with pytest.raises(validation.InputError, match=r"refit\.jacobian: expected .* \(56 rows"):
+        localize_misfit(r, _known(m.n), m, "m", n_params=2, refit=SimpleNamespace(jacobian=np.ones((m.n - 1, 2))))
+    with pytest.raises(validation.InputError, match="non-finite"):
+        localize_misfit(r, _known(m.n), m, "m", n_params=2,
+                        refit=SimpleNamespace(jacobian=np.full((m.n, 2), math.nan)))
+    assert localize_misfit(r, _known(m.n), m, "m", n_params=2, refit=SimpleNamespace(jacobian=np.zeros((m.n, 0)))) \
+        is None
 
 
 def test_only_a_verdict_that_misses_the_data_names_the_family():

@@ -44,6 +44,7 @@ from frictioncite import doi
 
 from .candidates import KASS_RAFTERY_1995, bic
 from .fitting import CONTACT, Fitter, ParameterSpace, contact_parameters, contact_value
+from .noise import ALPHA as LOF_ALPHA
 from .noise import estimate_noise, lack_of_fit
 from .refit import global_fit
 
@@ -121,7 +122,7 @@ class ContactRefit:
     def explains(self) -> bool:
         """The refitted contact brings every row to the noise (lack of fit p >= 0.01) and lowers BIC by at least
         :data:`EARN`."""
-        return math.isfinite(self.p_value) and self.p_value >= 0.01 and self.delta_bic <= -EARN
+        return math.isfinite(self.p_value) and self.p_value >= LOF_ALPHA and self.delta_bic <= -EARN
 
     @property
     def takes_most(self) -> bool:

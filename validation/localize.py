@@ -53,6 +53,7 @@ import numpy as np
 from frictioncite import doi
 
 from .distributions import chi2_cdf, chi2_sf, f_cdf, f_sf
+from .errors import InputError
 from .outliers import scaled_residual
 
 __all__ = ["Localized", "localize_misfit", "FAMILIES", "ALPHA", "REST_P", "MIN_ROWS", "REFIT_STEPS"]
@@ -241,7 +242,8 @@ def localize_misfit(residual, noise, measurements, model: str, n_params: int = 0
     Raises
     ------
     InputError
-        From :func:`validation.outliers.scaled_residual`: the residual is not one finite value per row.
+        From :func:`validation.outliers.scaled_residual`: the residual is not one finite value per row; or
+        ``refit.jacobian`` is not a finite array of one row per measured row.
     """
     z = scaled_residual(residual, noise, measurements)
     if z is None:           # no noise estimate to judge a misfit by
@@ -285,7 +287,11 @@ def _missed_after_refit(z, noise, measurements, masks, model, refit, refitted, o
     """The family that Chow's predictive test finds missed when the model's parameters are refitted to the other
     rows alone, with those rows at the noise (module docstring); None unless exactly one family is."""
     J = np.asarray(getattr(refit, "jacobian", None), dtype=float)
-    if J.ndim != 2 or J.shape[0] != z.size or J.shape[1] == 0 or not np.all(np.isfinite(J)):
+    if J.ndim != 2 or J.shape[0] != z.size or not np.all(np.isfinite(J)):
+        raise InputError(f"refit.jacobian: expected finite d mu / d u of shape ({z.size} rows, parameters), got "
+                         f"shape {J.shape}" + ("" if J.ndim != 2 or np.all(np.isfinite(J)) else " with non-finite "
+                                               "entries"))
+    if J.shape[1] == 0:     # no fitted parameters: nothing to trade
         return None
     sigma = np.asarray(noise.row_sigma, dtype=float)
     A = J / sigma[:, None]                  # d z / d u
