@@ -499,6 +499,12 @@ def run(case: BlindCase) -> dict:
            "traded": 0 if imp.localized is None else imp.localized.traded,
            # BIC units by which the refitted contact beats an offset of the slip ratios (negative: the offset wins)
            "contact_vs_offset": _contact_vs_offset(imp.localized),
+           # rivals of the rig's calibration set aside because the refitted contact fits the rows better
+           "calibration_deferred": [f"{f.describe()} on {f.on}" for f, _, _ in imp.selection.calibration.deferred]
+           if imp.selection is not None and imp.selection.calibration is not None else [],
+           # the contact parameters refitted and those kept as given (the length, where the rows fix only k l)
+           "contact_names": None if imp.localized is None or imp.localized.contact is None else
+           list(imp.localized.contact.names),
            "coverage": []}
     if case.kind == "outside":
         out["outside"] = next((k for k in ("shift", "pressure", "slip", "contact") if k in case.notes), "filler")
@@ -591,6 +597,10 @@ def summarize(results: list) -> str:
         lines.append(f"A calibration error of the rig named as a rival (no case has one): {len(cal)} of "
                      f"{sum('calibration_rivals' in r for r in results)}" + (" (" + "; ".join(
                          f"case {r['index']}: {r['calibration_rivals'][0]}" for r in cal) + ")" if cal else ""))
+    gone = [r for r in results if r.get("calibration_deferred")]
+    if gone:
+        lines.append(f"  offsets of the slip ratios no longer named because the refitted contact fits better by 10 "
+                     f"BIC units: {len(gone)} (" + ", ".join(f"case {r['index']}" for r in gone) + ")")
     out = [r for r in results if r["kind"] == "outside"]
     lines.append(f"Physics outside the candidates called explained: {sum(r['verdict'] == 'explained' for r in out)} "
                  f"of {len(out)} (verdicts: {', '.join(r['verdict'] for r in out) or '-'})")
@@ -624,6 +634,10 @@ def summarize(results: list) -> str:
                      f"{sum(r['contact_refit'] == 'takes_most' for r in refits)}" + " (" + ", ".join(
                          f"case {r['index']} {r.get('outside', r['kind'])} {r['contact_refit']}" for r in refits)
                      + ")")
+        alone = [r for r in refits if r.get("contact_names") == ["stiffness"]]
+        if any("contact_names" in r for r in refits):
+            lines.append(f"  the stiffness refitted alone, the length kept as given (the rows fix only their product): "
+                         f"{len(alone)} of {len(refits)}")
         vs = [r["contact_vs_offset"] for r in refits if r.get("contact_vs_offset") is not None]
         if vs:
             lines.append(f"  against an offset of the slip ratios fitted on the same model: the contact better by 10 "

@@ -15,7 +15,8 @@ import pytest
 
 import persson
 import validation
-from validation.contact_refit import EARN, ContactRefit, refit_contact
+from validation.contact_refit import EARN, ContactRefit, defer_calibration, refit_contact
+from validation.verdict import with_calibration
 from validation.fitting import ParameterSpace, contact_parameters
 
 #: A converged grid for the truth (finer than the diagnosis's default in every direction).
@@ -45,18 +46,41 @@ def test_a_contact_given_off_is_found_by_the_refit_with_the_product_of_stiffness
     loc = dx.localized
     assert loc is not None and loc.family == "slip"
     cr = loc.contact
-    assert isinstance(cr, ContactRefit) and cr.names == ("stiffness", "length")
-    assert cr.explains and cr.delta_bic <= -EARN and cr.p_value >= 0.01
-    # the brush model's slip curve depends on stiffness x length: that product is the truth's, each factor need not be
-    assert cr.correlation < -0.9
-    assert cr.fitted[0] * cr.fitted[1] == pytest.approx(truth.stiffness * truth.length, rel=0.1)
+    assert isinstance(cr, ContactRefit) and cr.explains and cr.delta_bic <= -EARN and cr.p_value >= 0.01
+    # the brush model's slip curve depends on stiffness x length: refitted together they correlate at -1 and fix
+    # the truth's product, each factor need not be; no patch heating here to tell them apart, so the length does not
+    # earn its place and the stiffness alone is kept, at the length given, with the same product
+    assert cr.correlation < -0.9 and len(cr.both_fitted) == 2
+    assert cr.both_fitted[0] * cr.both_fitted[1] == pytest.approx(truth.stiffness * truth.length, rel=0.1)
+    assert cr.names == ("stiffness",) and cr.kept == (("length", case.contact.length),)
+    assert cr.both_delta_bic > cr.delta_bic - EARN
+    assert cr.fitted[0] * case.contact.length == pytest.approx(truth.stiffness * truth.length, rel=0.1)
     text = dx.verdict.localized
     assert "the contact given is off" in text and "product of stiffness and length" in text
+    assert "length kept at 0.02 m as given" in text and "contact.stiffness in the fit" in text
     assert dx.as_dict()["localized"]["contact_refit"]["explains"] is True
-    # an offset of the slip ratios moves the rise of a slip curve too: the rows prefer the contact here
+    assert dx.as_dict()["localized"]["contact_refit"]["kept"] == {"length": case.contact.length}
+    # an offset of the slip ratios moves the rise of a slip curve too: the rows prefer the contact here, so the
+    # calibration check no longer names that offset as the rig's rival
     off = next(f for f in dx.calibration.fits if f.kind == "slip" and f.effects == ())
     assert cr.slip_offset == off.value and cr.slip_offset_gain == off.gain_over_set
     assert -cr.delta_bic - cr.slip_offset_gain >= EARN and "fits these rows less well" in text
+    assert cr.preferred == "contact" and cr.effects == ()
+    # here the offset does not bring the rows to the noise and is no rival of the baseline; where it is one, the
+    # calibration check no longer names it, and says that the rows prefer the refitted contact
+    assert not off.rival and dx.calibration.deferred == ()
+    rival = dataclasses.replace(off, rival=True)
+    check = dataclasses.replace(dx.calibration, fits=tuple(rival if f is off else f for f in dx.calibration.fits))
+    assert rival in check.rivals
+    deferred = defer_calibration(check, cr)
+    assert [f for f, _, _ in deferred.deferred] == [rival] and rival not in deferred.rivals
+    assert "slip ratios" in check.text() and "slip ratios" not in deferred.text()
+    assert "slip ratios" not in with_calibration(dx.verdict, deferred).calibration
+    d = deferred.as_dict()["deferred"][0]
+    assert d["contact_better_by"] == pytest.approx(-cr.delta_bic - off.gain_over_set) and d["outcome"] == "explains"
+    # only an offset fitted on the model the contact was refitted with is compared with it
+    assert defer_calibration(check, dataclasses.replace(cr, effects=("adhesion",))) is check
+    assert defer_calibration(check, dataclasses.replace(cr, delta_bic=-off.gain_over_set - 5.0)) is check
     # the report can cite what the sentence rests on: Chow's test and the brush model
     refs = " ".join(dx.references())
     assert "Chow" in refs and "Pacejka" in refs
@@ -69,7 +93,7 @@ def test_a_contact_given_off_is_found_by_the_refit_with_the_product_of_stiffness
     assert cr.noise == pytest.approx(rest.sigma, rel=1e-12) and cr.noise < dx.noise_estimate.sigma
     assert "estimated from the rows without slip alone" in text
     # its figures are those of the model predicted again with the refitted contact, independently of the fit
-    fitted = dataclasses.replace(case.contact, stiffness=cr.fitted[0], length=cr.fitted[1])
+    fitted = dataclasses.replace(case.contact, stiffness=cr.fitted[0])
     r = m.mu - validation.predict(dx.baseline.model, m, fitted).mu
     assert cr.slip_ratio == pytest.approx(math.sqrt(np.mean((r[s] / cr.noise) ** 2)), rel=1e-6)
 
@@ -117,3 +141,42 @@ def test_the_text_says_whether_the_rows_prefer_the_contact_or_an_offset_of_the_s
     # an offset that earns less than the rule for an added parameter is not worth naming
     assert "offset" not in dataclasses.replace(refit, slip_offset=-0.003, slip_offset_gain=5.0).text()
     assert tie.as_dict()["slip_offset"] == -0.003 and refit.as_dict()["slip_offset"] is None
+    assert (better.preferred, worse.preferred, tie.preferred, refit.preferred) == ("contact", "slip_offset", "either",
+                                                                                    None)
+    assert better.over_offset == 50.0 and tie.as_dict()["preferred"] == "either"
+
+
+def test_the_length_is_kept_as_given_unless_refitting_it_with_the_stiffness_earns_its_place(monkeypatch):
+    """The rule of the refit (validation.contact_refit): where stiffness and length correlate beyond -0.9, the
+    stiffness alone is refitted too and reported unless the length lowers BIC by 10 units more."""
+    import validation.contact_refit as cr_mod
+
+    contact = SimpleNamespace(stiffness=3e9, length=0.02)
+    both = ContactRefit(names=("stiffness", "length"), given=(3e9, 0.02), fitted=(1.0e9, 0.06), p_value=0.3,
+                        ratio=1.0, slip_ratio=1.0, delta_bic=-100.0, correlation=-0.999, n_evals=60)
+    alone = ContactRefit(names=("stiffness",), given=(3e9,), fitted=(3.0e9,), p_value=0.3, ratio=1.0, slip_ratio=1.0,
+                         delta_bic=-97.0, n_evals=20)
+    calls = []
+
+    def fake(model, contact, space, predicted, context, names):
+        calls.append(tuple(names))
+        return both if tuple(names) == ("stiffness", "length") else alone
+
+    monkeypatch.setattr(cr_mod, "_refit", fake)
+    monkeypatch.setattr(cr_mod, "contact_value", lambda c, n: getattr(c, n))
+    kept = refit_contact(None, contact, None, None, None)
+    assert calls == [("stiffness", "length"), ("stiffness",)]
+    assert kept.names == ("stiffness",) and kept.kept == (("length", 0.02),) and kept.n_evals == 80
+    assert kept.correlation == -0.999 and kept.both_fitted == (1.0e9, 0.06) and kept.both_delta_bic == -100.0
+    assert "length kept at 0.02 m as given" in kept.text() and "the length refitted too changes BIC by -3.0 units" in kept.text()
+    # the product the text gives is the refitted stiffness times the length kept
+    assert "6e+07 Pa against 6e+07 given" in kept.text()
+    # a length that earns 10 units more is refitted with the stiffness
+    alone = dataclasses.replace(alone, delta_bic=-89.0)
+    calls.clear()
+    kept = refit_contact(None, contact, None, None, None)
+    assert kept.names == ("stiffness", "length") and kept.kept == () and kept.n_evals == 80
+    # estimates that do not trade: the stiffness is not refitted alone
+    both = dataclasses.replace(both, correlation=-0.5)
+    calls.clear()
+    assert refit_contact(None, contact, None, None, None) is both and calls == [("stiffness", "length")]

@@ -60,7 +60,10 @@ answer's extra effects from a calibration error: the diagnosis says so and asks 
 answer itself misses the noise, every error is also fitted on top of it, and one that brings the residual to the
 noise level is named as what the answer leaves (on top of the answer, or of the baseline when that is the answer,
 a rival must reach the noise level: earning a parameter is not enough there). Nothing is changed in the answer
-itself.
+itself. An offset of the slip ratios that a refit of the brush contact on the same model beats by :data:`BAND`
+units (where the verdict places the misfit in the rows with slip, :mod:`validation.contact_refit`) is set aside
+as :attr:`CalibrationCheck.deferred`, not named as a rival: a contact given off moves the slip curve's rise as that
+offset does, and the rows prefer the contact.
 """
 
 from __future__ import annotations
@@ -250,17 +253,26 @@ class CalibrationCheck:
     answer_bic : float
     fits : tuple of CalibrationFit
         Every fit, lowest BIC first.
+    deferred : tuple of (CalibrationFit, float, str)
+        Rivals that a refit of the brush contact on the same model fits the rows better than, by 10 BIC units or
+        more (:func:`validation.contact_refit.defer_calibration`): each with those BIC units and the refit's
+        outcome. They are not named as rivals (:attr:`rivals`): where the misfit sits in the rows with slip, an
+        offset of the slip ratios and a contact given off move the slip curve's rise alike, and the rows prefer
+        the contact.
     """
 
     answer: str
     answer_effects: tuple
     answer_bic: float
     fits: tuple
+    deferred: tuple = ()
 
     @property
     def rivals(self) -> tuple:
-        """The fits that rival the answer, lowest BIC first."""
-        return tuple(f for f in self.fits if f.rival)
+        """The fits that rival the answer, lowest BIC first (less those :attr:`deferred` to a refitted
+        contact)."""
+        gone = {id(f) for f, _, _ in self.deferred}
+        return tuple(f for f in self.fits if f.rival and id(f) not in gone)
 
     def text(self) -> str:
         """A paragraph on the rivals (empty when there is none)."""
@@ -290,11 +302,14 @@ class CalibrationCheck:
         return what + ". " + tail
 
     def as_dict(self) -> dict:
-        """``answer``, ``answer_effects``, ``answer_bic``, ``rivals`` (the descriptions) and ``fits``
-        (:meth:`CalibrationFit.as_dict`)."""
+        """``answer``, ``answer_effects``, ``answer_bic``, ``rivals`` (the descriptions), ``fits``
+        (:meth:`CalibrationFit.as_dict`) and ``deferred`` (``description``, ``on``, ``contact_better_by`` in BIC
+        units and the contact refit's ``outcome``, per :attr:`deferred` rival)."""
         return {"answer": self.answer, "answer_effects": list(self.answer_effects), "answer_bic": self.answer_bic,
                 "rivals": [f.describe() + f" on {f.on}" for f in self.rivals],
-                "fits": [f.as_dict() for f in self.fits]}
+                "fits": [f.as_dict() for f in self.fits],
+                "deferred": [{"description": f.describe(), "on": f.on, "contact_better_by": by, "outcome": outcome}
+                             for f, by, outcome in self.deferred]}
 
 
 # ==========================================================================================================

@@ -30,7 +30,16 @@ In the brush model a slip curve depends on the tread stiffness :math:`k` and the
 through :math:`k l` (Pacejka 2012, Sec. 3.2: written in :math:`x/l`, a bristle sticks while
 :math:`k\,\theta\,l\,(x/l) < \mu\,p(x)`, and the stuck zone adds :math:`k\,\theta\,l\,(x_c/l)^2/(2\sigma_0)`
 to :math:`\mu`), patch heating aside, which depends on the time :math:`l/V` a point spends in the patch: the rows fix
-the product :math:`k l` and hardly each factor, and the text then gives that product.
+the product :math:`k l` and hardly each factor, and the text then gives that product. Where the two estimates
+correlate beyond :data:`TRADE_OFF` in magnitude, the stiffness is refitted alone, the length kept as given, and that
+refit is the one reported unless the length earns its place (lowers BIC by :data:`EARN` more, as an added effect
+must): a length free to drift along the valley of constant :math:`k l` can reach values far from any tyre's for a
+small gain, and the stiffness alone at the given length carries the same product.
+
+Where the calibration check (:mod:`validation.calibration`) fitted an offset of the slip ratios on the same model,
+the two are compared by BIC (:func:`with_slip_offset`): an offset that the refitted contact beats by :data:`EARN`
+units is no longer named as the rig's rival (:func:`defer_calibration`), and one that beats the contact by as much
+is named before it.
 """
 
 from __future__ import annotations
@@ -48,7 +57,8 @@ from .noise import ALPHA as LOF_ALPHA
 from .noise import estimate_noise, lack_of_fit
 from .refit import global_fit
 
-__all__ = ["ContactRefit", "refit_contact", "with_slip_offset", "CONTACT_NAMES", "EARN", "MOST"]
+__all__ = ["ContactRefit", "refit_contact", "with_slip_offset", "defer_calibration", "CONTACT_NAMES", "EARN",
+           "MOST", "TRADE_OFF"]
 
 #: The contact's parameters refitted (those of :data:`validation.fitting.CONTACT_PARAMETERS` that shape a slip
 #: curve of the brush model: its initial slope and the slip at which the patch slides).
@@ -97,10 +107,20 @@ class ContactRefit:
         small slips it moves a slip curve's rise as a softer contact does, and the text says which the rows
         prefer.
     correlation : float
-        The correlation of the two contact parameters' estimates (from the weighted Jacobian at the optimum; NaN
-        with one): near +-1 the rows fix a combination of them, not each.
+        The correlation of the two contact parameters' estimates in the refit of both (from the weighted Jacobian at
+        the optimum; NaN where only one was refitted): near +-1 the rows fix a combination of them, not each.
     n_evals : int
-        Model evaluations of the refit.
+        Model evaluations of the refit (of both, and of the stiffness alone where it was made).
+    kept : tuple of (str, float)
+        Contact parameters refitted with the others but then kept as given, with their values: the length, where
+        the rows fix only the product of stiffness and length and refitting the length does not lower BIC by
+        :data:`EARN` more than the stiffness alone (module docstring); empty otherwise.
+    both_fitted : tuple of float
+        Where a parameter was kept: the values of the refit of both (empty otherwise).
+    both_delta_bic : float
+        Where a parameter was kept: the BIC change of the refit of both (NaN otherwise).
+    effects : tuple of str
+        The effects of the model refitted (empty: the baseline); set by :func:`with_slip_offset`.
     """
 
     names: tuple
@@ -117,6 +137,28 @@ class ContactRefit:
     noise_from_rest: bool = False
     slip_offset: float = math.nan
     slip_offset_gain: float = math.nan
+    kept: tuple = ()
+    both_fitted: tuple = ()
+    both_delta_bic: float = math.nan
+    effects: tuple = ()
+
+    @property
+    def over_offset(self) -> float:
+        """BIC units by which the refitted contact fits the rows better than the offset of the slip ratios fitted
+        on the same model (negative: the offset fits better; NaN: no offset that earns :data:`EARN` units)."""
+        if not (self.slip_offset_gain >= EARN):
+            return math.nan
+        return -self.delta_bic - self.slip_offset_gain
+
+    @property
+    def preferred(self) -> str | None:
+        """What the rows prefer, the refitted contact or the offset of the slip ratios: ``"contact"`` or
+        ``"slip_offset"`` by :data:`EARN` BIC units or more, ``"either"`` within them; None without an offset that
+        earns :data:`EARN` units."""
+        d = self.over_offset
+        if not math.isfinite(d):
+            return None
+        return "contact" if d >= EARN else "slip_offset" if d <= -EARN else "either"
 
     @property
     def explains(self) -> bool:
@@ -147,13 +189,13 @@ class ContactRefit:
         return self._refit_text() + self._offset_text()
 
     def _offset_text(self) -> str:
-        if not (self.slip_offset_gain >= EARN):   # NaN too: no offset fitted, or one that earns nothing
+        preferred, diff = self.preferred, self.over_offset
+        if preferred is None:   # no offset fitted, or one that earns nothing
             return ""
-        diff = -self.delta_bic - self.slip_offset_gain
         offset = f" An offset of the slip ratios ({self.slip_offset:+.3g}, the calibration check's) fits these rows"
-        if diff >= EARN:
+        if preferred == "contact":
             return f"{offset} less well: the refitted contact by {diff:.1f} BIC units."
-        if diff <= -EARN:
+        if preferred == "slip_offset":
             return (f"{offset} better, by {-diff:.1f} BIC units: check the slip measurement (the wheel's effective "
                     f"rolling radius, the slip's zero at free rolling) before the contact.")
         return (f"{offset} as well (within {EARN:g} BIC units): the rows cannot tell a contact given off from an "
@@ -163,7 +205,16 @@ class ContactRefit:
         values = self.values_text()
         against = (f"; against a noise of {self.noise:.3g} estimated from the rows without slip alone, where the "
                    f"model fits" if self.noise_from_rest else "")
-        if self.correlation <= -TRADE_OFF and self.names == CONTACT_NAMES:
+        if self.kept:
+            kept = dict(self.kept)
+            scale = float(np.prod(list(kept.values())))
+            given, fitted = (float(np.prod(v)) * scale for v in (self.given, self.fitted))
+            held = ", ".join(f"{n} kept at {v:.3g} {_UNITS.get(n, '')} as given" for n, v in kept.items())
+            values = (f"{values}, {held}: the rows fix the product of stiffness and length ({fitted:.3g} Pa against "
+                      f"{given:.3g} given): refitted together the two correlate at {self.correlation:+.2f}, and "
+                      f"the length refitted too changes BIC by {self.both_delta_bic - self.delta_bic:+.1f} units, "
+                      f"short of the {EARN:g} it must lower it by")
+        elif self.correlation <= -TRADE_OFF and self.names == CONTACT_NAMES:
             given, fitted = (float(np.prod(v)) for v in (self.given, self.fitted))
             values = (f"the product of stiffness and length {fitted:.3g} Pa against {given:.3g} given, which the "
                       f"rows fix rather than each: {values}, correlation {self.correlation:+.2f}")
@@ -173,7 +224,7 @@ class ContactRefit:
             return (f"Refitted with the rest ({values}), the brush contact brings every row to the "
                     f"noise (residual / noise {self.ratio:.2f}, lack of fit p = {self.p_value:.2g}, BIC "
                     f"{self.delta_bic:+.1f}{against}): the contact given is off, not the slip model; refit it "
-                    f"(contact.stiffness, contact.length in the fit) or measure it.")
+                    f"({', '.join(f'contact.{n}' for n in self.names)} in the fit) or measure it.")
         if self.takes_most:
             return (f"Refitted with the rest ({values}), the brush contact takes most of the misfit of the rows with "
                     f"slip (residual / noise {self.slip_ratio_before:.2f} -> {self.slip_ratio:.2f}, BIC "
@@ -189,8 +240,9 @@ class ContactRefit:
     def as_dict(self) -> dict:
         """``names``, ``given``, ``fitted``, ``p_value``, ``ratio``, ``slip_ratio``, ``slip_ratio_before``,
         ``delta_bic``, ``explains``, ``outcome``, ``noise``, ``noise_from_rest``, ``slip_offset`` and
-        ``slip_offset_gain`` (null without one), ``correlation`` (null with one parameter), ``n_evaluations`` and
-        ``text``."""
+        ``slip_offset_gain`` (null without one), ``preferred`` (:attr:`preferred`), ``correlation`` (null where
+        one parameter alone was refitted), ``kept`` (name -> value), ``both_fitted`` and ``both_delta_bic`` (null
+        where nothing was kept), ``effects``, ``n_evaluations`` and ``text``."""
         return {"names": list(self.names), "given": list(self.given), "fitted": list(self.fitted),
                 "p_value": self.p_value, "ratio": self.ratio, "slip_ratio": self.slip_ratio,
                 "slip_ratio_before": self.slip_ratio_before, "outcome": self.outcome, "noise": self.noise,
@@ -199,7 +251,9 @@ class ContactRefit:
                 "slip_offset_gain": self.slip_offset_gain if math.isfinite(self.slip_offset_gain) else None,
                 "delta_bic": self.delta_bic, "explains": self.explains,
                 "correlation": self.correlation if math.isfinite(self.correlation) else None,
-                "n_evaluations": self.n_evals,
+                "preferred": self.preferred, "kept": dict(self.kept), "both_fitted": list(self.both_fitted) or None,
+                "both_delta_bic": self.both_delta_bic if math.isfinite(self.both_delta_bic) else None,
+                "effects": list(self.effects), "n_evaluations": self.n_evals,
                 "text": self.text()}
 
 
@@ -221,13 +275,28 @@ def refit_contact(model, contact, space, predicted, context, *, names=CONTACT_NA
     context : validation.diagnose.FitContext
         The settings (predictor, data, weights) and the noise.
     names : sequence of str
-        The contact parameters to refit; those already in ``space`` are left out.
+        The contact parameters to refit; those already in ``space`` are left out. Where they are stiffness and
+        length and their estimates correlate beyond -:data:`TRADE_OFF`, the stiffness is refitted alone too, and
+        kept unless the length earns :data:`EARN` BIC units (module docstring).
 
     Returns
     -------
     ContactRefit or None
         None without a contact, without rows with slip, or when every one of ``names`` is fitted already.
     """
+    both = _refit(model, contact, space, predicted, context, names)
+    if both is None or both.names != CONTACT_NAMES or not both.correlation <= -TRADE_OFF:
+        return both
+    alone = _refit(model, contact, space, predicted, context, ("stiffness",))
+    if alone is None or alone.delta_bic > both.delta_bic + EARN:
+        return dataclasses.replace(both, n_evals=both.n_evals + (alone.n_evals if alone is not None else 0))
+    return dataclasses.replace(alone, correlation=both.correlation, n_evals=alone.n_evals + both.n_evals,
+                               kept=(("length", contact_value(contact, "length")),), both_fitted=both.fitted,
+                               both_delta_bic=both.delta_bic)
+
+
+def _refit(model, contact, space, predicted, context, names) -> ContactRefit | None:
+    """The refit of :func:`refit_contact` with exactly ``names`` (less those in ``space``)."""
     s = context.settings
     m = context.measurements
     slip = np.asarray(m.slip, dtype=float) < 1.0
@@ -272,13 +341,37 @@ def with_slip_offset(refit: ContactRefit | None, calibration, effects) -> Contac
     effects : sequence of str
         The effects of the model the contact was refitted with (empty: the baseline).
     """
-    if refit is None or calibration is None:
+    if refit is None:
+        return refit
+    refit = dataclasses.replace(refit, effects=tuple(effects))
+    if calibration is None:
         return refit
     fits = [f for f in calibration.fits if f.kind == "slip" and frozenset(f.effects) == frozenset(effects)]
     if not fits:
         return refit
     best = max(fits, key=lambda f: f.gain_over_set)
     return dataclasses.replace(refit, slip_offset=float(best.value), slip_offset_gain=float(best.gain_over_set))
+
+
+def defer_calibration(check, refit: ContactRefit | None):
+    """``check`` (a :class:`validation.calibration.CalibrationCheck`, or None) with the offsets of the slip ratios
+    that ``refit`` fits the rows better than, by :data:`EARN` BIC units or more, deferred to it: they stay among its
+    fits but are no longer named as the rig's rivals (:attr:`validation.calibration.CalibrationCheck.deferred`).
+
+    Only offsets fitted on the model the contact was refitted with (the same effects, :attr:`ContactRefit.effects`)
+    are compared: the two then differ by one parameter and BIC weighs them alike. ``check`` itself when nothing is
+    deferred.
+    """
+    if check is None or refit is None:
+        return check
+    deferred = []
+    for f in check.fits:
+        if f.kind != "slip" or frozenset(f.effects) != frozenset(refit.effects) or not f.rival:
+            continue
+        by = -refit.delta_bic - f.gain_over_set
+        if by >= EARN:
+            deferred.append((f, float(by), refit.outcome))
+    return check if not deferred else dataclasses.replace(check, deferred=tuple(deferred))
 
 
 def _judging_noise(context, predicted, slip):

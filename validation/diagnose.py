@@ -33,7 +33,7 @@ from .calibration import SetFit, check_calibration
 from .candidates import (DELTA_BIC_THRESHOLD, P_THRESHOLD, SIGNIFICANCE_RULE, Baseline, BaselineFit, Candidate,
                          FitSettings, bic, finish_candidate, fit_baseline, fit_candidate, note_kind)
 from .compare import json_text
-from .contact_refit import refit_contact, with_slip_offset
+from .contact_refit import defer_calibration, refit_contact, with_slip_offset
 from .deferred import Deferred, Lazy
 from .errors import InputError
 from .fitting import CONTACT, FreeParameter, ParameterSpace, contact_parameters, free_parameters
@@ -397,6 +397,9 @@ def diagnose_single(model, measurements: Measurements | None = None, candidates=
     if localized is not None and localized.family == "slip" and verdict.verdict in MISSES:
         localized = _with_contact_refit(localized, named, baseline, ctx, contact, calibration)
         n_eval += localized.contact.n_evals if localized.contact is not None else 0
+        # an offset of the slip ratios the refitted contact fits better is no longer the rig's rival
+        calibration = defer_calibration(calibration, localized.contact)
+        verdict = with_calibration(verdict, calibration)
     verdict = with_noise_trend(with_localized(with_outliers(verdict, outliers), localized), noise)
     localized = localized if verdict.localized else None
     # the baseline at its optimum again, in full: its solutions are kept by the predictor, so this costs no solve

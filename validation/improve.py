@@ -35,7 +35,7 @@ import numpy as np
 from .band import band_note
 from .calibration import SetFit
 from .compare import Comparison, comparison_from, json_text
-from .contact_refit import refit_contact, with_slip_offset
+from .contact_refit import defer_calibration, refit_contact, with_slip_offset
 from .diagnose import Diagnosis, _unpack, diagnose_single
 from .errors import InputError
 from .fitting import ParameterSpace
@@ -590,6 +590,11 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
         contact_refit = refit_contact(best.model, best.contact or contact, space, best.predicted, search.ctx)
         localized = replace(localized, contact=with_slip_offset(contact_refit, selection.calibration, best.effects))
         n_evals += localized.contact.n_evals if localized.contact is not None else 0
+        # an offset of the slip ratios the refitted contact fits better is no longer the rig's rival
+        deferred = defer_calibration(selection.calibration, localized.contact)
+        if deferred is not selection.calibration:
+            selection = replace(selection, calibration=deferred)
+            final = with_calibration(final, deferred)
     final = with_noise_trend(with_localized(with_outliers(final, outliers), localized), noise)
     localized = localized if final.localized else None
     if stopped.startswith("explained") and final.verdict != "explained":
