@@ -31,9 +31,9 @@ through :math:`k l` (Pacejka 2012, Sec. 3.2: written in :math:`x/l`, a bristle s
 :math:`k\,\theta\,l\,(x/l) < \mu\,p(x)`, and the stuck zone adds :math:`k\,\theta\,l\,(x_c/l)^2/(2\sigma_0)`
 to :math:`\mu`), patch heating aside, which depends on the time :math:`l/V` a point spends in the patch: the rows fix
 the product :math:`k l` and hardly each factor, and the text then gives that product. Where the two estimates
-correlate beyond :data:`TRADE_OFF` in magnitude, the stiffness is refitted alone, the length kept as given, and that
-refit is the one reported unless the length earns its place (lowers BIC by :data:`EARN` more, as an added effect
-must): a length free to drift along the valley of constant :math:`k l` can reach values far from any tyre's for a
+correlate at -:data:`TRADE_OFF` or below, the stiffness is refitted alone, the length kept as given, and that refit
+is the one reported unless the length earns its place (lowers BIC by :data:`EARN` more, as an added effect must): a
+length free to drift along the valley of constant :math:`k l` can reach values far from any tyre's for a
 small gain, and the stiffness alone at the given length carries the same product.
 
 Where the calibration check (:mod:`validation.calibration`) fitted an offset of the slip ratios on the same model,
@@ -240,9 +240,9 @@ class ContactRefit:
     def as_dict(self) -> dict:
         """``names``, ``given``, ``fitted``, ``p_value``, ``ratio``, ``slip_ratio``, ``slip_ratio_before``,
         ``delta_bic``, ``explains``, ``outcome``, ``noise``, ``noise_from_rest``, ``slip_offset`` and
-        ``slip_offset_gain`` (null without one), ``preferred`` (:attr:`preferred`), ``correlation`` (null where
-        one parameter alone was refitted), ``kept`` (name -> value), ``both_fitted`` and ``both_delta_bic`` (null
-        where nothing was kept), ``effects``, ``n_evaluations`` and ``text``."""
+        ``slip_offset_gain`` (null without one), ``preferred`` (:attr:`preferred`), ``correlation`` (of the two
+        refitted together; null where they were not), ``kept`` (name -> value), ``both_fitted`` and
+        ``both_delta_bic`` (null where nothing was kept), ``effects``, ``n_evaluations`` and ``text``."""
         return {"names": list(self.names), "given": list(self.given), "fitted": list(self.fitted),
                 "p_value": self.p_value, "ratio": self.ratio, "slip_ratio": self.slip_ratio,
                 "slip_ratio_before": self.slip_ratio_before, "outcome": self.outcome, "noise": self.noise,
