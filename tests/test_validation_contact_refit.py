@@ -44,6 +44,9 @@ def test_a_contact_given_off_is_found_by_the_refit_with_the_product_of_stiffness
     case, truth = contact_off_case
     dx = validation.diagnose(case, probe=False)
     assert dx.verdict.verdict in ("unexplained", "partly_explained")
+    # the verdict quotes the baseline's tests as they read ("F = ...", "MPa"), case kept
+    assert dx.baseline.lack.describe() in dx.verdict.reason and "MPa" in dx.baseline.pattern.describe()
+    assert dx.baseline.pattern.describe() in dx.verdict.reason
     loc = dx.localized
     assert loc is not None and loc.family == "slip"
     cr = loc.contact

@@ -248,7 +248,9 @@ def decide(baseline, candidates, noise) -> Verdict:
             why.append(f"the baseline misses the data beyond the noise ({base_lack.describe()}; {noise_txt})")
         if base_pat.found:
             why.append(f"its residual has a systematic pattern ({base_pat.describe()})")
-        reason = " and ".join(why).capitalize() + ", and no candidate effect is both significant and plausible"
+        joined = " and ".join(why)
+        # the first letter only: str.capitalize() would lower the rest ("F = 6.4" -> "f = 6.4", "MPa" -> "mpa")
+        reason = joined[:1].upper() + joined[1:] + ", and no candidate effect is both significant and plausible"
         if implausible:
             reason += (" (significant only with implausible parameters: "
                        + "; ".join(f"{c.effect}: {', '.join(c.issues)}" for c in implausible[:3]) + ")")
