@@ -346,13 +346,14 @@ def with_slip_offset(refit: ContactRefit | None, calibration, effects) -> Contac
     refit = dataclasses.replace(refit, effects=tuple(effects))
     if calibration is None:
         return refit
-    fits = [f for f in calibration.fits if f.kind == "slip" and frozenset(f.effects) == frozenset(effects)]
+    fits = _slip_offsets(calibration, effects)
     if not fits:
         return refit
     best = max(fits, key=lambda f: f.gain_over_set)
     return dataclasses.replace(refit, slip_offset=float(best.value), slip_offset_gain=float(best.gain_over_set))
 
 
+@doi(KASS_RAFTERY_1995)
 def defer_calibration(check, refit: ContactRefit | None):
     """``check`` (a :class:`validation.calibration.CalibrationCheck`, or None) with the offsets of the slip ratios
     that ``refit`` fits the rows better than, by :data:`EARN` BIC units or more, deferred to it: they stay among its
@@ -364,14 +365,15 @@ def defer_calibration(check, refit: ContactRefit | None):
     """
     if check is None or refit is None:
         return check
-    deferred = []
-    for f in check.fits:
-        if f.kind != "slip" or frozenset(f.effects) != frozenset(refit.effects) or not f.rival:
-            continue
-        by = -refit.delta_bic - f.gain_over_set
-        if by >= EARN:
-            deferred.append((f, float(by), refit.outcome))
-    return check if not deferred else dataclasses.replace(check, deferred=tuple(deferred))
+    deferred = tuple((f, float(-refit.delta_bic - f.gain_over_set), refit.outcome)
+                     for f in _slip_offsets(check, refit.effects) if f.rival)
+    deferred = tuple(d for d in deferred if d[1] >= EARN)
+    return check if not deferred else dataclasses.replace(check, deferred=deferred)
+
+
+def _slip_offsets(check, effects) -> list:
+    """The offsets of the slip ratios among ``check``'s fits made on the model of ``effects`` (any order)."""
+    return [f for f in check.fits if f.kind == "slip" and frozenset(f.effects) == frozenset(effects)]
 
 
 def _judging_noise(context, predicted, slip):
