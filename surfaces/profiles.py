@@ -13,7 +13,6 @@ import warnings
 from dataclasses import dataclass, field, replace
 
 import numpy as np
-from scipy import ndimage
 
 from frictioncite import doi
 
@@ -273,6 +272,9 @@ class ProfileSet:
         thr = positive(threshold, "threshold")
         if int(window) < 3 or int(window) % 2 == 0:
             raise InputError(f"window: expected an odd integer >= 3, got {window!r}")
+
+        # imported here: scipy.ndimage costs every process that loads a case ~40 ms, and only this step needs it
+        from scipy import ndimage
 
         def one(p: Profile) -> Profile:
             _require_filled(p, "remove_spikes")
