@@ -1375,3 +1375,49 @@ def test_a_candidate_not_credible_alone_is_explored_with_each_credible_significa
     asked = {frozenset(e) for e, _ in search.asked}
     assert frozenset("AM") in asked and frozenset("AW") not in asked
     assert "A + M (40.0 BIC units better than L" in search.explored[0]
+
+
+def test_the_search_budgets_count_its_fits_not_what_a_diagnosis_reports_besides(effects, monkeypatch):
+    """The looks of the search (exploring pairs, continuing stopped fits, subsets) are given as many model
+    evaluations as the fits before them took. What a diagnosis reports besides its fits (the separating
+    measurements, the localization's and the contact's refits) is counted in ``n_evaluations`` but not in those
+    budgets: with 500 such evaluations added to every diagnosis, the budgets, the path and the answer are those of
+    the search without them, and the total grows by exactly 500 a diagnosis."""
+    import importlib
+
+    diagnose_module = importlib.import_module("validation.diagnose")
+    select_module = importlib.import_module("validation.select")
+    base = persson.Model(SURFACE, TREAD)
+    truth = base.with_effect(effects["texture"](a=0.05)).with_effect(effects["heat"](h=0.15))
+    m = _data(truth, 3)
+
+    def run(extra):
+        budgets, diagnoses = [], []
+        explore = select_module.SetSearch.explore
+        localized = diagnose_module._localized
+
+        def recording_explore(self, *args, budget=None, **kwargs):
+            budgets.append(budget)
+            return explore(self, *args, budget=budget, **kwargs)
+
+        def costly_localized(*args, on_evals=None, **kwargs):
+            diagnoses.append(1)
+            if on_evals is not None:
+                on_evals(extra)
+            return localized(*args, on_evals=on_evals, **kwargs)
+
+        with monkeypatch.context() as mp:
+            mp.setattr(select_module.SetSearch, "explore", recording_explore)
+            mp.setattr(diagnose_module, "_localized", costly_localized)
+            imp = validation.improve(base, m, candidates=[effects["mimic"](), effects["texture"](),
+                                                          effects["heat"]()])
+        return imp, budgets, len(diagnoses)
+
+    plain, budgets, n_dx = run(0)
+    costly, costly_budgets, n_dx2 = run(500)
+    assert budgets and costly_budgets == budgets and n_dx2 == n_dx >= 2
+    assert [(s.action, s.effects) for s in costly.steps] == [(s.action, s.effects) for s in plain.steps]
+    assert set(costly.selection.best.effects) == set(plain.selection.best.effects) == {"test_texture", "test_heat"}
+    assert costly.n_evaluations == plain.n_evaluations + 500 * n_dx
+    dx0 = costly.steps[0].diagnosis
+    assert dx0.n_diagnostic_evaluations >= 500 and dx0.as_dict()["baseline"]["n_diagnostic_evaluations"] >= 500

@@ -94,6 +94,10 @@ class Diagnosis:
         ``unexplained`` and ``partly_explained``: the family of rows (sliding, with slip, wet) the verdict's model
         misses while it fits the other rows (named in the verdict; JSON ``localized``); None when the misfit does
         not sit in one family.
+    n_diagnostic_evaluations : int
+        The part of ``n_evaluations`` spent on what the diagnosis reports besides the fits: the separating
+        measurements' predictions, the localization's refits and the contact's refit (the set search of
+        :func:`validation.improve` sets its budgets from the fits alone).
     """
 
     measurements: Measurements
@@ -116,6 +120,7 @@ class Diagnosis:
     calibration: object = field(default=None, repr=False)
     outliers: object = None
     localized: object = None
+    n_diagnostic_evaluations: int = 0
 
     @property
     def noise_known(self) -> bool:
@@ -227,7 +232,9 @@ class Diagnosis:
                          "lack_of_fit": b.lack.as_dict(), "remaining_pattern": b.pattern.describe(),
                          "n": self.measurements.n, "noise": self.noise, "sigma_known": self.sigma_known,
                          "rule": self.rule, "explanation": self.explanation, "name": self.name,
-                         "n_evaluations": self.n_evaluations, "seconds": self.seconds, "notes": list(b.notes),
+                         "n_evaluations": self.n_evaluations,
+                         "n_diagnostic_evaluations": self.n_diagnostic_evaluations, "seconds": self.seconds,
+                         "notes": list(b.notes),
                          "notes_detail": [{"kind": note_kind(t), "text": t} for t in b.notes],
                          "rows_mostly_extrapolated": (None if self.modulus_extrapolated_share is None else
                                                       int(mostly_extrapolated(self.modulus_extrapolated_share).size))},
@@ -382,9 +389,11 @@ def diagnose_single(model, measurements: Measurements | None = None, candidates=
     results.sort(key=lambda c: (_rank_group(c.status), c.delta_bic if math.isfinite(c.delta_bic) else math.inf))
 
     clusters = find_clusters(results, base.Q, settings.w)
+    n_diagnostic = 0    # the evaluations of what is reported besides the fits (Diagnosis.n_diagnostic_evaluations)
     if probe and clusters:
         clusters, used = separate(clusters, results, m, contact)
         n_eval += used
+        n_diagnostic += used
     verdict = decide(baseline, results, noise)
     named = next((c for c in results if c.effect == verdict.effect), None) if verdict.effect else None
     calibration = _calibration_check(named, baseline, ctx, conditions=check_conditions)
@@ -394,9 +403,12 @@ def diagnose_single(model, measurements: Measurements | None = None, candidates=
     localized = _localized(named, baseline, m, noise, refitted=tuple(_fit_names(fit, model)),
                            contact=contact, refit=verdict.verdict in MISSES, on_evals=spent.append)
     n_eval += sum(spent)
+    n_diagnostic += sum(spent)
     if localized is not None and localized.family == "slip" and verdict.verdict in MISSES:
         localized = _with_contact_refit(localized, named, baseline, ctx, contact, calibration)
-        n_eval += localized.contact.n_evals if localized.contact is not None else 0
+        refit_evals = localized.contact.n_evals if localized.contact is not None else 0
+        n_eval += refit_evals
+        n_diagnostic += refit_evals
         # an offset of the slip ratios the refitted contact fits better is no longer the rig's rival
         calibration = defer_calibration(calibration, localized.contact)
         verdict = with_calibration(verdict, calibration)
@@ -415,7 +427,7 @@ def diagnose_single(model, measurements: Measurements | None = None, candidates=
                      sigma_known=sigma_known, noise=_noise_level(noise), n_evaluations=n_eval,
                      seconds=time.perf_counter() - t_start, name=name, verdict=verdict, noise_estimate=noise,
                      context=ctx, modulus_extrapolated_share=extrapolated, calibration=calibration,
-                     outliers=outliers, localized=localized)
+                     outliers=outliers, localized=localized, n_diagnostic_evaluations=n_diagnostic)
 
 
 def _outliers(named, baseline, measurements, noise):

@@ -423,6 +423,9 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
                              **diagnose_options)
     noise = diagnose_options.pop("noise", None) or dx.noise_estimate
     n_evals = dx.n_evaluations
+    # the search's budgets count its fits: what a diagnosis reports besides them (separating measurements, the
+    # localization's and the contact's refits) is in n_evals, not here, so that a diagnostic never changes a search
+    n_fits = dx.n_evaluations - dx.n_diagnostic_evaluations
     search = SetSearch(model, base_fit, dx.context)
     search.record(dx, (), 0)
     b = dx.baseline
@@ -446,7 +449,7 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
             # continues the search
             explored = True
             # at most as many model evaluations as the path itself took
-            better = search.explore(current, steps[0].diagnosis, budget=n_evals + search.n_evals,
+            better = search.explore(current, steps[0].diagnosis, budget=n_fits + search.n_evals,
                                     progress=_sub(progress, "exploring pairs"))
             if better is not None:
                 n_added = len(better)
@@ -461,6 +464,7 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
                 dx = _diagnose_set(search, current, measurements, cands, contact, base_fit, name, noise, predictor,
                                    progress, len(steps), diagnose_options)
                 n_evals += dx.n_evaluations
+                n_fits += dx.n_evaluations - dx.n_diagnostic_evaluations
                 search.record(dx, current, len(steps) - 1)
                 steps[-1] = replace(steps[-1], diagnosis=dx)
                 continue
@@ -494,6 +498,7 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
         dx = _diagnose_set(search, current, measurements, cands, contact, base_fit, name, noise, predictor, progress,
                            len(steps), diagnose_options)
         n_evals += dx.n_evaluations
+        n_fits += dx.n_evaluations - dx.n_diagnostic_evaluations
         search.record(dx, current, len(steps) - 1)
         steps[-1] = replace(steps[-1], diagnosis=dx)
     if current and not explored and not search.get(current).plausible:
@@ -502,7 +507,7 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
         # past every measured speed while it stands in for a flash temperature + microtexture pair): the pairs
         # the path did not reach are explored as for a path that ends short of the noise
         explored = True
-        better = search.explore(current, steps[0].diagnosis, budget=n_evals + search.n_evals,
+        better = search.explore(current, steps[0].diagnosis, budget=n_fits + search.n_evals,
                                 progress=_sub(progress, "exploring pairs"))
         if better is not None:
             previous = current
@@ -514,7 +519,7 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
     if stopped.startswith("explained") and not explored:
         # the path ended at the noise: a pair it never fitted may fit as well (its look-alike took the path) or
         # better; the screened pairs that may are fitted, and named among the equally supported sets
-        better = search.explore(current, steps[0].diagnosis, budget=n_evals + search.n_evals,
+        better = search.explore(current, steps[0].diagnosis, budget=n_fits + search.n_evals,
                                 progress=_sub(progress, "screening pairs"), at_noise=True)
         if better is not None:
             previous = current
@@ -529,7 +534,7 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
     # reach of the answer are continued; a larger set within reach may contain a better one that no step fitted (the
     # backward elimination acts on the path's set only), and its subsets are fitted. A set that then fits better by
     # more than STAY takes the place of the path's.
-    half = (n_evals + search.n_evals) // 2
+    half = (n_fits + search.n_evals) // 2
     for look, action, doing, checking, why in (
             (search.resume, "resumed", "continuing fits stopped at their budget",
              "checking the effects of the continued set",
