@@ -107,6 +107,20 @@ def test_every_module_of_the_packages_is_in_the_graph():
     assert graph["materials"] and graph["surfaces"]  # the package __init__ files import their modules
 
 
+def test_every_source_file_compiles_without_warnings():
+    """An invalid escape in a string (a ``\\sigma`` in a docstring that is not raw) is a DeprecationWarning on
+    Python 3.11, a SyntaxWarning on 3.12 and meant to become an error: every file of the packages, the benchmarks
+    and the tests compiles with warnings turned into errors."""
+    import warnings
+
+    files = [p for d in PACKAGES + ("benchmarks", "tests") for p in sorted((ROOT / d).rglob("*.py"))]
+    assert len(files) > 100
+    for path in files:
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")
+            compile(path.read_text(encoding="utf-8"), str(path), "exec")
+
+
 # --- the checker itself, on a small made-up tree ------------------------------------------------------------
 
 

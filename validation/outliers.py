@@ -133,7 +133,7 @@ def outlying_rows(residual, noise, measurements, model: str) -> Outliers | None:
 
 
 def scaled_residual(residual, noise, measurements) -> np.ndarray | None:
-    """Each row's residual over its noise level, :math:`z_i = r_i / \sigma_i`.
+    r"""Each row's residual over its noise level, :math:`z_i = r_i / \sigma_i`.
 
     Parameters
     ----------
