@@ -118,12 +118,19 @@ def rolloff_line(q, C, kind: str, q_min: float | None, q_max: float | None, wher
     Raises
     ------
     InputError
-        Fewer than five points in the band, or a fitted H outside (0, 1].
+        Fewer than five points in the band, fewer than three above the fitted break, or a fitted H outside (0, 1].
     """
     m = band(q, q_min, q_max, "fit_rolloff")
     if m.sum() < 5:
         raise InputError(f"fit_rolloff ({where}): need >= 5 points in the band, got {int(m.sum())}")
-    a, s, b, resid = broken_power_law_fit(np.log(q[m]), np.log(C[m]), flat="below")
+    x = np.log(q[m])
+    a, s, b, resid = broken_power_law_fit(x, np.log(C[m]), flat="below")
+    # with one or two points above the break, a break anywhere between them and the plateau fits exactly, each with
+    # its own slope: the exponent is whatever the optimizer stopped at, not a property of the data
+    n_above = int(np.sum(x > b))
+    if n_above < 3:
+        raise InputError(f"fit_rolloff ({where}): {n_above} point(s) of the band above the fitted roll-off "
+                         f"q0 = {math.exp(b):.4g} rad/m; the power law above it needs >= 3 to give an exponent")
     H = (s - 1.0) / 2.0 if kind == "1d" else s / 2.0 - 1.0
     if not (np.isfinite(H) and 0.0 < H <= 1.05):
         raise InputError(f"fit_rolloff ({where}): fitted H = {H:.3g} is outside (0, 1]; the band has no "

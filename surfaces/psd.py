@@ -431,8 +431,10 @@ class PSD:
                 return float(self.hurst)
             try:
                 return rolloff_line(self.q, self.C_values, "isotropic", None, q_s, where=where).hurst
-            except InputError:
-                raise first from None
+            except InputError as second:
+                raise InputError(f"extrapolate ({where}): the table gives no exponent for the tail: {first}; and the "
+                                 f"roll-off law fitted below q_s = {q_s:.4g} rad/m: {second}; give hurst= (e.g. "
+                                 "from a scan that reaches further) or fit_band=") from None
 
     def to_csv(self, path, *, overwrite: bool = False) -> Path:
         """Write the PSD table of ``docs/conventions.md`` (``q,C`` with ``#`` metadata comments), atomically.
