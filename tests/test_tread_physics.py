@@ -139,11 +139,12 @@ def test_elastic_elements_on_a_smooth_road_are_the_brush_model():
 
 def test_kernel_parameters_are_all_documented():
     for fn in (kernels.march, kernels.march_points, kernels.block_mean):
-        doc = fn.__doc__
-        params = doc.split("Parameters\n    ----------\n", 1)[1].split("Returns\n", 1)[0]
+        # cleandoc: Python 3.13 strips a docstring's indentation when it compiles it, earlier versions keep it
+        doc = inspect.cleandoc(fn.__doc__)
+        params = doc.split("Parameters\n----------\n", 1)[1].split("Returns\n", 1)[0]
         documented = set()
         for line in params.splitlines():
-            if line.startswith("    ") and not line.startswith("     ") and " : " in line:
+            if line and not line.startswith(" ") and " : " in line:
                 documented.update(n.strip() for n in line.split(" : ")[0].split(","))
         names = list(inspect.signature(fn.py_func).parameters)
         assert documented == set(names), fn.__name__
