@@ -45,8 +45,8 @@ def test_the_program_runs_the_command_of_its_arguments_and_leaves_what_lives_to_
     collector's sight, so that the interpreter's shutdown skips full collections over numba's, scipy's and the
     command's objects (0.3 s of a 3.7 s diagnosis)."""
     import gc
-    import tomllib
 
+    from persson.case.loader import tomllib    # tomllib, or on Python 3.10 the tomli the package depends on
     from persson.commands import cli
     from persson.commands.cli import program
 

@@ -241,13 +241,15 @@ def test_flash_temperature_in_the_glassy_corner_matches_the_reference_refined_ne
 
 
 def test_hard_speeds_are_refined_until_the_estimate_meets_the_tolerance():
-    """A narrow loss peak swept by a steep flash temperature (157 K) needs more nodes than the default grid has:
-    there the error is 7e-4, above the third of the tolerance the solver aims at, and the estimate says so; the
+    """A narrow loss peak swept by a steep flash temperature needs more nodes than the default grid has: at -15 C
+    the error is 1.1e-3, above the third of the tolerance the solver aims at, and the estimate says so; the
     speed is solved again on refined grids, and its result agrees with a converged one. Without refinement, a
-    tolerance the grid cannot meet warns."""
+    tolerance the grid cannot meet warns. (At -20 C the unrefined result depends on where the front's nodes fall:
+    2.6e-4 from the converged one with numpy 2.2 and scipy 1.15, 4.6e-4 with numpy 2.4 and scipy 1.17, on either
+    side of that third, while the refined result is the same to ten digits with both.)"""
     s = surfaces.example_road()
     fx = persson.effects.FlashTemperature(tol=1e-6)
-    kw = dict(temperature=-20.0, pressure=0.02e6)
+    kw = dict(temperature=-15.0, pressure=0.02e6)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", persson.PhysicsWarning)  # the example road's rms slope 3.9
         coarse = persson.Model(s, narrow(), effects=[fx], grid=persson.GridSettings(max_refinement=0)).friction(

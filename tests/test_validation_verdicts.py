@@ -211,6 +211,29 @@ def test_inside_the_measured_conditions_is_judged_on_the_combination():
     assert scaled_distance(wet, m)[0] == math.inf     # no wet row was measured
 
 
+def test_a_probe_half_a_decade_beyond_the_fastest_row_is_outside_whatever_the_rounding():
+    """The probe speeds reach half a decade beyond the measured ones, which is a scaled distance of exactly 1 (the
+    speed's scale is half a decade): in floating point it came out 1 - 2e-16 with one numpy and 1 + 2e-16 with the
+    next. Such a probe is outside the measured conditions either way; one strictly closer is inside."""
+    from validation.probe import INSIDE, probe_rows, scaled_distance, separation
+
+    m = validation.Measurements.from_arrays(slip=1.0, speed=np.geomspace(1e-3, 1.0, 7), temperature=20.0,
+                                            pressure=3e5, mu=0.5)
+    probe = probe_rows(m)
+    d = scaled_distance(probe, m)
+    top = np.flatnonzero(np.isclose(probe.speed, 10 ** 0.5) & (probe.temperature == 20.0)
+                         & (probe.pressure == 3e5))
+    assert top.size == 1 and d[top[0]] == pytest.approx(1.0, abs=1e-12)
+    for dist in (1.0 - 2.2e-16, 1.0, 1.0 + 2.2e-16):
+        distance = np.where(np.arange(probe.n) == top[0], dist, d)
+        a = np.zeros(probe.n)
+        b = np.where(np.arange(probe.n) == top[0], 0.3, 0.01)    # the largest difference at that probe
+        far = separation(("x", "y"), (a, b), probe, distance)
+        assert far.speed == pytest.approx(10 ** 0.5) and not far.in_range
+        near = separation(("x", "y"), (a, b), probe, distance, inside=True)
+        assert near.in_range and near.distance < INSIDE and near.speed != far.speed
+
+
 @pytest.mark.parametrize("seed, marginal", [(2, True), (8, False)])
 def test_an_unexplained_verdict_on_a_marginal_misfit_without_pattern_says_to_check_the_noise(seed, marginal):
     """The rows are the baseline itself plus noise 1.36 times the stated ``mu_std``: nothing is missing but the

@@ -11,7 +11,7 @@ the measured rolling speed where slip rows were measured (and 20 K beyond).
 
 **Inside the measured conditions** is judged on the combination of conditions, not axis by axis (a cold fast row
 is new even when cold rows and fast rows were both measured): a probe condition is inside when its distance to
-the nearest measured row is at most 1 in scaled condition space,
+the nearest measured row is below 1 in scaled condition space,
 
 .. math:: d^2 = \left(\frac{\Delta\log_{10} v_s}{s_v}\right)^2 + \left(\frac{\Delta T}{s_T}\right)^2
     + \left(\frac{\Delta\log_{10}\sigma_0}{s_p}\right)^2 + \left(\frac{\Delta\log_{10} s}{s_s}\right)^2,
@@ -19,7 +19,10 @@ the nearest measured row is at most 1 in scaled condition space,
 with the wet flag matching and the scales of :data:`SCALES` (half a decade of sliding speed, 10 K, a factor 1.5
 of pressure, a factor 2 of slip): a condition between measured rows of a usual test grid (3 speeds per decade,
 a temperature every 20 K) is inside, one 20 K or a decade of speed away from any measured row is not. The scales
-are fixed, not taken from the spacing of the data: a sparse grid does not make its gaps "measured".
+are fixed, not taken from the spacing of the data: a sparse grid does not make its gaps "measured". A distance of
+exactly 1 is outside: the probe speeds half a decade beyond the measured ones lie there by construction, and in
+floating point they came out at 1 - 2e-16 or 1 + 2e-16 depending on the numpy version, so the boundary is drawn
+a part in 1e9 below 1 (:data:`INSIDE`).
 """
 
 from __future__ import annotations
@@ -32,13 +35,16 @@ import numpy as np
 
 from .measurements import Measurements
 
-__all__ = ["Separation", "probe_rows", "scaled_distance", "separation", "SCALES"]
+__all__ = ["Separation", "probe_rows", "scaled_distance", "separation", "SCALES", "INSIDE"]
 
 #: Scale of each condition in the distance to the nearest measured row: decades of sliding speed, kelvin,
 #: decades of pressure, decades of slip.
 SCALES = {"speed": 0.5, "temperature": 10.0, "pressure": math.log10(1.5), "slip": math.log10(2.0)}
 _FASTEST = 30.0  # m/s: probes stop below the speeds a measurement reader would take for km/h
 _BEYOND = 10.0 ** 0.5  # probe speeds reach half a decade beyond the measured ones
+#: A probe condition is inside the measured conditions when its scaled distance to the nearest measured row is below
+#: this (module docstring: exactly 1 is outside, whatever the rounding).
+INSIDE = 1.0 - 1e-9
 
 
 @dataclass(frozen=True)
@@ -60,7 +66,8 @@ class Separation:
     difference : float
         mu[0] - mu[1].
     in_range : bool
-        Whether the condition lies inside the measured conditions (``distance`` <= 1).
+        Whether the condition lies inside the measured conditions (``distance`` < :data:`INSIDE`, 1 less a part in
+        1e9).
     distance : float
         Scaled distance to the nearest measured row (module docstring; inf when no row has its wet flag).
     """
@@ -189,7 +196,7 @@ def separation(names, predictions, probe: Measurements, distance, inside: bool =
     a, b = (np.asarray(x, dtype=float) for x in predictions)
     diff = np.abs(a - b)
     if inside:
-        ok = distance <= 1.0
+        ok = distance < INSIDE
         if not np.any(ok):
             return None
         diff = np.where(ok, diff, -1.0)
@@ -197,5 +204,5 @@ def separation(names, predictions, probe: Measurements, distance, inside: bool =
     return Separation(effects=tuple(names), speed=float(probe.speed[i]), slip=float(probe.slip[i]),
                       temperature=float(probe.temperature[i]), pressure=float(probe.pressure[i]),
                       wet=bool(probe.wet[i]), mu=(float(a[i]), float(b[i])), difference=float(a[i] - b[i]),
-                      in_range=bool(distance[i] <= 1.0), distance=float(distance[i]))
+                      in_range=bool(distance[i] < INSIDE), distance=float(distance[i]))
 

@@ -293,7 +293,7 @@ def _probe_table(seps) -> str:
     return (_table(["pair", "sliding speed (m/s)", "slip", "T (C)", "p (MPa)", "wet/dry", "inside the measured "
                     "conditions", "mu (first)", "mu (second)"], rows, left=(0, 5, 6))
             + "<p class='note'>Inside the measured conditions: within one measurement step of a measured row "
-              "(scaled distance to the nearest row at most 1, on the combination of speed, temperature, pressure "
+              "(scaled distance to the nearest row below 1, on the combination of speed, temperature, pressure "
               "and slip with the same wet flag).</p>")
 
 
