@@ -60,7 +60,9 @@ def adhesion_fit():
 
 
 def _bands(fig):
-    return [c for ax in fig.axes for c in ax.collections if type(c).__name__ == "FillBetweenPolyCollection"]
+    # fill_between's collection: a FillBetweenPolyCollection from matplotlib 3.10, a PolyCollection before
+    return [c for ax in fig.axes for c in ax.collections
+            if type(c).__name__ in ("FillBetweenPolyCollection", "PolyCollection")]
 
 
 def _errorbars(fig):

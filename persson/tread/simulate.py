@@ -364,10 +364,13 @@ class _Setup:
         y_rows = -fp.width / 2 + (np.arange(rd.n_rows) + 0.5) * width_row
         from ..slip.contact import _parse_distribution
 
+        # scipy's trapezoid: numpy's is np.trapezoid from numpy 2.0, np.trapz before
+        from scipy.integrate import trapezoid
+
         _, _, shape_fn = _parse_distribution(tire.pressure_distribution)
         xi = np.linspace(0.0, 1.0, _N_SHAPE)
         shape = np.asarray(shape_fn(xi), dtype=float)
-        shape = shape / np.trapezoid(shape, xi)
+        shape = shape / trapezoid(shape, xi)
         x_probe = np.arange(4096) * dx_e
         land_fraction = float(np.mean(tire.land(x_probe[:, None], y_rows[None, :])))
         if land_fraction <= 0:
