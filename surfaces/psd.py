@@ -461,7 +461,8 @@ class PSD:
 
 
 def read_psd(path) -> PSD:
-    """Read a PSD table (``docs/conventions.md``, "Files"): CSV with columns ``q`` (rad/m) and ``C`` (m^4), ``#`` comments.
+    """Read a PSD table (``docs/conventions.md``, "Files"): CSV with columns ``q`` (rad/m) and ``C`` (m^4), ``#``
+    comments.
 
     Comments of the form ``# key: value`` written by :meth:`PSD.to_csv` (``q_r``, ``extrapolated``, ``qL``,
     ``q_rolloff``, ``hurst``, ``source``) are read back; other comments and extra columns are ignored.
