@@ -73,6 +73,12 @@ def fit_rolloff(psd, q_min: float | None = None, q_max: float | None = None) -> 
     RolloffFit
         For a PSD1D, ``hurst`` follows from the 1D slope :math:`-(1+2H)` and ``C0`` is converted to the
         isotropic prefactor with the Gamma factor; ``C_plateau`` stays the 1D plateau.
+
+    Raises
+    ------
+    InputError
+        Fewer than five points in the band, fewer than three above the fitted break (one or two are fitted exactly
+        by any slope, so they give no exponent), or a fitted H outside (0, 1].
     """
     q, C, kind = _table(psd)
     if kind == "1d" and q_max is None and psd.q_r is not None:

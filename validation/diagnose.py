@@ -123,6 +123,11 @@ class Diagnosis:
     n_diagnostic_evaluations: int = 0
 
     @property
+    def n_fit_evaluations(self) -> int:
+        """The model evaluations of the fits: ``n_evaluations`` less ``n_diagnostic_evaluations``."""
+        return self.n_evaluations - self.n_diagnostic_evaluations
+
+    @property
     def noise_known(self) -> bool:
         """Whether the noise level comes from an independent estimate."""
         return self.noise_estimate is not None and self.noise_estimate.known

@@ -425,7 +425,7 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
     n_evals = dx.n_evaluations
     # the search's budgets count its fits: what a diagnosis reports besides them (separating measurements, the
     # localization's and the contact's refits) is in n_evals, not here, so that a diagnostic never changes a search
-    n_fits = dx.n_evaluations - dx.n_diagnostic_evaluations
+    n_fits = dx.n_fit_evaluations
     search = SetSearch(model, base_fit, dx.context)
     search.record(dx, (), 0)
     b = dx.baseline
@@ -464,7 +464,7 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
                 dx = _diagnose_set(search, current, measurements, cands, contact, base_fit, name, noise, predictor,
                                    progress, len(steps), diagnose_options)
                 n_evals += dx.n_evaluations
-                n_fits += dx.n_evaluations - dx.n_diagnostic_evaluations
+                n_fits += dx.n_fit_evaluations
                 search.record(dx, current, len(steps) - 1)
                 steps[-1] = replace(steps[-1], diagnosis=dx)
                 continue
@@ -498,7 +498,7 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
         dx = _diagnose_set(search, current, measurements, cands, contact, base_fit, name, noise, predictor, progress,
                            len(steps), diagnose_options)
         n_evals += dx.n_evaluations
-        n_fits += dx.n_evaluations - dx.n_diagnostic_evaluations
+        n_fits += dx.n_fit_evaluations
         search.record(dx, current, len(steps) - 1)
         steps[-1] = replace(steps[-1], diagnosis=dx)
     if current and not explored and not search.get(current).plausible:
