@@ -298,6 +298,44 @@ def test_one_table_per_call_and_reuse_while_only_the_contact_changes():
         assert np.allclose(mu, fresh, atol=1e-3)
 
 
+def test_a_fit_moving_two_engine_parameters_finds_its_earlier_tables_again():
+    # a finite-difference Jacobian evaluates the engine at the point (A), moves one engine parameter (B), then moves
+    # the heating strength at the point: A's engine again, whose table is still at hand (three kept besides the
+    # current one), and gives exactly what it gave; four other engines in a row push A's table out
+    from persson.slip.heating import _KEEP_OLDER
+
+    def closed(scale):
+        return ClosedForm(lambda v, p, T: scale * (0.8 + 0.1 * np.log10(v)) * (1 - 0.004 * (T - T0)))
+
+    a, others = closed(1.0), [closed(1.0 + 0.01 * k) for k in range(1, _KEEP_OLDER + 2)]
+    c = ps.Contact(L, W, K)
+    s = np.geomspace(0.01, 1.0, 20)
+    rows = dict(slip=s, speed=3.0, temperature=T0, pressure=SIGMA0)
+    cool, hot = PatchHeating(rubber_effusivity=E_R), PatchHeating(rubber_effusivity=E_R, counter_effusivity=300.0)
+    cache = {}
+    first = patch_friction(a, cool, c, tables=cache, **rows)
+    patch_friction(others[0], cool, c, tables=cache, **rows)
+    n = len(a.calls)
+    again = patch_friction(a, cool, c, tables=cache, **rows)
+    assert again.engine_calls == 0 and len(a.calls) == n
+    np.testing.assert_array_equal(again.mu, first.mu)
+    # a hotter patch on A's recalled table: the missing nodes only, and the answer of a fresh table
+    hotter = patch_friction(a, hot, c, tables=cache, **rows)
+    fresh = patch_friction(a, hot, c, tables={}, **rows)
+    assert 0 < hotter.engine_calls < fresh.engine_calls
+    np.testing.assert_allclose(hotter.mu, fresh.mu, rtol=1e-9)
+    assert np.all(hotter.mu < first.mu)  # heating lowers this friction
+    # A's table and every other one kept: none built again; one engine more and A's table is the oldest, gone
+    for other in others[:_KEEP_OLDER]:
+        patch_friction(other, cool, c, tables=cache, **rows)
+    assert len(cache["older"]) == _KEEP_OLDER
+    n = len(a.calls)
+    assert patch_friction(a, cool, c, tables=cache, **rows).engine_calls == 0 and len(a.calls) == n
+    for other in [others[-1]] + others[:_KEEP_OLDER]:  # four other engines in a row, each a new table
+        assert patch_friction(other, cool, c, tables=cache, **rows).engine_calls > 0
+    assert len(cache["older"]) == _KEEP_OLDER
+    assert patch_friction(a, cool, c, tables=cache, **rows).engine_calls > 0
+
 def test_a_kept_table_gives_the_notes_of_the_nodes_a_solution_uses_not_of_its_history():
     """A table that a hotter patch has grown keeps its hot nodes; a cooler solution read from it must carry the
     notes and the convergence of the nodes it interpolates only, as a fresh table would, not those the hot nodes

@@ -275,10 +275,13 @@ def patch_friction(model, heating: PatchHeating, contact, slip, speed, temperatu
         ``c``, ``v_ref`` or ``v_ref_temperature``, so the table keeps them apart (a fit of the adhesion with patch
         heating builds one table; a new one only when the friction at either value would pass 3 or fall below
         1e-3, where the engine's notes depend on its level; where the split cannot be checked, on a wet road or
-        with ``c = 0``, for another ``tau_f0`` alone). It holds references to the model it was built with, so identities
-        stay valid while it lives. A solution's notes, warnings and convergence are those of the engine calls
-        that evaluated the table nodes it interpolates, so a table grown by a hotter patch does not pass its hot
-        nodes' notes to a cooler solution.
+        with ``c = 0``, for another ``tau_f0`` alone). It holds references to the model it was built with, so
+        identities stay valid while it lives. Besides the current table the cache keeps the three built before it
+        (under ``"older"``, the most recent first), each served again when its engine comes back: a fit's finite
+        differences move one engine parameter, then one the table does not depend on (the counter-surface
+        effusivity), whose engine is the point's own. A solution's notes, warnings and convergence are those of the
+        engine calls that evaluated the table nodes it interpolates, so a table grown by a hotter patch does not
+        pass its hot nodes' notes to a cooler solution.
 
     Returns
     -------
@@ -364,9 +367,7 @@ def patch_friction(model, heating: PatchHeating, contact, slip, speed, temperatu
     ekey = engine_key(model) if scale is None else ("adhesion scaled", engine_key(_with_tau_f0(model, 1.0)))
     skey = None if scale is None else ("adhesion separable", engine_key(_with_adhesion(model, _ANY_ADHESION)))
     engine = model.without("patch_heating") if "patch_heating" in getattr(model, "effect_names", ()) else model
-    kept = tables is not None and tables.get("key") == cache_key and (
-        tables.get("engine") == ekey or (skey is not None and tables.get("separable") == skey
-                                         and tables["value"].separable))
+    kept = tables is not None and (_serves(tables, cache_key, ekey, skey) or _recall(tables, cache_key, ekey, skey))
     if kept and (scale is None or tables["value"].rescale(adhesion, engine)):
         tab = tables["value"]
         tables["engine"] = ekey  # what the table's tau_f0-only split now holds
@@ -388,8 +389,13 @@ def patch_friction(model, heating: PatchHeating, contact, slip, speed, temperatu
                 same = solver is not None and tables.get("solver") == solver
                 tab.B[:] = tables["value"].B if reach is None or same else np.minimum(tables["value"].B, reach)
                 tab._grow(np.ones(keys.shape[0], dtype=bool))
+            older = tables.pop(_OLDER, [])
+            if "value" in tables:
+                older.insert(0, dict(tables))
+                del older[_KEEP_OLDER:]
             tables.clear()
             tables.update(engine=ekey, separable=skey, key=cache_key, value=tab, model=model, solver=solver)
+            tables[_OLDER] = older
     xi = np.ascontiguousarray(contact._xi)
     gg = np.ascontiguousarray(contact._g)
     rows = PatchRows(sweep=sweep.astype(np.int64), log_speed=np.log(vs), stick_slope=a, heat_factor=lam)
@@ -472,6 +478,41 @@ def _with_adhesion(model, values: dict):
 
     return model.replace(effects=tuple(dataclasses.replace(e, **values) if getattr(e, "name", "") == "adhesion"
                                        else e for e in model.effects))
+
+
+#: Tables kept besides the current one in a ``tables`` cache of :func:`patch_friction` (the most recent first).
+#: A finite-difference Jacobian of a fit that varies two parameters the engine depends on (e.g. a strain
+#: softening's two factors beside the patch heating) evaluates, after the column that moved the second one, a
+#: column that moves a parameter the table does not depend on (the counter-surface effusivity, the adhesion):
+#: that column's engine is the one of the column before last, whose table is then still at hand.
+_KEEP_OLDER = 3
+_OLDER = "older"
+
+
+def _serves(tables: dict, cache_key, ekey, skey) -> bool:
+    """Whether the current table of the cache ``tables`` serves the rows ``cache_key`` with the engine ``ekey``
+    (or, for a table that keeps the adhesion's factors apart, any adhesion: ``skey``)."""
+    return tables.get("key") == cache_key and (
+        tables.get("engine") == ekey or (skey is not None and tables.get("separable") == skey
+                                         and tables["value"].separable))
+
+
+def _recall(tables: dict, cache_key, ekey, skey) -> bool:
+    """Make an earlier table of the cache that serves (:func:`_serves`) the current one again, the current one kept
+    among the earlier ones; False when none serves. The values at a table's nodes do not depend on which other
+    nodes it holds, so a recalled table gives what a new one would: to about 1e-9, the level at which the engine's
+    value at a node depends on the other points of the call that evaluated it (through the temperature of its
+    modulus table, the median of the call's)."""
+    older = tables.get(_OLDER) or []
+    for i, entry in enumerate(older):
+        if _serves(entry, cache_key, ekey, skey):
+            rest = older[:i] + older[i + 1:]
+            current = {k: v for k, v in tables.items() if k != _OLDER}
+            tables.clear()
+            tables.update(entry)
+            tables[_OLDER] = ([current] if "value" in current else []) + rest
+            return True
+    return False
 
 
 def solver_key(model):

@@ -172,28 +172,32 @@ class _Tables:
                 self.fill_of[c] = _widened(self.fill_of[c], self.blocks[c].shape[2])
                 for part in self.parts or ():
                     part[c] = _widened(part[c], self.blocks[c].shape[2])
-            for i in grow:
-                k = np.arange(self.nus[c][i], n_new[i])
-                T = self.T_of(c, k * self.hy)
-                G, TT = np.meshgrid(self.gnodes, T, indexing="ij")
-                V_.append(np.full(G.size, vv[i]))
-                P_.append(G.ravel() * self.sig0[c])
-                T_.append(TT.ravel())
-                where.append((c, i, int(self.nus[c][i]), int(n_new[i])))
+            # the new nodes, speed node by speed node (in ``grow``), each an (n_g, new temperatures) block
+            m = (n_new - self.nus[c])[grow]
+            size = ng * m
+            i_of = np.repeat(grow, size)
+            r = np.arange(i_of.size) - np.repeat(np.cumsum(size) - size, size)
+            m_of = np.repeat(m, size)
+            g_of = r // m_of
+            k_of = self.nus[c][i_of] + r % m_of
+            V_.append(vv[i_of])
+            P_.append(self.gnodes[g_of] * self.sig0[c])
+            T_.append(self.T_of(c, k_of * self.hy))
+            where.append((c, i_of, g_of, k_of))
             self.nus[c] = n_new
         if not where:
             return
         mu, parts, (t_lo, t_hi), call = self._call(np.concatenate(V_), np.concatenate(T_), np.concatenate(P_))
         k = 0
-        for c, i, n0, n1 in where:
-            m = ng * (n1 - n0)
-            self.blocks[c][i, :, n0:n1] = mu[k:k + m].reshape(ng, n1 - n0)
-            self.t_lo[c][i, :, n0:n1] = t_lo[k:k + m].reshape(ng, n1 - n0)
-            self.t_hi[c][i, :, n0:n1] = t_hi[k:k + m].reshape(ng, n1 - n0)
-            self.fill_of[c][i, :, n0:n1] = call
+        for c, i_of, g_of, k_of in where:
+            at = slice(k, k + i_of.size)
+            self.blocks[c][i_of, g_of, k_of] = mu[at]
+            self.t_lo[c][i_of, g_of, k_of] = t_lo[at]
+            self.t_hi[c][i_of, g_of, k_of] = t_hi[at]
+            self.fill_of[c][i_of, g_of, k_of] = call
             for part, values in zip(self.parts or (), parts or ()):
-                part[c][i, :, n0:n1] = values[k:k + m].reshape(ng, n1 - n0)
-            k += m
+                part[c][i_of, g_of, k_of] = values[at]
+            k += i_of.size
         for c in np.flatnonzero(which):
             self.mu_max[c] = max(self.mu_max[c], float(np.max(self.blocks[c])))
         self._layout()
