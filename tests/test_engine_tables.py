@@ -98,6 +98,25 @@ def test_the_abel_sums_of_the_march_integrate_linear_shear_exactly(edge):
         assert known + own * shear[k] == pytest.approx(exact, rel=1e-12, abs=1e-14)
 
 
+@pytest.mark.parametrize("n_temperature, mg", [((1, 2, 3, 5), 4), ((6, 4, 7, 9), 3), ((4, 4, 4, 4), 1)])
+def test_the_stick_limit_is_the_lattice_interpolation_at_T0_to_the_last_bit(n_temperature, mg):
+    """At T0 (lattice coordinate 0) the temperature weights are exactly (1, 0, 0, 0): the stick limit read off the
+    T0 slice is the full interpolation there, bit for bit, for short temperature tables (1-3 nodes) as for long
+    ones and for any pressure stencil."""
+    rng = np.random.default_rng(7)
+    n_g = 6
+    n_temperature = np.array(n_temperature, dtype=np.int64)
+    value_offset = np.concatenate([[0], np.cumsum(n_g * n_temperature)]).astype(np.int64)
+    values = rng.uniform(0.2, 1.5, value_offset[-1])
+    for trial in range(20):
+        wv = rng.normal(0.25, 0.4, 4)
+        wg = rng.normal(0.25, 0.4, 4)
+        ig = int(rng.integers(0, n_g - mg + 1))
+        fast = hk._mu_T0(0, wv, 4, ig, wg, mg, values, value_offset, n_temperature)
+        full = hk._mu_at(0, wv, 4, ig, wg, mg, 0.0, values, value_offset, n_temperature, np.empty(4))
+        assert fast == full
+
+
 def test_a_temperature_table_halved_in_step_is_exact_for_a_quadratic():
     """The tables' feedback term solves again with every temperature table at half its step; the new midpoints lie
     on the quadratic through the neighbouring nodes, so a quadratic table (and a linear one) is halved exactly."""

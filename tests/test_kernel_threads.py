@@ -79,3 +79,62 @@ def _child_threaded():
     out = np.zeros(6)
     jit.threaded(lambda *, out, first, stride: out.__setitem__(slice(first, None, stride), 1.0), 6, out=out)
     return float(out.sum())
+
+
+@pytest.mark.skipif(__import__("numba").config.DISABLE_JIT, reason="counts references of compiled code only")
+def test_a_borrowed_view_reads_and_writes_the_callers_arrays_in_nested_tuples_and_strided_layouts():
+    """:func:`persson.engine.borrow.borrowed` gives a kernel its arguments' arrays without their reference counts
+    (no meminfo, which numba's counting skips): the same data, shapes and strides (writes land in the caller's
+    arrays), scalars and nesting kept."""
+    from collections import namedtuple
+
+    from numba import njit
+
+    from persson.engine.borrow import borrowed
+
+    Pair = namedtuple("Pair", ["values", "scale"])
+
+    @njit
+    def axpy(pair, table, out):
+        counted = _has_meminfo(pair.values) and _has_meminfo(table) and _has_meminfo(out)
+        pair, table, out = borrowed((pair, table, out))
+        for i in range(out.shape[0]):
+            for j in range(out.shape[1]):
+                out[i, j] = pair.values[j] * pair.scale + table[i, j]
+        uncounted = not (_has_meminfo(pair.values) or _has_meminfo(table) or _has_meminfo(out))
+        return counted, uncounted, pair.values.strides[0], table.shape[0], table.strides[1]
+
+    values = np.arange(10.0)[::2]                      # a strided view (layout "A")
+    table = np.arange(15.0).reshape(5, 3).T            # a transposed one (strides of 8 and 24 bytes)
+    out = np.zeros((3, 5))
+    counted, uncounted, stride, rows, col_stride = axpy(Pair(values, 2.5), table, out)
+    assert counted and uncounted
+    np.testing.assert_array_equal(out, values * 2.5 + table)
+    assert (stride, rows, col_stride) == (values.strides[0], table.shape[0], table.strides[1])
+
+
+def test_a_borrowed_value_is_the_value_itself_in_the_interpreter():
+    """Called from Python (or in a kernel run with the JIT off) nothing is counted, and nothing changes."""
+    from persson.engine.borrow import borrowed
+
+    pair = (np.arange(3.0), (np.ones(2), 0.5))
+    assert borrowed(pair) is pair
+
+
+def _meminfo_intrinsic():
+    from numba.core import types
+    from numba.extending import intrinsic
+
+    @intrinsic
+    def has_meminfo(typingctx, array):
+        """Whether numba counts the references of ``array`` (its meminfo pointer is not null)."""
+        def codegen(context, builder, signature, args):
+            ary = context.make_array(signature.args[0])(context, builder, value=args[0])
+            return builder.icmp_unsigned("!=", ary.meminfo, ary.meminfo.type(None))
+
+        return types.boolean(array), codegen
+
+    return has_meminfo
+
+
+_has_meminfo = _meminfo_intrinsic()

@@ -56,6 +56,7 @@ import math
 import numpy as np
 from numba import njit
 
+from .borrow import borrowed
 from .kernel_arrays import (AngularShape, AngularTables, ContactLaw, FixedPoint, FlashSpeeds, HeatSource, Nodes,
                             Outputs, QuadratureRule, SpeedFactors, TemperatureTables)
 
@@ -790,6 +791,9 @@ def _friction_all(nodes, rule, speeds, angular, shape, law, coarse, coarse_rule,
     stride : int
         Step between the speeds of this share (the number of shares).
     """
+    (nodes, rule, speeds, angular, shape, law, coarse, coarse_rule, coarser, coarser_rule, out, mu_coarse,
+     mu_coarser) = borrowed((nodes, rule, speeds, angular, shape, law, coarse, coarse_rule, coarser, coarser_rule,
+                             out, mu_coarse, mu_coarser))
     for iv in range(first, speeds.lv10.shape[0], stride):
         _solve_speed(iv, nodes, rule, speeds, angular, shape, law, coarse, coarse_rule, coarser, coarser_rule, out,
                      mu_coarse, mu_coarser)
@@ -854,6 +858,9 @@ def _flash_all(nodes, rule, speeds, angular, shape, law, temperature, heat, iter
     stride : int
         Step between the speeds of this share (the number of shares).
     """
+    (nodes, rule, speeds, angular, shape, law, temperature, heat, iteration, out, T_out, it_out,
+     res_out) = borrowed((nodes, rule, speeds, angular, shape, law, temperature, heat, iteration, out, T_out, it_out,
+                          res_out))
     for iv in range(first, speeds.lv10.shape[0], stride):
         _flash_speed(iv, nodes, rule, speeds, angular, shape, law, temperature, heat, iteration, out, T_out, it_out,
                      res_out)

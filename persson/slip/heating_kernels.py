@@ -21,6 +21,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from ..engine.borrow import borrowed
 from ..engine.jit import threaded
 from .heating_arrays import MarchOutputs
 
@@ -80,6 +81,7 @@ def _march_all(rows, patch, lattice, axis, profiles, out, first, stride):
     stride : int
         Step between the rows of this share (the number of shares).
     """
+    rows, patch, lattice, axis, out = borrowed((rows, patch, lattice, axis, out))
     g_first, g_weights = _pressure_stencils(patch.g, lattice.g_nodes)
     abel_weights = _combined_abel_weights(patch.abel)
     for r in range(first, rows.sweep.size, stride):
@@ -132,7 +134,7 @@ def _march_row(r, rows, patch, lattice, axis, profiles, g_first, g_weights, abel
     mg = min(4, lattice.g_nodes.size)
     y_top = _table_top(lattice.n_temperature, iv, mv, axis.h)
     contracted, n_min = _speed_contracted(lattice, iv, w_speed, mv)
-    _stick_limit(iv, w_speed, mv, g_first, g_weights, mg, lattice, w_temperature, mu_T0)
+    _stick_limit(iv, w_speed, mv, g_first, g_weights, mg, lattice, mu_T0)
     pure = not np.isfinite(a)
     i, t = _stick_edge(mu_T0, g, xi, a, pure)
     if i < 0:  # the whole patch sticks
@@ -270,7 +272,7 @@ def _table_top(n_temperature, iv, mv, h):
 
 
 @njit(cache=True)
-def _stick_limit(iv, w_speed, mv, g_first, g_weights, mg, lattice, w_temperature, mu_T0):
+def _stick_limit(iv, w_speed, mv, g_first, g_weights, mg, lattice, mu_T0):
     """The friction at T0 (the stick limit) at every patch node.
 
     Parameters
@@ -289,16 +291,39 @@ def _stick_limit(iv, w_speed, mv, g_first, g_weights, mg, lattice, w_temperature
         Pressure nodes in a stencil.
     lattice : FrictionLattice
         The friction tables.
-    w_temperature : ndarray (4,)
-        Scratch for the temperature weights.
     mu_T0 : ndarray (N,)
         Filled with the friction at T0.
     """
     # the arrays out of the tuple once, not at every node (numba counts references at every access)
     values, value_offset, n_temperature = lattice.values, lattice.value_offset, lattice.n_temperature
     for j in range(mu_T0.size):
-        mu_T0[j] = _mu_at(iv, w_speed, mv, g_first[j], g_weights[j], mg, 0.0, values, value_offset, n_temperature,
-                          w_temperature)
+        mu_T0[j] = _mu_T0(iv, w_speed, mv, g_first[j], g_weights[j], mg, values, value_offset, n_temperature)
+
+
+@njit(cache=True, inline="always")
+def _mu_T0(iv, wv, mv, ig, wg, mg, values, value_offset, n_temperature):
+    """:func:`_mu_at` on the T0 slice (x = 0), where the temperature weights are exactly (1, 0, 0, 0): the slice's
+    values read directly, which gives the same number (a product by 1 and a sum with 0 are exact), four times
+    faster (the stick limit is evaluated at every patch node of every row).
+
+    Parameters
+    ----------
+    iv, wv, mv, ig, wg, mg, values, value_offset, n_temperature
+        As for :func:`_mu_at`.
+
+    Returns
+    -------
+    float
+    """
+    out = 0.0
+    for a in range(mv):
+        node = iv + a
+        base = value_offset[node] + ig * n_temperature[node]
+        acc_g = 0.0
+        for b in range(mg):
+            acc_g += wg[b] * values[base + b * n_temperature[node]]
+        out += wv[a] * acc_g
+    return out if out > 0.0 else 0.0
 
 
 @njit(cache=True)
