@@ -98,6 +98,22 @@ def test_the_abel_sums_of_the_march_integrate_linear_shear_exactly(edge):
         assert known + own * shear[k] == pytest.approx(exact, rel=1e-12, abs=1e-14)
 
 
+@pytest.mark.parametrize("n", [1, 2, 3, 4, 7])
+def test_the_lattice_weights_reproduce_polynomials_up_to_their_degree(n):
+    """The weights at x on n uniform nodes (the four nearest, fewer on a shorter table) reproduce every polynomial
+    of degree below the stencil's size exactly, across the table and clamped at its ends: the cubic of a four-point
+    stencil, the constant of a one-point one."""
+    w = np.empty(4)
+    m = min(n, 4)
+    for x in np.linspace(-0.5, n - 0.5, 23):
+        k0 = hk._lagrange_uniform(n, x, w)
+        xc = min(max(x, 0.0), n - 1.0)
+        nodes = k0 + np.arange(m)
+        assert 0 <= k0 and k0 + m <= n
+        for degree in range(m):
+            assert np.dot(w[:m], nodes ** degree) == pytest.approx(xc ** degree, rel=1e-13, abs=1e-13)
+
+
 @pytest.mark.parametrize("n_temperature, mg", [((1, 2, 3, 5), 4), ((6, 4, 7, 9), 3), ((4, 4, 4, 4), 1)])
 def test_the_stick_limit_is_the_lattice_interpolation_at_T0_to_the_last_bit(n_temperature, mg):
     """At T0 (lattice coordinate 0) the temperature weights are exactly (1, 0, 0, 0): the stick limit read off the

@@ -154,3 +154,26 @@ def test_an_unconverged_speed_reports_the_residual_of_the_profile_it_returns(mon
     np.testing.assert_allclose(res, np.max(np.abs(g_of_T - T_q), axis=1), rtol=1e-12)
     np.testing.assert_allclose(r.residual, res, rtol=1e-9)
     assert np.all(r.residual >= tol)
+
+
+def test_one_step_of_the_fixed_point_map_is_the_heat_of_every_interval_below_each_node():
+    r"""T_new(q_i) = T0 + source \sum_{k < i} \sum_m w_{k,m} H_{i, a_k + m} R_{a_k + m}: the heat of the intervals
+    below node i, each through its three stencil nodes, summed directly here; and the largest change returned."""
+    rng = np.random.default_rng(3)
+    for nq in (2, 3, 8, 41):
+        H = rng.uniform(0.0, 2.0, (nq, nq))
+        R = rng.uniform(0.1, 1.0, nq)
+        first = np.minimum(np.arange(nq), max(nq - 3, 0)).astype(np.int64)
+        weights = rng.uniform(0.0, 1.0, (nq, 3))
+        if nq < 3:     # too few nodes for a three-node stencil: the intervals use the nodes there are
+            weights[:, nq:] = 0.0
+            first[:] = 0
+        T = rng.uniform(10.0, 30.0, nq)
+        T_new = np.empty(nq)
+        res = kernels.heated_temperature(T, 20.0, 0.7, np.pad(H, ((0, 0), (0, 3))),
+                                         np.pad(R, (0, 3)), first, weights, T_new)
+        expected = np.array([20.0 + 0.7 * sum(weights[k, m] * H[i, first[k] + m] * R[first[k] + m]
+                                              for k in range(i) for m in range(3) if first[k] + m < nq)
+                             for i in range(nq)])
+        np.testing.assert_allclose(T_new, expected, rtol=1e-13, atol=1e-12)
+        np.testing.assert_allclose(res, np.max(np.abs(expected - T)), rtol=1e-13)

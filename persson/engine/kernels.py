@@ -1128,13 +1128,28 @@ def heated_temperature(T, T0, source, H, R, first, weights, T_new):
     """
     nq = T.shape[0]
     res = 0.0
+    # the interval weights times R once (not at every node), and two partial sums (one waits on every addition)
+    c = np.empty((nq, 3))
+    for k in range(nq - 1):     # the intervals (row nq - 1 of ``first`` and ``weights`` is not one)
+        a = first[k]
+        c[k, 0] = weights[k, 0] * R[a]
+        c[k, 1] = weights[k, 1] * R[a + 1]
+        c[k, 2] = weights[k, 2] * R[a + 2]
     for i in range(nq):
-        acc = 0.0
-        for k in range(i):
+        acc0 = 0.0
+        acc1 = 0.0
+        Hi = H[i]
+        k = 0
+        while k + 1 < i:
             a = first[k]
-            acc += (weights[k, 0] * H[i, a] * R[a] + weights[k, 1] * H[i, a + 1] * R[a + 1]
-                    + weights[k, 2] * H[i, a + 2] * R[a + 2])
-        T_new[i] = T0 + source * acc
+            b = first[k + 1]
+            acc0 += c[k, 0] * Hi[a] + c[k, 1] * Hi[a + 1] + c[k, 2] * Hi[a + 2]
+            acc1 += c[k + 1, 0] * Hi[b] + c[k + 1, 1] * Hi[b + 1] + c[k + 1, 2] * Hi[b + 2]
+            k += 2
+        if k < i:
+            a = first[k]
+            acc0 += c[k, 0] * Hi[a] + c[k, 1] * Hi[a + 1] + c[k, 2] * Hi[a + 2]
+        T_new[i] = T0 + source * (acc0 + acc1)
         d = abs(T_new[i] - T[i])
         if d > res:
             res = d
