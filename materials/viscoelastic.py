@@ -154,6 +154,12 @@ class Prony:
             # any shift law (WLF+Arrhenius, Arrhenius, a tabulated a_T) or a mapping of its constants
             object.__setattr__(self, "wlf", as_shift_law(self.wlf, name="Prony.wlf"))
 
+    @property
+    def T_ref(self) -> float | None:
+        """Reference temperature of ``tau_i``, deg C: the shift law's (None without one, when the material does not
+        depend on temperature)."""
+        return None if self.wlf is None else float(self.wlf.T_ref)
+
     def log10_aT(self, T):
         """log10 of the WLF shift factor (0 when no WLF is set or T is None)."""
         if self.wlf is None or T is None:

@@ -290,7 +290,9 @@ def test_a_steep_temperature_front_gets_nodes_in_reduced_frequency(monkeypatch):
     """A narrow loss peak at -20 C, 1 m/s: the contact heats by ~100 K within a decade of q, and the WLF shift
     (0.1-0.2 decade per K there) sweeps the reduced frequency q v a_T(T_q) across many decades per interval of
     the uniform grid. Nodes placed where the reduced frequency moves fast resolve it; a uniform grid of the same
-    density is 3x off, and the default agrees with a uniform grid 24x finer whose own convergence is checked."""
+    density is off by tens of percent (1.5x here; 2.3x when the modulus table sat at the test's -20 C rather than
+    the compound's T_ref: an unresolved front's error depends on where the table's nodes fall across it) and its
+    estimate says so, and the default agrees with a uniform grid 24x finer whose own convergence is checked."""
     from persson.engine import solver
 
     s = surfaces.SelfAffine(hurst=0.8, q0=1e3, q1=1e5, hrms=1e-3)
@@ -304,7 +306,7 @@ def test_a_steep_temperature_front_gets_nodes_in_reduced_frequency(monkeypatch):
     assert abs(fine.mu_hysteresis / finer.mu_hysteresis - 1) < 2e-4
     T = finer.temperature_q
     assert T.max() - T.min() > 80.0
-    assert abs(uniform.mu_hysteresis / fine.mu_hysteresis - 1) > 0.5
+    assert abs(uniform.mu_hysteresis / fine.mu_hysteresis - 1) > 0.3
     assert uniform.error_estimate > 1e-2  # and it says so
     assert abs(no_refine.mu_hysteresis / fine.mu_hysteresis - 1) < 3e-3
     assert abs(default.mu_hysteresis / fine.mu_hysteresis - 1) < 1e-3

@@ -295,6 +295,75 @@ def test_per_speed_temperature_without_shift_law_is_evaluated_per_temperature():
     _per_speed_vs_separate(persson.Model(s, Heating()), rtol=1e-12)
 
 
+def _master_curve():
+    """A measured master curve (the shipped example case's compound)."""
+    import validation
+
+    return validation.load_case("example").model.material
+
+
+@pytest.mark.parametrize("material", ["prony", "master curve", "strain softened"])
+@pytest.mark.parametrize("flash", [False, True])
+@pytest.mark.filterwarnings("ignore:friction coefficient")  # the hot, slow rows: the compound's rubbery plateau
+def test_a_speeds_friction_does_not_depend_on_the_other_conditions_of_its_call(material, flash):
+    """A master-curve material is tabulated at its own T_ref, and every angular table reaches down to the same
+    frequency: the friction at a condition is the same alone and in a call with colder, hotter and slower, faster
+    or other-pressure rows (to rounding; with the call's median temperature as the table temperature and the
+    table's bottom at each call's lowest frequency, these rows changed it by 2e-9 to 3e-8)."""
+    base = {"prony": lambda: materials.Prony(wlf=materials.WLF(8.86, 101.6, 20.0), **PRONY),
+            "master curve": _master_curve,
+            "strain softened": lambda: materials.StrainSoftened(_master_curve(), storage_factor=0.6,
+                                                                loss_factor=0.8)}[material]()
+    effects = [persson.effects.FlashTemperature()] if flash else []
+    model = persson.Model(surfaces.example_road(), base, effects=effects)
+    v = np.array([1e-3, 1e-2, 0.1, 1.0])
+    T = np.array([20.0, 20.0, 45.0, 45.0])
+    p = np.full(4, 3e5)
+    alone = np.array([model.friction(v[i], temperature=T[i], pressure=p[i]).mu for i in range(4)])
+    for ve, Te, pe in ((np.array([1e-3, 0.1, 1.0, 3.0]), np.full(4, -10.0), p),          # colder
+                       (np.array([1e-7, 1e-6, 1e-5, 1e-4]), np.full(4, 80.0), p),        # hotter and slower
+                       (np.array([10.0, 20.0, 30.0, 30.0]), np.full(4, 20.0), p),        # faster
+                       (v, T, np.full(4, 6e5))):                                         # another pressure
+        together = model.friction(np.concatenate([v, ve]), temperature=np.concatenate([T, Te]),
+                                  pressure=np.concatenate([p, pe])).mu[:4]
+        np.testing.assert_allclose(together, alone, rtol=1e-13, atol=0)
+
+
+def test_the_table_temperature_is_the_master_curves_reference_whatever_the_call():
+    """:func:`persson.engine.solver.table_temperature`: T_ref for a material with a shift law and a reference
+    temperature; the call's temperature (its median when they differ) for one without T_ref."""
+    from persson.engine.solver import table_temperature
+
+    prony = materials.Prony(wlf=materials.WLF(8.86, 101.6, 35.0), **PRONY)
+    assert prony.T_ref == 35.0
+    assert table_temperature(prony, np.array([0.0, 60.0, 80.0])) == 35.0
+    assert table_temperature(_master_curve(), np.array([-20.0])) == _master_curve().T_ref
+
+    class NoReference:
+        def log10_aT(self, T):
+            return -0.1 * (np.asarray(T, dtype=float) - 20.0)
+
+    assert table_temperature(NoReference(), np.array([0.0, 10.0, 50.0])) == 10.0
+    assert table_temperature(NoReference(), np.array([7.0, 7.0])) == 7.0
+    still = materials.Prony(**PRONY)     # no shift law: no T_ref, temperature-independent
+    assert still.T_ref is None and table_temperature(still, np.array([5.0, 9.0])) == 7.0
+
+
+def test_every_angular_table_reaches_down_to_the_same_frequency():
+    """Whatever the lowest frequency a call looks up, the table starts at ANGULAR_LOW (lower only where a call
+    looks up within the pad of it), so a value at a given frequency comes from the same table nodes."""
+    from persson.engine.tabulate import ANGULAR_LOW, ANGULAR_PAD_DECADES, angular_table
+
+    m = materials.Prony(wlf=materials.WLF(8.86, 101.6, 20.0), **PRONY)
+    a = angular_table(m, 20.0, -3.0, 8.0, 40)
+    b = angular_table(m, 20.0, 2.0, 9.0, 40)
+    assert a.lw0 == b.lw0 == ANGULAR_LOW
+    n = a.ln_are.size - 3
+    np.testing.assert_array_equal(a.ln_are[:n], b.ln_are[:n])
+    deep = angular_table(m, 20.0, ANGULAR_LOW, 8.0, 40)
+    assert deep.lw0 <= ANGULAR_LOW - ANGULAR_PAD_DECADES
+
+
 @pytest.mark.parametrize("kwargs, word", [
     (dict(speed=[1.0, 2.0], temperature=[20.0]), "temperature"),
     (dict(speed=[1.0, 2.0], pressure=[3e5, np.nan]), "pressure"),

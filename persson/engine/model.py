@@ -163,7 +163,10 @@ class Model:
         -----
         Speeds with different temperatures share one modulus table through time-temperature superposition,
         E(omega, T) = b_T E(omega a_T, T_table), with ``log10_aT`` (and ``log10_bT`` when present) of the
-        material; a material without ``log10_aT`` is evaluated at each distinct temperature separately.
+        material; a material without ``log10_aT`` is evaluated at each distinct temperature separately. A
+        material with a reference temperature ``T_ref`` (a master curve) is tabulated there whatever the call's
+        temperatures (:func:`persson.engine.solver.table_temperature`), so that each speed's result is the same,
+        to rounding, whatever other speeds, temperatures and pressures share its call.
         An anisotropic surface is solved with Persson's angular integrals over C(q, phi) and
         Im E(q v cos(phi - theta)) (:mod:`persson.engine.anisotropic`).
         """

@@ -33,7 +33,7 @@ from .quadrature import (cumulative_moment, moments_at_nodes, psd_breakpoints, p
 from .tabulate import ShiftTable, angular_table, relative_shifts, shift_table
 
 __all__ = ["Solved", "Prepared", "solve", "prepare", "run_plain", "run_flash", "run_temperature",
-           "temperature_options", "reuse_solutions", "friction_only"]
+           "temperature_options", "reuse_solutions", "friction_only", "table_temperature"]
 
 #: Speeds below which a call runs on one thread (handing shares to threads costs more than it saves). The flash
 #: solver costs milliseconds per speed, so it goes to threads from two speeds.
@@ -457,11 +457,14 @@ def prepare(surface, material, cond: Conditions, grid: GridSettings, nu: float, 
         raise InputError("pressure: the pressure on the asperity contact must stay > 0 Pa after the effects")
     scale = np.ascontiguousarray(1.0 / ((1.0 - nu * nu) * pressure))
     # one modulus table at T_table; other temperatures are shifted onto it
-    T_table = float(T0[0]) if np.all(T0 == T0[0]) else float(np.median(T0))
+    T_table = table_temperature(material, T0)
     s_v, b_v = relative_shifts(material, T0, T_table)
     if flash:
-        stab = shift_table(material, T_table, float(T0.min()), float(T0.max()) + grid.max_temperature_rise,
-                           grid.temperature_step)
+        # nodes on the lattice k * step, whatever the call's temperatures: a speed's shifts then do not depend on
+        # the other speeds of the call
+        step = grid.temperature_step
+        stab = shift_table(material, T_table, step * math.floor(float(T0.min()) / step),
+                           float(T0.max()) + grid.max_temperature_rise, step)
         s_lo, s_hi = float(stab.shift.min()), float(stab.shift.max())
     else:
         s_lo, s_hi = float(s_v.min()), float(s_v.max())
@@ -485,6 +488,37 @@ def prepare(surface, material, cond: Conditions, grid: GridSettings, nu: float, 
         q = np.exp(np.append((x[:-1, None] + np.diff(x)[:, None] * t).ravel(), x[-1]))
     return _assemble(surface, q, v, T0, pressure, scale, table, stab, s_v, b_v, modulus,
                      contact_law(gamma, correction), shape)
+
+
+def table_temperature(material, T) -> float:
+    r"""The temperature of the modulus table of a call at the temperatures ``T`` (deg C).
+
+    A material whose modulus is a master curve, :math:`E(\omega, T) = b_T E(\omega a_T, T_{ref})` (it has
+    ``log10_aT`` and a reference temperature ``T_ref``: :class:`materials.MasterCurve`, :class:`materials.Prony`
+    with a shift law, their tabulated and strain-softened forms), is tabulated at ``T_ref`` whatever the call's
+    temperatures: the table is then the same in every call, exact at any temperature (the law is the material's
+    own), and a speed's friction does not depend on the other speeds and temperatures of its call. Otherwise the
+    table is at the call's temperature, or at the median of its temperatures when they differ (a material with
+    ``log10_aT`` and no ``T_ref`` is shifted onto it by time-temperature superposition; one without
+    ``log10_aT`` is solved at each temperature separately).
+
+    Parameters
+    ----------
+    material : object
+        The material of the call.
+    T : ndarray
+        The temperatures of the call's speeds, deg C.
+
+    Returns
+    -------
+    float
+        The table temperature, deg C.
+    """
+    T = np.asarray(T, dtype=float)
+    T_ref = getattr(material, "T_ref", None) if hasattr(material, "log10_aT") else None
+    if isinstance(T_ref, (int, float, np.floating)) and not isinstance(T_ref, bool) and math.isfinite(T_ref):
+        return float(T_ref)
+    return float(T.flat[0]) if np.all(T == T.flat[0]) else float(np.median(T))
 
 
 def _assemble(surface, q, v, T0, pressure, scale, table, stab, s_v, b_v, modulus, law, shape=None) -> Prepared:

@@ -1,7 +1,9 @@
 """Modulus and temperature-shift tables the kernels interpolate.
 
 The complex modulus is evaluated once per call on a log-uniform grid of angular frequency at the table
-temperature T0, as ln E' and ln E''; a temperature T != T0 enters as a shift of log10 omega by
+temperature T0 (a master curve's own T_ref, :func:`persson.engine.solver.table_temperature`), as ln E' and ln E'';
+the grid's nodes are the multiples of its step and it reaches down to :data:`ANGULAR_LOW`, so that a value at a
+frequency is the same in every call. A temperature T != T0 enters as a shift of log10 omega by
 log10 a_T(T) - log10 a_T(T0) (time-temperature superposition, Williams, Landel & Ferry 1955), tabulated
 on a uniform temperature grid, and an optional vertical shift ln b_T(T) (``log10_bT``) multiplies the moduli.
 Materials without ``log10_aT`` are treated as temperature-independent.
@@ -132,6 +134,10 @@ def _relative(material, name: str, T: np.ndarray, T_table: float) -> np.ndarray:
 #: see E at omega cos(phi) < omega, with a weight that falls as 10^{-t} per decade t below (1e-5 at 5 decades,
 #: where the modulus is continued by its value at the table's end).
 ANGULAR_PAD_DECADES = 5.0
+#: log10 omega (rad/s, at the table temperature) down to which every angular table reaches, whatever frequencies
+#: a call looks up (lower where one looks up within ANGULAR_PAD_DECADES of it): the values at a frequency are then
+#: the same in every call (see :func:`angular_table`).
+ANGULAR_LOW = -20.0
 #: The top of an angular table is rounded up to a multiple of 1/_TOP_STEPS decade (see :func:`angular_table`).
 _TOP_STEPS = 2
 
@@ -190,7 +196,10 @@ def angular_table(material, T0: float, log10_omega_min: float, log10_omega_max: 
         return AngularTable(lw0=t.lw0, dlw=t.dlw, ln_are=t.ln_are + 2.0 * math.log(f),
                             ln_aim=t.ln_aim + 2.0 * math.log(g), ln_l=t.ln_l + math.log(g), T0=t.T0,
                             lw_valid=t.lw_valid)
-    lo = math.floor((log10_omega_min - ANGULAR_PAD_DECADES) * per_decade) / per_decade
+    # the bottom at ANGULAR_LOW, or lower where a call needs it: the integrals at a frequency see the modulus down
+    # to the table's end (continued by its value there below it), so a bottom that followed each call's lowest
+    # frequency made every value depend, by ~1e-8, on the other speeds and temperatures of the call
+    lo = math.floor(min(log10_omega_min - ANGULAR_PAD_DECADES, ANGULAR_LOW) * per_decade) / per_decade
     # the top rounded up to a multiple of 1/_TOP_STEPS decade: a table reaches a little further than a call needs,
     # so that the calls of a fit, whose top frequency moves with its parameters (a flash temperature, a
     # microtexture's cut-off), share a few tables (values below the top do not depend on it: the angular integrals

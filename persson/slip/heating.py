@@ -500,9 +500,10 @@ def _serves(tables: dict, cache_key, ekey, skey) -> bool:
 def _recall(tables: dict, cache_key, ekey, skey) -> bool:
     """Make an earlier table of the cache that serves (:func:`_serves`) the current one again, the current one kept
     among the earlier ones; False when none serves. The values at a table's nodes do not depend on which other
-    nodes it holds, so a recalled table gives what a new one would: to about 1e-9, the level at which the engine's
-    value at a node depends on the other points of the call that evaluated it (through the temperature of its
-    modulus table, the median of the call's)."""
+    nodes it holds, so a recalled table gives what a new one would: to rounding for a material tabulated at its own
+    reference temperature (a master curve, :func:`persson.engine.solver.table_temperature`), to about 1e-9 for one
+    tabulated at the median temperature of each call, the level at which the engine's value at a node then depends
+    on the other points of the call that evaluated it."""
     older = tables.get(_OLDER) or []
     for i, entry in enumerate(older):
         if _serves(entry, cache_key, ekey, skey):
