@@ -497,7 +497,8 @@ def table_temperature(material, T) -> float:
     ``log10_aT`` and a reference temperature ``T_ref``: :class:`materials.MasterCurve`, :class:`materials.Prony`
     with a shift law, their tabulated and strain-softened forms), is tabulated at ``T_ref`` whatever the call's
     temperatures: the table is then the same in every call, exact at any temperature (the law is the material's
-    own), and a speed's friction does not depend on the other speeds and temperatures of its call. Otherwise the
+    own: time-temperature superposition, M. L. Williams, R. F. Landel, J. D. Ferry, J. Am. Chem. Soc. 77, 3701
+    (1955)), and a speed's friction does not depend on the other speeds and temperatures of its call. Otherwise the
     table is at the call's temperature, or at the median of its temperatures when they differ (a material with
     ``log10_aT`` and no ``T_ref`` is shifted onto it by time-temperature superposition; one without
     ``log10_aT`` is solved at each temperature separately).
