@@ -605,6 +605,7 @@ NOTE_KINDS = (
     ("model_failed", ("the model failed",)),
     ("misfit_in_errors", ("Birge ratio",)),
     ("other_optimum", ("another local optimum",)),
+    ("refined_search", ("made again with the engine's quadrature-error estimate",)),
     ("released_bounds", ("parameters on their bounds released",)),
     ("no_signature", ("changes no prediction",)),
     ("extrapolated_psd", ("PSD tail extrapolated", "extrapolated past")),

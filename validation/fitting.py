@@ -349,6 +349,12 @@ class Fitter:
     Every prediction is cached by ``u`` (rounded to 1e-12), so revisiting a point is free, and the best point
     seen is remembered, as are the warnings of each evaluation (:meth:`notes_at`; all of them in ``notes``).
 
+    The trial points of the search are solved without the engine's quadrature-error estimate
+    (:func:`persson.solver.quadrature_estimate`; about half of a solve's work), the reported point with it
+    (:meth:`settle`): both give the same mu to the last bit wherever the estimate refines no speed, and where
+    it would refine the reported point, the search is made again with the estimate at every trial point
+    (:func:`validation.refit.global_fit`). ``fast = False`` solves every point with the estimate.
+
     Parameters
     ----------
     predictor : validation.predict.Predictor
@@ -381,6 +387,7 @@ class Fitter:
         self._notes_at: dict = {}
         self._penalty = (np.abs(self.y) + 10.0) * self.w * 10.0
         self.last_hessian = None
+        self.fast = True
 
     def mu(self, u):
         """Predicted mu at ``u`` (None when the model failed there)."""
@@ -410,6 +417,51 @@ class Fitter:
             if c < self.best[0]:
                 self.best = (c, np.array(u))
         return mu
+
+    def settle(self, u):
+        """The prediction at ``u`` solved with the engine's quadrature-error estimate and the refinement it drives,
+        as a reported point must be (the search's trial points skip it, see the class docstring), and whether it is
+        the search's own prediction there: the same to the last bit unless the estimate refined a speed. The
+        warnings of this solve become those at ``u`` (:meth:`notes_at`). Not counted against the budget (it belongs
+        to the result, not to the search).
+
+        Returns
+        -------
+        (mu, same) : (ndarray or None, bool)
+            None where the model fails; ``same`` False then too.
+        """
+        u = np.clip(np.asarray(u, dtype=float), 0.0, 1.0)
+        key = tuple(np.round(u, 12))
+        if not self.fast:
+            if key not in self._cache:
+                self.max_evals = max(self.max_evals, self.n_evals + 1)
+            mu = self.mu(u)
+            return mu, mu is not None
+        searched = self._cache.get(key)
+        self.n_evals += 1
+        try:
+            with warnings.catch_warnings(record=True) as caught:
+                warnings.simplefilter("always")
+                mu = self._predict(u, estimate=True)
+            if not np.all(np.isfinite(mu)):
+                raise InputError("non-finite prediction")
+        except Exception as exc:  # noqa: BLE001  (as in mu(): recorded, the point reported as failed)
+            self.errors[f"{type(exc).__name__}: {exc}"] = None
+            return None, False
+        here = tuple(dict.fromkeys(f"{w.category.__name__}: {w.message}" for w in caught))
+        self.notes.update(dict.fromkeys(here))
+        self._notes_at[key] = here
+        return mu, searched is not None and bool(np.array_equal(mu, searched))
+
+    def search_with_estimate(self) -> None:
+        """Solve every trial point with the quadrature-error estimate from now on (``fast = False``), forgetting
+        the predictions and the best point made without it; the budget starts again from the evaluations spent."""
+        self.fast = False
+        self.max_evals += self.n_evals
+        self._cache.clear()
+        self._notes_at.clear()
+        self.best = (math.inf, None)
+        self.last_hessian = None
 
     def adopt(self, other: "Fitter", prefix) -> None:
         """Take over the predictions ``other`` has made, ``other``'s space being this one's with the leading
@@ -542,11 +594,13 @@ class Fitter:
         """The contact with the ``contact.*`` parameters set from ``u`` (the fitter's contact when none)."""
         return self.space.apply_contact(self.contact, u)
 
-    def _predict(self, u):
+    def _predict(self, u, estimate: bool = False):
+        from persson.solver import quadrature_estimate
+
         model = self.space.apply(self.model, u)
-        if self.space.has_contact:
-            return self.predictor.predict(model, contact=self.space.apply_contact(self.contact, u)).mu
-        return self.predictor.predict(model).mu
+        contact = self.space.apply_contact(self.contact, u) if self.space.has_contact else None
+        with quadrature_estimate(estimate or not self.fast):
+            return self.predictor.predict(model, contact=contact).mu
 
 
 def halton(k: int, n: int, seed: int = 0) -> np.ndarray:

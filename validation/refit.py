@@ -5,8 +5,10 @@ r"""Global, joint refits from several starts, and the uncertainty and plausibili
    evaluated; bounded least squares (:meth:`validation.fitting.Fitter.local`) runs from the given values and from
    the best distinct design points (for one parameter, from the design points that are local minima along it:
    the screen shows the basins). A local fit that enters the basin of an optimum found before stops there. The
-   best local optimum is the fit; the other optima within :math:`\Delta\chi^2 \le 1` (noise units) are "good"
-   and their spread widens the intervals below.
+   trial points are solved without the engine's quadrature-error estimate, the best one again with it
+   (:meth:`validation.fitting.Fitter.settle`): the same mu unless the estimate refines a speed there, and then the
+   whole search is made again with the estimate (noted). The best local optimum is the fit; the other optima
+   within :math:`\Delta\chi^2 \le 1` (noise units) are "good" and their spread widens the intervals below.
 2. **Standard errors.** Gauss-Newton covariance of the parameters at the optimum,
    :math:`C = s^2 (J^T W^2 J)^{-1}` with :math:`J` the central-difference Jacobian of the prediction and
    :math:`W = \mathrm{diag}(1/\sigma_i)` from ``mu_std`` (:math:`s^2 = 1`) or :math:`W = I` with
@@ -53,6 +55,9 @@ __all__ = ["BUDGET_NOTE", "Estimate", "GlobalFit", "ParameterCovariance", "globa
 #: The note of a fit that stopped at its budget of model evaluations: its optimum may lie further on (a set search
 #: continues such fits where they could change the answer, :meth:`validation.select.SetSearch.resume`).
 BUDGET_NOTE = "the fit stopped at its budget of model evaluations (the best point found is used)"
+#: A search whose best point needed the engine's q refinement, made again with the quadrature-error estimate.
+ESTIMATE_NOTE = ("the search was made again with the engine's quadrature-error estimate at every trial point: its best "
+                 "point needed a finer q grid than the trial points were solved on")
 
 #: Distance in u (every coordinate) within which two starts of a global fit count as one: the later is not fitted.
 DISTINCT = 0.1
@@ -423,9 +428,17 @@ def global_fit(fitter: Fitter, u_given, *, seed: int = 0, n_screen: int | None =
     if fitter.errors:
         notes["the model failed at some trial parameters (avoided by the fit): "
               + "; ".join(list(fitter.errors)[:2])] = None
+    # the reported point solved with the quadrature-error estimate, which the trial points skip: where it refines a
+    # speed there, the search ran on too coarse a grid near the optimum and is made again with the estimate
+    settle = getattr(fitter, "settle", None)  # a fitter-like object without it solves every point one way
+    mu_best, same = settle(u_best) if settle is not None else (fitter.mu(u_best), True)
+    if not same and fitter.fast:
+        fitter.search_with_estimate()
+        again = global_fit(fitter, u_given, seed=seed, n_screen=n_screen, n_local=n_local, extra_starts=extra_starts,
+                           screen_dims=screen_dims)
+        return replace(again, notes=again.notes + (ESTIMATE_NOTE,))
     # the warnings of the fitted model, not those of trial points the search moved away from (a rough tail tried on
     # the way to the optimum says nothing about the model reported)
-    mu_best = fitter.mu(u_best)
     notes.update(dict.fromkeys(fitter.notes_at(u_best)))
     return GlobalFit(u=u_best, chi2=c_best, mu=mu_best, model=fitter.model_at(u_best),
                      contact=fitter.contact_at(u_best), estimates=(), jacobian=np.zeros((fitter.y.size, 0)),

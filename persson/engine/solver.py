@@ -33,7 +33,7 @@ from .quadrature import (cumulative_moment, moments_at_nodes, psd_breakpoints, p
 from .tabulate import ShiftTable, angular_table, relative_shifts, shift_table
 
 __all__ = ["Solved", "Prepared", "solve", "prepare", "run_plain", "run_flash", "run_temperature",
-           "temperature_options", "reuse_solutions", "friction_only", "table_temperature"]
+           "temperature_options", "reuse_solutions", "friction_only", "quadrature_estimate", "table_temperature"]
 
 #: Speeds below which a call runs on one thread (handing shares to threads costs more than it saves). The flash
 #: solver costs milliseconds per speed, so it goes to threads from two speeds.
@@ -216,6 +216,27 @@ def friction_only(*, share: bool = False):
         _FRICTION_ONLY.reset(token)
 
 
+@contextlib.contextmanager
+def quadrature_estimate(enabled: bool):
+    """Inside ``quadrature_estimate(False)``, :func:`solve` skips the built-in estimate of the q-quadrature error
+    and the refinement it drives: every speed is solved on the base nodes alone (the sub-grids of the plain
+    solve and the two coarse self-consistent solves of the flash temperature, about as much work again as the
+    solve, are left out) and ``error_estimate`` is NaN (not estimated). A speed whose flash temperature did not
+    converge is still solved again on refined nodes, and the nodes a steep temperature front needs are still
+    inserted. Where the full solve refines no speed, mu is the same to the last bit (the estimate only reads the
+    solution); where it would, mu differs from the full solve's by about the estimate.
+
+    For the trial points of a search, whose reported point is solved again with the estimate (the fits of the
+    diagnosis, :meth:`validation.fitting.Fitter.settle`). ``quadrature_estimate(True)`` restores the estimate
+    inside such a context (e.g. for a table built once and reused by full solves). Solutions kept by
+    :func:`reuse_solutions` are keyed by the setting."""
+    token = _ESTIMATE.set(bool(enabled))
+    try:
+        yield
+    finally:
+        _ESTIMATE.reset(token)
+
+
 def wants_contact_geometry() -> bool:
     """False inside :func:`friction_only`."""
     return not _FRICTION_ONLY.get()
@@ -225,6 +246,9 @@ def wants_extrapolated_share() -> bool:
     """False inside :func:`friction_only` unless it was asked to keep the share."""
     return _SHARE.get()
 
+
+#: Set by :func:`quadrature_estimate`.
+_ESTIMATE: contextvars.ContextVar = contextvars.ContextVar("persson_quadrature_estimate", default=True)
 
 #: Set by :func:`friction_only`.
 _FRICTION_ONLY: contextvars.ContextVar = contextvars.ContextVar("persson_friction_only", default=False)
@@ -283,7 +307,7 @@ def _memo_key(surface, material, cond, grid, nu, gamma, thermal, correction, mod
     arrays = tuple(np.ascontiguousarray(np.broadcast_to(np.asarray(a, dtype=float), shape)).tobytes()
                    for a in (cond.speed, cond.temperature, cond.pressure, cond.nominal_pressure))
     key = (id(surface), id(material), arrays, bool(cond.wet), grid, float(nu), float(gamma), thermal, correction,
-           modulus)
+           modulus, _ESTIMATE.get())
     try:
         hash(key)
     except TypeError:
@@ -346,13 +370,15 @@ def _solve_once(surface, material, cond, grid, nu, gamma, thermal, correction, m
     ``grid.max_temperature_rise``: a table clamped below the solution's temperature would give the modulus a kink
     there, an error of the model's input that no refinement of q removes and the error estimate cannot see."""
     rise = grid.max_temperature_rise if rise is None else rise
+    estimate = _ESTIMATE.get()
     table_grid = grid if rise == grid.max_temperature_rise else replace(grid, max_temperature_rise=rise)
     prep = prepare(surface, material, cond, table_grid, nu, gamma=gamma, correction=correction,
                    flash=thermal is not None, modulus=modulus, refine=refine, nodes=q_base, shape=shape)
     if thermal is None:
-        return run_plain(prep)
+        solved = run_plain(prep, estimate=estimate)
+        return solved if estimate else replace(solved, error_estimate=np.full(prep.n_speed, np.nan))
     options = temperature_options(thermal, prep, material)
-    solved = run_temperature(prep, options)
+    solved = run_temperature(prep, options, estimate=estimate)
     T0 = prep.T0
     limit = _RISE_WIDENING * grid.max_temperature_rise
     prep_top = np.full(T0.size, float(T0.max()) + grid.max_temperature_rise)  # the table of the settings
@@ -367,7 +393,7 @@ def _solve_once(surface, material, cond, grid, nu, gamma, thermal, correction, m
         prep = prepare(surface, material, sub, replace(grid, max_temperature_rise=rise), nu, gamma=gamma,
                        correction=correction, flash=True, modulus=modulus, nodes=solved.q,
                        shape=None if shape is None else shape.subset(hot))
-        solved = _merge(solved, hot, run_temperature(prep, options), 1)
+        solved = _merge(solved, hot, run_temperature(prep, options, estimate=estimate), 1)
         top[hot] = prep.shift_table.T_hi
     widened = (top > prep_top) & (solved.T_q.max(axis=1) > prep_top)
     if np.any(widened):
@@ -628,18 +654,18 @@ def temperature_options(effect, prep: Prepared, material) -> TemperatureSolverOp
     return options
 
 
-def run_temperature(prep: Prepared, options: TemperatureSolverOptions) -> Solved:
+def run_temperature(prep: Prepared, options: TemperatureSolverOptions, *, estimate: bool = True) -> Solved:
     """The self-consistent flash temperature of every speed of ``prep`` with the settings ``options``
     (:func:`run_flash`): per speed the contact time d / v and the heat factor sigma0 / (rho c_p); the result
-    carries the options' notes."""
+    carries the options' notes. ``estimate=False``: no error estimate (NaN, see :func:`quadrature_estimate`)."""
     solved = run_flash(prep, q_m=options.q_m, a_t0=options.diffusivity * options.contact_diameter / prep.v,
                        diffusivity=options.diffusivity, heat_factor=prep.pressure / options.heat_capacity,
-                       tol=options.tol, max_iter=int(options.max_iter))
+                       tol=options.tol, max_iter=int(options.max_iter), estimate=estimate)
     return replace(solved, notes=solved.notes + options.notes) if options.notes else solved
 
 
 def run_flash(prep: Prepared, *, q_m: float, a_t0: np.ndarray, diffusivity: float,
-              heat_factor: np.ndarray, tol: float, max_iter: int) -> Solved:
+              heat_factor: np.ndarray, tol: float, max_iter: int, estimate: bool = True) -> Solved:
     """The self-consistent flash temperature (:func:`persson.engine.kernels._flash_speed`) for every speed,
     with its nodes refined where a temperature front is steep and its two-grid error estimate.
 
@@ -659,16 +685,18 @@ def run_flash(prep: Prepared, *, q_m: float, a_t0: np.ndarray, diffusivity: floa
         Convergence tolerance on max |Delta T|, K.
     max_iter : int
         Iterations per start of the fixed point.
+    estimate : bool
+        Whether to estimate the error (:func:`_flash_error`); False: the error estimate is NaN (not estimated).
     """
     args = (q_m, a_t0, diffusivity, heat_factor, tol, max_iter)
     out, T_q, it, res = _flash(prep, *args)
-    err = _flash_error(prep, out.mu, T_q, res < tol, args)
+    err = _flash_error(prep, out.mu, T_q, res < tol, args) if estimate else np.full(prep.n_speed, np.nan)
     budget = _FRONT_STEP * float(np.max(np.diff(prep.lq10)))
     # one vectorised test for all speeds; only the few with a steep front pay for the per-speed solves
     jump = np.abs(np.diff(_reduced_frequency(prep, prep.x, T_q), axis=-1))
     steep = np.any(jump > _FRONT_MARGIN * budget, axis=1)
     for s in np.flatnonzero(steep):
-        _resolve_front(prep, s, args, budget, out, T_q, it, res, err)
+        _resolve_front(prep, s, args, budget, out, T_q, it, res, err if estimate else None)
     return _solved(prep, out, T_q, err, res < tol, it, res)
 
 
@@ -710,7 +738,7 @@ def _reduced_frequency(prep: Prepared, x: np.ndarray, T: np.ndarray) -> np.ndarr
 def _resolve_front(prep, s, args, budget, out, T_q, it, res, err):
     """Solve speed ``s`` again on nodes refined where its temperature front is steep (:func:`_front_nodes`),
     round by round until the front is resolved, and write its results at the nodes of ``prep`` (all kept) into
-    ``out``, ``T_q``, ``it``, ``res`` and ``err``."""
+    ``out``, ``T_q``, ``it``, ``res`` and ``err`` (None: not estimated)."""
     q_m, a_t0, D, heat_factor, tol, max_iter = args
     sub_args = (q_m, a_t0[[s]], D, heat_factor[[s]], tol, max_iter)
     x = prep.x
@@ -733,7 +761,8 @@ def _resolve_front(prep, s, args, budget, out, T_q, it, res, err):
         getattr(out, name)[s] = getattr(o, name)[0, at]
     out.mu[s], out.layer[s] = o.mu[0], o.layer[0]
     T_q[s], it[s], res[s] = Ts[0, at], its[0], rs[0]
-    err[s] = _flash_error(sub, o.mu, Ts, rs < tol, sub_args)[0]
+    if err is not None:
+        err[s] = _flash_error(sub, o.mu, Ts, rs < tol, sub_args)[0]
 
 
 def _flash_error(prep: Prepared, mu: np.ndarray, T_q: np.ndarray, ok: np.ndarray, args: tuple) -> np.ndarray:

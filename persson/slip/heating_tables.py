@@ -284,8 +284,11 @@ class _Tables:
         otherwise); the coldest and hottest rubber temperature at each point (background and flash), C; and the
         index of the call's outcome in ``fills``."""
         from .._checks import UnitWarning
+        from ..engine.solver import quadrature_estimate
 
-        with warnings.catch_warnings(record=True) as caught:
+        # a table outlives the call that fills it and serves later ones: always solved with the error estimate (and
+        # its refinement), also for the trial points of a search that skip it (quadrature_estimate(False))
+        with warnings.catch_warnings(record=True) as caught, quadrature_estimate(True):
             warnings.simplefilter("always")
             r = self.model.friction(v, temperature=T, pressure=p)
         notes = [note for note in tuple(getattr(r, "notes", ()) or ()) if SHIFT_RANGE_NOTE not in note]
