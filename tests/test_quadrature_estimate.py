@@ -44,14 +44,17 @@ def _glassy():
     return materials.Prony(E_inf=3e6, E_i=(2e9 - 3e6) * w / w.sum(), tau_i=tau, wlf=materials.WLF(8.86, 101.6, 20.0))
 
 
+@pytest.mark.parametrize("speeds, temperature", [(V, 0.0), (np.geomspace(1e-8, 1e-5, 4), 80.0)],
+                         ids=["cold", "hot and slow"])
 @pytest.mark.parametrize("flash", [False, True], ids=["plain", "flash temperature"])
-def test_without_the_estimate_the_friction_is_the_same_to_the_last_bit_where_nothing_is_refined(flash):
+def test_without_the_estimate_the_friction_is_the_same_to_the_last_bit_where_nothing_is_refined(flash, speeds,
+                                                                                                  temperature):
     model = _road(*([persson.effects.FlashTemperature()] if flash else []))
-    full = model.friction(V, temperature=0.0)
+    full = model.friction(speeds, temperature=temperature)
     # nothing refined: every estimate below the third of the tolerance that triggers a refinement
     assert np.all(full.error_estimate < model.grid.tolerance / 3)
     with quadrature_estimate(False):
-        lean = model.friction(V, temperature=0.0)
+        lean = model.friction(speeds, temperature=temperature)
     assert np.all(np.isnan(lean.error_estimate))          # not estimated, and it says so
     for name in ("mu", "contact_area", "max_flash_temperature", "mu_cumulative", "temperature_q"):
         np.testing.assert_array_equal(getattr(lean, name), getattr(full, name))
