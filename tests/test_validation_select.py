@@ -1422,3 +1422,30 @@ def test_the_search_budgets_count_its_fits_not_what_a_diagnosis_reports_besides(
     assert costly.n_evaluations == plain.n_evaluations + 500 * n_dx
     dx0 = costly.steps[0].diagnosis
     assert dx0.n_diagnostic_evaluations >= 500 and dx0.as_dict()["baseline"]["n_diagnostic_evaluations"] >= 500
+
+
+def test_without_a_known_noise_the_answer_is_judged_against_the_noise_of_its_own_residual(effects):
+    """The pair texture + heat found by the loop fits the data better than every single fit of the first
+    diagnosis (the heat shows nothing alone): the local-difference noise is estimated again on the data less the
+    pair's prediction, and the final verdict, the loop's stop reason and the reported noise use it
+    (:func:`validation.improve._judged_against_answer`, tested on its own in ``test_validation_answer_noise``)."""
+    base = persson.Model(SURFACE, TREAD)
+    truth = base.with_effect(effects["texture"](a=0.05)).with_effect(effects["heat"](h=0.15))
+    m = _data(truth, 1)
+    m = validation.Measurements.from_arrays(slip=m.slip, speed=m.speed, temperature=m.temperature,
+                                            pressure=m.pressure, mu=m.mu)           # no mu_std: local differences
+    imp = validation.improve(base, m, candidates=[effects["slope"](), effects["texture"](), effects["heat"]()])
+    assert set(imp.added) == {"test_texture", "test_heat"}, imp.table_text()
+    first = imp.steps[0].diagnosis.noise_estimate
+    assert first.source == "local differences"
+    again = validation.noise.estimate_noise(m, reference=imp.selection.best.predicted)
+    assert imp.noise == again.sigma != first.sigma and imp.noise_source == "local differences"
+    assert f"{again.sigma:.3g} (the steps against {first.sigma:.3g})" in imp.stopped
+    assert imp.verdict == "explained" and "on the data less this set's prediction" in imp.final.reason
+    lack = validation.noise.lack_of_fit(m.mu - imp.selection.best.predicted, imp.selection.best.n_params, again)
+    assert imp.selection.best.lack.p_value == lack.p_value
+    # a noise given by the caller is the noise of every judgement
+    given = imp.steps[0].diagnosis.noise_estimate
+    imp2 = validation.improve(base, m, candidates=[effects["slope"](), effects["texture"](), effects["heat"]()],
+                              noise=given)
+    assert imp2.noise == given.sigma and "the steps against" not in imp2.stopped
