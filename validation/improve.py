@@ -698,9 +698,9 @@ def _judged_against_answer(noise, selection: Selection, dx0: Diagnosis, m):
     shape shows its lack of fit: physics outside the candidates (a filler process on 28 rows, blind draw 40,
     case 25) had been called explained by adhesion + microtexture against a noise of 0.0080, twice the true
     0.0037; the data less that answer give 0.0029 and a lack of fit at p = 3e-4. A set that fits at the noise
-    leaves differences of the noise alone, less the little of it the fit takes (over 33 blind cases the estimates
-    were 5.5 % low on average where the first had been 5.9 % high, with a smaller spread), and no answer or verdict
-    of a hidden pair changed in three draws.
+    leaves differences of the noise alone (over 33 blind cases the estimates were 5.5 % low on average where the
+    first had been 5.9 % high, each within chance, with a smaller spread), and no answer or verdict of a hidden
+    pair changed in three draws.
 
     Returns
     -------
