@@ -1449,3 +1449,51 @@ def test_without_a_known_noise_the_answer_is_judged_against_the_noise_of_its_own
     imp2 = validation.improve(base, m, candidates=[effects["slope"](), effects["texture"](), effects["heat"]()],
                               noise=given)
     assert imp2.noise == given.sigma and "the steps against" not in imp2.stopped
+
+
+def test_the_cost_of_an_effect_is_read_from_the_sets_own_values_when_the_subset_kept_sits_in_a_worse_optimum(
+        monkeypatch):
+    """Blind draw 41, case 4: a patch heating's own fit stopped in a worse optimum (chi^2 539 on 36 rows), the
+    pair with a strain softening found the right one with the softening's factors at 1.00 and 1.02 (doing
+    nothing), and the softening seemed to earn 494 BIC units against the subset kept. The set's own values less
+    the softening bound the subset's chi^2 from above: read there, the subset is fitted again from them and the
+    softening costs nothing (:meth:`validation.select.SetSearch.dropped`)."""
+    from types import SimpleNamespace
+
+    from validation.select import EffectSet, SetSearch
+
+    n = 36
+    y = np.zeros(n)
+
+    def effect_set(effects, bic, model=None):
+        return EffectSet(effects=effects, model=model, contact=None, predicted=np.zeros(n), rss=1.0, bic=bic,
+                         rmse=0.1, n_params=2 + 2 * ("strain" in effects), estimates=(), lack=None, pattern=None)
+
+    def search_with(chi2_without):
+        mu = np.full(n, math.sqrt(chi2_without / n))          # a prediction whose chi2 against y = 0 is chi2_without
+        predictor = SimpleNamespace(predict=lambda model, contact=None: SimpleNamespace(mu=mu))
+        ctx = SimpleNamespace(settings=SimpleNamespace(predictor=predictor, y=y, w=np.ones(n), n=n, sigma_known=True,
+                                                       contact=None))
+        search = SetSearch(None, (), ctx)
+        pair_model = SimpleNamespace(effect_names=("patch", "strain"), without=lambda name: "the pair less it")
+        pair = effect_set(("patch", "strain"), 51.2, pair_model)
+        search.sets[pair.key] = pair
+        search.sets[frozenset({"patch"})] = effect_set(("patch",), 545.7)    # the worse optimum, kept
+        search.free["strain"] = ("storage_factor", "loss_factor")
+        fits = []
+
+        def refit(effects, warm):
+            fits.append((effects, warm))
+            return effect_set(effects, 44.3)
+        monkeypatch.setattr(search, "_fit", refit)
+        return search, pair, fits
+
+    search, pair, fits = search_with(37.7)            # at the pair's values less the softening: BIC 37.7 + 2 ln 36
+    sub = search.dropped(pair, "strain")
+    assert fits == [(("patch",), (pair,))]              # fitted again, from the pair's values
+    assert sub.bic == 44.3 and search.sets[frozenset({"patch"})] is sub
+    assert sub.bic - pair.bic < validation.select.STAY  # the softening does not earn its place
+    assert search.n_evals == 1                          # one prediction to read the bound
+    # where the pair's values less the effect read far worse, the effect does something there: the fit kept stands
+    search, pair, fits = search_with(400.0)
+    assert search.dropped(pair, "strain").bic == 545.7 and fits == []

@@ -585,6 +585,7 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
         for f in [e for e in current if e not in selection.best.effects]:
             current = tuple(e for e in current if e != f)
             steps.append(_step(len(steps), "removed", None, f, search.get(current), steps[-1], base_fit, search))
+            stopped = f"{stopped}; then {f} removed (the final set without it fits within 10 BIC units)"
     first = noise
     if not noise_given:
         # the steps were judged against the first diagnosis's noise; the answer is judged against the noise on the
