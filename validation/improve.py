@@ -594,8 +594,7 @@ def improve(case_or_model, measurements=None, *, contact=None, candidates=None, 
         if noise is not first:
             stopped = (f"{stopped}; the answer judged against the noise on the data less its own prediction, "
                        f"{noise.sigma:.3g} (the steps against {first.sigma:.3g})")
-    final = _final_verdict(dx0=steps[0].diagnosis, selection=selection, noise=noise,
-                           on_answer=not noise_given and noise is not first)
+    final = _final_verdict(dx0=steps[0].diagnosis, selection=selection, noise=noise, on_answer=noise is not first)
     best = selection.best
     residual = measurements.mu - best.predicted
     label = "the baseline" + "".join(f" + {e}" for e in best.effects)
@@ -711,8 +710,9 @@ def _judged_against_answer(noise, selection: Selection, dx0: Diagnosis, m):
     if noise.source != "local differences" or not best.effects:
         return noise, selection
     y = np.asarray(m.mu, dtype=float)
+    residual = y - best.predicted
     fits = [dx0.baseline.predicted] + [c.predicted for c in dx0.candidates if c.predicted is not None]
-    if not float(np.sum((y - best.predicted) ** 2)) < min(float(np.sum((y - f) ** 2)) for f in fits):
+    if not float(residual @ residual) < min(float(np.sum((y - f) ** 2)) for f in fits):
         return noise, selection
     again = estimate_noise(m, reference=best.predicted)
     if not again.known:
@@ -720,7 +720,6 @@ def _judged_against_answer(noise, selection: Selection, dx0: Diagnosis, m):
     again = replace(again, description=f"{again.description}; estimated on the data less the answer's prediction "
                                        f"({best.label}), which fits them better than every fit of the first "
                                        f"diagnosis (the steps were judged against {noise.sigma:.3g})")
-    residual = y - best.predicted
     old = best
     best = replace(best, lack=lack_of_fit(residual, best.n_params, again),
                    pattern=remaining_pattern(residual, m, again))

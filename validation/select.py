@@ -483,6 +483,7 @@ class SetSearch:
         self._continued: dict[frozenset, int] = {}    # set -> times its fit was continued
         self._refitted: set[frozenset] = set()        # sets whose budget-stopped fit was redone from a superset
         self._jacobians: dict[str, np.ndarray] = {}   # effect -> weighted Jacobian of its single fit
+        self._bounds: dict[tuple, float] = {}          # (set, its BIC, effect dropped) -> BIC at the set's values
 
     # ---- recording fits made by diagnoses --------------------------------------------------------------
     def record(self, dx, effects: tuple, step: int) -> None:
@@ -575,21 +576,27 @@ class SetSearch:
         sub = self.get(rest, warm=(s,))
         if sub.bic - s.bic < STAY or f not in getattr(s.model, "effect_names", ()):
             return sub
-        ctx = self.ctx
-        st = ctx.settings
-        try:
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore")  # a prediction between fits: the refit below records its notes
-                mu = st.predictor.predict(s.model.without(f), contact=s.contact or st.contact).mu
-        except Exception:  # noqa: BLE001  (a set without one of its effects may fail: the fit kept stands)
-            return sub
-        self.n_evals += 1
-        chi2 = float(np.sum(((st.y - np.asarray(mu, dtype=float)) * st.w) ** 2))
-        k = max(s.n_params - len(self.free.get(f, ())), 0)
-        at = bic(chi2, st.n, k, st.sigma_known)
+        key = (s.key, s.bic, f)    # the backward elimination and the final rule ask again for the same set
+        if key not in self._bounds:
+            self._bounds[key] = self._bic_without(s, f)
+        at = self._bounds[key]
         if not (math.isfinite(at) and at < sub.bic - 1e-9 and at - s.bic < STAY):
             return sub
         return self._keep(self._fit(rest, (s,)))
+
+    def _bic_without(self, s: EffectSet, f: str) -> float:
+        """BIC of the set ``s`` less the effect ``f`` at ``s``'s own values (one model evaluation; NaN where the
+        model fails), its parameters counted as ``s``'s less ``f``'s free ones."""
+        st = self.ctx.settings
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")  # a prediction between fits: a refit from here records its notes
+                mu = st.predictor.predict(s.model.without(f), contact=s.contact or st.contact).mu
+        except Exception:  # noqa: BLE001  (a set without one of its effects may fail: the fit kept stands)
+            return math.nan
+        self.n_evals += 1
+        chi2 = float(np.sum(((st.y - np.asarray(mu, dtype=float)) * st.w) ** 2))
+        return bic(chi2, st.n, max(s.n_params - len(self.free.get(f, ())), 0), st.sigma_known)
 
     def spent(self, n: int) -> None:
         """Count ``n`` model evaluations spent by deferred intervals (a set's, or those of a step's diagnosis)."""
