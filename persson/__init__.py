@@ -12,7 +12,7 @@ from . import _moved
 
 _moved.install()  # old module paths (persson.model, persson.tire, ...) keep importing
 
-from . import effects, slip, sweeps, tread  # noqa: E402
+from . import effects, slip  # noqa: E402
 from .contact.mechanics import ContactResult, contact  # noqa: E402
 from .engine.grid import GridSettings  # noqa: E402
 from .engine.model import Model  # noqa: E402
@@ -23,6 +23,24 @@ tire = slip  # the curve laws of the earlier persson.tire module live in persson
 
 __version__ = "0.1.0"
 
+#: Subpackages imported when first named (``persson.tread``, ``from persson import sweeps``): the tread-element
+#: tool and the sweeps are not needed to compute or diagnose friction, and importing them costs about 30 ms at
+#: every start-up of a command that does not use them.
+_LAZY = ("sweeps", "tread")
+
 __all__ = ["Model", "FrictionResult", "GridSettings", "InputError", "ConvergenceWarning", "AccuracyWarning",
            "PhysicsWarning", "effects", "slip",
            "sweeps", "tire", "tread", "contact", "ContactResult", "__version__"]
+
+
+def __getattr__(name: str):
+    """The subpackages of :data:`_LAZY`, imported on first use (PEP 562)."""
+    if name in _LAZY:
+        import importlib
+
+        return importlib.import_module(f".{name}", __name__)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_LAZY))

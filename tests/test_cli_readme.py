@@ -83,6 +83,12 @@ FRESH_INTERPRETER = {
                         "print(sorted(m for m in ('scipy.optimize', 'scipy.interpolate', 'scipy.stats') "
                         "if m in sys.modules))"],
     "python -m persson": [sys.executable, "-m", "persson", "--help"],
+    "lazy subpackages": [sys.executable, "-c",
+                         "import sys, persson, validation, validation.commands.diagnose; "
+                         "before = sorted(m for m in ('persson.tread', 'persson.sweeps') if m in sys.modules); "
+                         "from persson import sweeps; "
+                         "print(before, callable(persson.tread.simulate), callable(sweeps.grid), "
+                         "'tread' in dir(persson))"],
 }
 
 
@@ -114,6 +120,13 @@ def test_importing_the_packages_leaves_the_slow_scipy_subpackages_unloaded(fresh
     """Start-up time of every command: scipy.optimize, scipy.interpolate and scipy.stats (0.2-0.4 s to import) are
     imported by the functions that fit or interpolate, when they run, not by importing the packages."""
     assert stdout_of(fresh_interpreters, "package imports").strip() == "[]"
+
+
+def test_the_tread_tool_and_the_sweeps_are_imported_when_first_named(fresh_interpreters):
+    """Start-up time of the friction and validation commands: ``import persson`` (and the validation package) leaves
+    the tread-element tool and the sweeps unloaded; ``persson.tread`` and ``from persson import sweeps`` import
+    them then."""
+    assert stdout_of(fresh_interpreters, "lazy subpackages").strip() == "[] True True True"
 
 
 def test_readme_command_table_shows_what_each_command_takes():
