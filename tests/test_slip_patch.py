@@ -651,6 +651,80 @@ def test_the_speed_contracted_table_interpolates_as_the_full_lattice():
                 assert row == pytest.approx(full, rel=1e-13, abs=1e-15)
 
 
+def test_a_row_on_a_speed_node_reads_that_node_alone():
+    """A row whose sliding speed is a node's reads that node alone: its four-point Lagrange weights are exactly one
+    there and zero at the other three, so the value is the same to the last bit, and the nodes around it need not
+    reach its temperatures (they may hold fewer temperature nodes than it does)."""
+    from persson.slip import heating_kernels as hk
+    from persson.slip.heating_arrays import FrictionLattice
+
+    rng = np.random.default_rng(5)
+    n_u = np.array([14, 14, 14, 14, 14, 14], dtype=np.int64)
+    ng = 3
+    offset = np.concatenate([[0], np.cumsum(ng * n_u)]).astype(np.int64)
+    log_v = np.log(np.geomspace(0.01, 3.0, n_u.size))
+    lattice = FrictionLattice(log_speed=log_v, v_offset=np.array([0, n_u.size], dtype=np.int64),
+                              g_nodes=np.linspace(0.2, 1.5, ng), values=rng.uniform(0.2, 1.0, int(offset[-1])),
+                              value_offset=offset, n_temperature=n_u)
+    w1, w4, wg, wu = np.empty(4), np.empty(4), np.empty(4), np.empty(4)
+    for k in range(n_u.size):
+        iv, mv = hk._speed_stencil(lattice, 0, log_v[k], w1)
+        assert (iv, mv, w1[0]) == (k, 1, 1.0)
+        i4 = hk._lagrange(lattice.log_speed, 0, n_u.size, log_v[k], w4)   # the four-point stencil around it
+        assert w4[k - i4] == 1.0 and np.count_nonzero(w4) == 1
+        for g in (0.2, 0.9, 1.5):
+            ig = hk._lagrange(lattice.g_nodes, 0, ng, g, wg)
+            for x in np.linspace(0.0, 10.5, 43):
+                one = hk._mu_at(k, w1, 1, ig, wg, 3, x, lattice.values, offset, n_u, wu)
+                four = hk._mu_at(i4, w4, 4, ig, wg, 3, x, lattice.values, offset, n_u, wu)
+                assert one == four
+    # a speed between nodes still reads the four around it
+    assert hk._speed_stencil(lattice, 0, 0.5 * (log_v[2] + log_v[3]), w1) == (1, 4)
+
+
+def test_a_locked_wheel_at_a_few_speeds_matches_a_direct_iteration_with_a_table_sized_per_speed():
+    """Locked-wheel rows at four speeds: the table's speed nodes are the rows' speeds, each row reads its own node,
+    and each node reaches the temperatures of its own row only (a slow wheel's patch barely warms; the fast one's
+    by tens of kelvin): the friction and the temperature along the patch are those of the direct iteration."""
+    model = road_model(PatchHeating())
+    c = ps.Contact(L, W, K, "parabolic", n_points=101)
+    V = np.array([0.01, 0.1, 1.0, 3.0])
+    cache = {}
+    sol = patch_friction(model, model.effect("patch_heating"), c, 1.0, V, T0, SIGMA0, profiles=True, tables=cache)
+    nodes = cache["value"].nus[0]
+    rises = sol.max_rise
+    print(f"\nrises {np.round(rises, 2)} K; temperature nodes per speed node {nodes}")
+    assert rises[0] < 0.1 * rises[-1] and nodes[0] < nodes[-1]   # before: every node as tall as the fastest
+    for k, v in enumerate(V):
+        ref, T_ref = picard_reference(model.without("patch_heating"), 1.0, v, c, model.effect("patch_heating"))
+        assert sol.mu[k] == pytest.approx(ref, abs=1e-3)
+        assert np.max(np.abs(sol.temperature[k] - T_ref)) < 0.05 * max(np.max(T_ref) - T0, 0.01)
+
+
+def test_a_kept_table_grown_for_rows_on_its_nodes_serves_rows_between_them():
+    """A table is kept by its speed nodes; rows on the nodes need each node's own range only. Rows between the same
+    nodes (many speeds, whose log-spaced nodes are exactly the first rows' speeds) get the neighbours' ranges added
+    to the kept table: the answers of a fresh table."""
+    from persson.slip.heating_tables import _speed_nodes
+
+    model = road_model(PatchHeating())
+    heating = model.effect("patch_heating")
+    c = ps.Contact(L, W, K, "parabolic", n_points=101)
+    many = np.geomspace(0.01, 3.0, 40)
+    nodes = _speed_nodes(many, heating.points_per_decade)
+    assert nodes.size < many.size
+    cache = {}
+    on = patch_friction(model, heating, c, 1.0, nodes, T0, SIGMA0, tables=cache)
+    kept = cache["value"]
+    assert kept.on_nodes.all() and on.converged
+    between = patch_friction(model, heating, c, 1.0, many, T0, SIGMA0, tables=cache)
+    assert cache["value"] is kept and not kept.on_nodes.any() and between.engine_calls > 0
+    fresh = patch_friction(model, heating, c, 1.0, many, T0, SIGMA0)
+    np.testing.assert_allclose(between.mu, fresh.mu, rtol=1e-10)
+    np.testing.assert_allclose(between.max_rise, fresh.max_rise, rtol=1e-10)
+    assert between.converged and fresh.converged
+
+
 @dataclass
 class _Named:
     """A ClosedForm carrying a PatchHeating effect, as a persson.Model does."""

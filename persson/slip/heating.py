@@ -298,13 +298,16 @@ def patch_friction(model, heating: PatchHeating, contact, slip, speed, temperatu
     more nodes are added where the patch gets hotter, each time up to 1.25 times the temperatures it reached,
     until every temperature of the solution lies below the table's top interval, where the stencil would be
     one-sided: the answer is then that of any taller table; at least 4 nodes per speed); values in between by
-    tensor-product four-point Lagrange interpolation. The lattice does not depend on the heating parameters, so
-    a table kept in ``tables`` serves any counter-surface effusivity or heat fraction and only grows (one engine
-    call for the missing nodes) when a hotter patch needs a higher temperature range. A new table for the same
-    rows with another engine first reaches 1.15 times the rises of the previous solution where the solver sees
-    other problems (:func:`solver_key`; a joint fit with the flash temperature), and the previous table's range
-    where it does not (its nodes are then problems just solved). Along the patch (the
-    contact's nodes), the stick zone ends at the first sign change of :math:`\mu(v_s, p, T_0)p - k\theta x` (as in
+    tensor-product four-point Lagrange interpolation; a row whose sliding speed is a node's (the table's speed
+    nodes are the rows' own speeds when those are few, e.g. a locked wheel at a few speeds) reads that node alone,
+    the same values to the last bit, and where every row of a sweep does, each speed node reaches the temperatures
+    of its own rows only instead of those of its hotter neighbours as well. The lattice does not depend on the
+    heating parameters, so a table kept in ``tables`` serves any counter-surface effusivity or heat fraction and
+    only grows (one engine call for the missing nodes) when a hotter patch needs a higher temperature range. A new
+    table for the same rows with another engine first reaches 1.15 times the rises of the previous solution where
+    the solver sees other problems (:func:`solver_key`; a joint fit with the flash temperature), and the previous
+    table's range where it does not (its nodes are then problems just solved). Along the patch (the contact's
+    nodes), the stick zone ends at the first sign change of :math:`\mu(v_s, p, T_0)p - k\theta x` (as in
     :func:`persson.slip.mu_slip`); behind it the
     Abel integral is evaluated by product integration (the shear piecewise linear between nodes, the kernel
     integrated exactly), implicitly at the new node (secant iteration, bisection as fallback). The stick part is
@@ -353,6 +356,8 @@ def patch_friction(model, heating: PatchHeating, contact, slip, speed, temperatu
     voff[1:] = np.cumsum([v.size for v in vnode_list])
     vnodes = np.concatenate(vnode_list)
     V_lo = np.array([float(np.min(V[sweep == c])) for c in range(keys.shape[0])])
+    # sweeps whose rows all sit on speed nodes: each row reads its node alone (heating_kernels._speed_stencil)
+    on_nodes = np.array([bool(np.all(np.isin(vs[sweep == c], vnode_list[c]))) for c in range(keys.shape[0])])
 
     # The table does not depend on how strongly the patch is heated (counter_effusivity, heat_fraction, e_r):
     # its temperature nodes lie on a lattice fixed by T0 and the material, so a fit of those parameters only adds
@@ -372,9 +377,11 @@ def patch_friction(model, heating: PatchHeating, contact, slip, speed, temperatu
         tab = tables["value"]
         tables["engine"] = ekey  # what the table's tau_f0-only split now holds
         calls0, points0 = tab.calls, tab.points
+        tab.serve(on_nodes)
     else:
         calls0, points0 = 0, 0
-        tab = _Tables(engine, keys, vnodes, voff, gnodes, V_lo, heating, adhesion_scale=scale, adhesion=adhesion)
+        tab = _Tables(engine, keys, vnodes, voff, gnodes, V_lo, heating, adhesion_scale=scale, adhesion=adhesion,
+                      on_nodes=on_nodes)
         if tables is not None:
             solver = solver_key(engine)
             if heated and tables.get("key") == cache_key and tables["value"].has_heated():

@@ -236,11 +236,21 @@ def _speed_stencil(lattice, c, log_speed, w_speed):
     Returns
     -------
     (int, int)
-        The first speed node (global index) and the number of nodes (4, or fewer in a short sweep).
+        The first speed node (global index) and the number of nodes (4, or fewer in a short sweep; 1 for a row
+        whose speed is a node's).
+
+    A row on a node reads that node alone: its four-point weights are exactly one there and zero at the other
+    three, so the values are those of the four-point stencil to the last bit, and the nodes around it need not
+    reach the row's temperatures (:meth:`persson.slip.heating_tables._Tables._grow`).
     """
     nv = lattice.v_offset[c + 1] - lattice.v_offset[c]
     iv = _lagrange(lattice.log_speed, lattice.v_offset[c], nv, log_speed, w_speed)
-    return iv, (4 if nv >= 4 else nv)
+    mv = 4 if nv >= 4 else nv
+    for a in range(mv):
+        if lattice.log_speed[iv + a] == log_speed:
+            w_speed[0] = 1.0
+            return iv + a, 1
+    return iv, mv
 
 
 @njit(cache=True)

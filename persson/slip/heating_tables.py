@@ -35,8 +35,14 @@ class _Tables:
     block of shape (n_g, nu[i]) at ``vtoff[i]`` in ``values``, holding the nodes k = 0 .. nu[i] - 1.
     """
 
-    def __init__(self, model, keys, vnodes, voff, gnodes, V_lo, heating, adhesion_scale=None, adhesion=None):
+    def __init__(self, model, keys, vnodes, voff, gnodes, V_lo, heating, adhesion_scale=None, adhesion=None,
+                 on_nodes=None):
         self.model = model
+        # on_nodes[c]: every row of sweep c sits on a speed node (the nodes are the rows' own speeds), so each row
+        # reads its node alone (heating_kernels._speed_stencil) and a node's temperatures need reach its own rows'
+        # only; else a row between nodes reads the four around it, and each node covers the range of its neighbours
+        self.on_nodes = (np.zeros(keys.shape[0], dtype=bool) if on_nodes is None
+                         else np.array(on_nodes, dtype=bool))
         # With ``adhesion_scale`` (the model's adhesion tau_f0, > 0) every value is kept as rest + tau_f0 * unit as
         # well (the adhesive term is proportional to tau_f0 and nothing else in the engine depends on it): the
         # table then serves another tau_f0 (:meth:`rescale`) without engine calls. ``rest``/``unit`` blocks
@@ -155,11 +161,14 @@ class _Tables:
             ymax = np.minimum(self.y_of(c, self.T0[c] + self.dT_max(c, vv)), self.ycap[c])
             self._capped[c] = self._capped[c] or bool(np.any(ymax >= self.ycap[c] * (1 - 1e-12)))
             # a row between speed nodes interpolates over the four around it: each node covers the range of the
-            # two above it as well, and the last four that of the last
+            # two above it as well, and the last four that of the last. A row on a node reads that node alone, so
+            # where every row of the sweep is on a node, each node reaches its own range only (the speeds of a
+            # locked wheel, many times fewer temperature nodes at the slow ones)
             reach = ymax.copy()
-            for d in (1, 2):
-                reach[:-d] = np.maximum(reach[:-d], ymax[d:])
-            reach[-4:] = np.maximum(reach[-4:], ymax[-1])
+            if not self.on_nodes[c]:
+                for d in (1, 2):
+                    reach[:-d] = np.maximum(reach[:-d], ymax[d:])
+                reach[-4:] = np.maximum(reach[-4:], ymax[-1])
             n_new = np.maximum(_temperature_counts(reach, 1.0 / self.hy), self.nus[c])
             grow = np.flatnonzero(n_new > self.nus[c])
             if grow.size == 0:
@@ -201,6 +210,15 @@ class _Tables:
         for c in np.flatnonzero(which):
             self.mu_max[c] = max(self.mu_max[c], float(np.max(self.blocks[c])))
         self._layout()
+
+    def serve(self, on_nodes) -> None:
+        """Serve rows whose sweeps have every row on a speed node where ``on_nodes`` says so: a sweep whose table
+        was grown for rows on nodes alone and now has rows between them gets the range of its neighbours at every
+        node (the nodes a kept table is keyed by are the same; the rows need not be)."""
+        need = self.on_nodes & ~np.asarray(on_nodes, dtype=bool)
+        if need.any():
+            self.on_nodes &= ~need
+            self._grow(need)
 
     def targs(self) -> TemperatureAxis:
         """The temperature coordinate of the lattice, as the march kernel takes it."""
