@@ -341,23 +341,13 @@ def patch_friction(model, heating: PatchHeating, contact, slip, speed, temperatu
     a = contact.stiffness * contact.length / p0 * theta
 
     # ---- the (T0, sigma0) sweeps and their friction tables
-    keys, sweep = np.unique(np.column_stack([T0, p0]), axis=0, return_inverse=True)
-    sweep = np.asarray(sweep).ravel()
+    keys, sweep, vnodes, voff, V_lo, on_nodes = _sweeps(s, V, T0, p0, heating.points_per_decade, tables)
     g = contact._g
     g_lo = max(float(np.min(g)), _P_FLOOR)
     g_hi = max(float(np.max(g)), g_lo)
     n_g = 1 if g_hi - g_lo <= 1e-12 * g_hi else int(heating.n_pressure)
     gnodes = np.linspace(g_lo, g_hi, n_g)
     heated = heating.heat_fraction > 0
-    vnode_list = []
-    for c in range(keys.shape[0]):
-        vnode_list.append(_speed_nodes(vs[sweep == c], heating.points_per_decade))
-    voff = np.zeros(len(vnode_list) + 1, dtype=np.int64)
-    voff[1:] = np.cumsum([v.size for v in vnode_list])
-    vnodes = np.concatenate(vnode_list)
-    V_lo = np.array([float(np.min(V[sweep == c])) for c in range(keys.shape[0])])
-    # sweeps whose rows all sit on speed nodes: each row reads its node alone (heating_kernels._speed_stencil)
-    on_nodes = np.array([bool(np.all(np.isin(vs[sweep == c], vnode_list[c]))) for c in range(keys.shape[0])])
 
     # The table does not depend on how strongly the patch is heated (counter_effusivity, heat_fraction, e_r):
     # its temperature nodes lie on a lattice fixed by T0 and the material, so a fit of those parameters only adds
@@ -397,12 +387,15 @@ def patch_friction(model, heating: PatchHeating, contact, slip, speed, temperatu
                 tab.B[:] = tables["value"].B if reach is None or same else np.minimum(tables["value"].B, reach)
                 tab._grow(np.ones(keys.shape[0], dtype=bool))
             older = tables.pop(_OLDER, [])
+            rows_entry = tables.pop(_ROWS, None)
             if "value" in tables:
                 older.insert(0, dict(tables))
                 del older[_KEEP_OLDER:]
             tables.clear()
             tables.update(engine=ekey, separable=skey, key=cache_key, value=tab, model=model, solver=solver)
             tables[_OLDER] = older
+            if rows_entry is not None:
+                tables[_ROWS] = rows_entry
     xi = np.ascontiguousarray(contact._xi)
     gg = np.ascontiguousarray(contact._g)
     rows = PatchRows(sweep=sweep.astype(np.int64), log_speed=np.log(vs), stick_slope=a, heat_factor=lam)
@@ -412,32 +405,33 @@ def patch_friction(model, heating: PatchHeating, contact, slip, speed, temperatu
         # with heated nodes goes straight to the march below, which grows it if the patch is hotter)
         pre = _march(rows=rows, patch=patch, lattice=tab.args(), axis=tab.targs(), profiles=False)
         tab.fill(pre.rise, vs, sweep)
+    n_sweeps = keys.shape[0]
     for _ in range(6):
         out = _march(rows=rows, patch=patch, lattice=tab.args(), axis=tab.targs(), profiles=bool(profiles))
         mu, xc, rise, umax, Tprof, shear, muprof = out
-        over = np.zeros(keys.shape[0], dtype=bool)
-        for c in range(keys.shape[0]):
-            over[c] = bool(np.max(umax[sweep == c]) > 1.0 + 1e-9) and not tab.capped(c)
+        umax_top = _per_sweep_max(umax, sweep, n_sweeps)
+        over = (umax_top > 1.0 + 1e-9) & ~np.array([tab.capped(c) for c in range(n_sweeps)], dtype=bool)
         if not over.any():
             break
-        tab.extend(over, np.array([float(np.max(umax[sweep == c])) for c in range(keys.shape[0])]))
+        tab.extend(over, umax_top)
     if tables is not None and tables.get("value") is tab and heated:
         tables["reach"] = tab.range_for(rise, vs, sweep)
     # what the engine said at the nodes this solution interpolates (not at nodes a hotter solution added before)
-    rise_top = np.array([float(np.max(rise[sweep == c])) for c in range(keys.shape[0])])
-    fill_notes, fill_warned, converged = tab.outcome(rise_top)
+    rise_top = _per_sweep_max(rise, sweep, n_sweeps)
+    used = tab.used(rise_top)
+    fill_notes, fill_warned, converged = tab.outcome(rise_top, used=used)
     notes = list(fill_notes)
     if over.any():
         converged = False
         notes.append(Note(f"patch_heating: the friction table did not reach the patch temperature at "
                           f"{int(over.sum())} condition(s); evaluated at the table's top", "accuracy"))
-    hot = [c for c in range(keys.shape[0]) if float(np.max(rise[sweep == c])) > heating.max_rise * (1 + 1e-9)]
+    hot = int(np.count_nonzero(rise_top > heating.max_rise * (1 + 1e-9)))
     if hot:
         notes.append(Note(f"patch_heating: background temperature rise above the table ({heating.max_rise:g} K cap) "
-                          f"at {len(hot)} condition(s); evaluated at the cap", "accuracy"))
+                          f"at {hot} condition(s); evaluated at the cap", "accuracy"))
     # the rubber's temperatures beyond the shift law's fitted range, over the table nodes this solution
     # interpolates (background, patch and flash temperatures): the same note whatever the table's history
-    t_lo, t_hi = tab.rubber_range(rise_top)
+    t_lo, t_hi = tab.rubber_range(rise_top, used=used)
     shift_note = extrapolated_shift_note(material, t_lo, t_hi) if material is not None else None
     if shift_note is not None:
         notes.append(Note(shift_note, "extrapolated"))
@@ -453,6 +447,35 @@ def patch_friction(model, heating: PatchHeating, contact, slip, speed, temperatu
                          mu_profile=muprof if profiles else None, table_points=tab.points - points0,
                          engine_calls=tab.calls - calls0,
                          converged=converged, notes=tuple(dict.fromkeys(notes)))
+
+
+def _sweeps(s, V, T0, p0, points_per_decade, tables=None):
+    """The (T0, sigma0) sweeps of the rows and their speed nodes: (keys, sweep of every row, speed nodes, their
+    offsets per sweep, lowest rolling speed per sweep, whether every row of a sweep sits on a node). Kept in
+    ``tables`` (the caller's cache) for the same rows, which a fit's every evaluation passes again."""
+    rows_key = (float(points_per_decade), s.tobytes(), V.tobytes(), T0.tobytes(), p0.tobytes())
+    if tables is not None and tables.get(_ROWS, (None,))[0] == rows_key:
+        return tables[_ROWS][1]
+    vs = s * V
+    keys, sweep = np.unique(np.column_stack([T0, p0]), axis=0, return_inverse=True)
+    sweep = np.asarray(sweep).ravel()
+    vnode_list = [_speed_nodes(vs[sweep == c], points_per_decade) for c in range(keys.shape[0])]
+    voff = np.zeros(len(vnode_list) + 1, dtype=np.int64)
+    voff[1:] = np.cumsum([v.size for v in vnode_list])
+    V_lo = np.array([float(np.min(V[sweep == c])) for c in range(keys.shape[0])])
+    # sweeps whose rows all sit on speed nodes: each row reads its node alone (heating_kernels._speed_stencil)
+    on_nodes = np.array([bool(np.all(np.isin(vs[sweep == c], vnode_list[c]))) for c in range(keys.shape[0])])
+    out = (keys, sweep, np.concatenate(vnode_list), voff, V_lo, on_nodes)
+    if tables is not None:
+        tables[_ROWS] = (rows_key, out)
+    return out
+
+
+def _per_sweep_max(x, sweep, n_sweeps) -> np.ndarray:
+    """The largest of ``x`` over the rows of each sweep (every sweep has rows)."""
+    top = np.full(n_sweeps, -np.inf)
+    np.maximum.at(top, sweep, x)
+    return top
 
 
 def _adhesion_scale(model) -> float | None:
@@ -494,6 +517,8 @@ def _with_adhesion(model, values: dict):
 #: that column's engine is the one of the column before last, whose table is then still at hand.
 _KEEP_OLDER = 3
 _OLDER = "older"
+#: The rows' sweeps and speed nodes of the last call (:func:`_sweeps`), in a ``tables`` cache.
+_ROWS = "rows"
 
 
 def _serves(tables: dict, cache_key, ekey, skey) -> bool:
@@ -515,10 +540,13 @@ def _recall(tables: dict, cache_key, ekey, skey) -> bool:
     for i, entry in enumerate(older):
         if _serves(entry, cache_key, ekey, skey):
             rest = older[:i] + older[i + 1:]
-            current = {k: v for k, v in tables.items() if k != _OLDER}
+            current = {k: v for k, v in tables.items() if k not in (_OLDER, _ROWS)}
+            rows_entry = tables.get(_ROWS)
             tables.clear()
             tables.update(entry)
             tables[_OLDER] = ([current] if "value" in current else []) + rest
+            if rows_entry is not None:
+                tables[_ROWS] = rows_entry
             return True
     return False
 

@@ -375,21 +375,22 @@ class _Tables:
             return None
         return a, tq1
 
-    def rubber_range(self, rise_top) -> tuple[float, float]:
-        """The coldest and hottest rubber temperature (C) over the nodes a solution interpolates (:meth:`_used`).
-        A function of the solution and of the lattice only (the same whichever calls filled the table)."""
+    def rubber_range(self, rise_top, used=None) -> tuple[float, float]:
+        """The coldest and hottest rubber temperature (C) over the nodes a solution interpolates (:meth:`used`,
+        given or computed). A function of the solution and of the lattice only (the same whichever calls filled the
+        table)."""
         lo, hi = math.inf, -math.inf
-        for c, used in enumerate(self._used(rise_top)):
+        for c, used in enumerate(self.used(rise_top) if used is None else used):
             lo = min(lo, float(np.min(self.t_lo[c].transpose(0, 2, 1)[used])))
             hi = max(hi, float(np.max(self.t_hi[c].transpose(0, 2, 1)[used])))
         return lo, hi
 
-    def outcome(self, rise_top) -> tuple[tuple, tuple, bool]:
+    def outcome(self, rise_top, used=None) -> tuple[tuple, tuple, bool]:
         """(notes, warnings as (category, message), converged) of the engine calls that evaluated the nodes a
-        solution interpolates (:meth:`_used`), in the order of the calls, each once: what a table filled for that
-        solution alone would say, whichever hotter solutions grew it before."""
+        solution interpolates (:meth:`used`, given or computed), in the order of the calls, each once: what a table
+        filled for that solution alone would say, whichever hotter solutions grew it before."""
         calls = set()
-        for c, used in enumerate(self._used(rise_top)):
+        for c, used in enumerate(self.used(rise_top) if used is None else used):
             calls.update(int(k) for k in np.unique(self.fill_of[c].transpose(0, 2, 1)[used]))
         notes: dict = {}
         warned: dict = {}
@@ -401,14 +402,16 @@ class _Tables:
             converged = converged and f_converged
         return tuple(notes), tuple(warned), converged
 
-    def _used(self, rise_top):
+    def used(self, rise_top) -> list[np.ndarray]:
         """For each sweep c, the (n_v, capacity) mask of the temperature nodes a solution interpolates: at every
         speed and pressure node, those up to the four-point stencil around the hottest background temperature
         T0 + ``rise_top[c]`` of its rows."""
+        out = []
         for c in range(self.B.size):
             top = float(np.floor(self.y_of(c, self.T0[c] + max(float(rise_top[c]), 0.0)) / self.hy + 1e-9)) + 3
             n = np.minimum(self.nus[c], int(max(top, 1)))
-            yield np.arange(self.t_lo[c].shape[2])[None, :] < n[:, None]
+            out.append(np.arange(self.t_lo[c].shape[2])[None, :] < n[:, None])
+        return out
 
     def args(self) -> FrictionLattice:
         """The friction lattice, as the kernels take it."""
