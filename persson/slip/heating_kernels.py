@@ -92,7 +92,9 @@ def _march_all(rows, patch, lattice, axis, profiles, out, first, stride):
 _march_kernel = njit(cache=True, nogil=True)(_march_all)
 
 
-@njit(cache=True)
+#: The march may reassociate and fuse its sums (the Abel sum then runs in vector registers); no other fast-math
+#: liberty: NaN and infinity keep their meaning (an infinite stick slope marks a locked wheel).
+@njit(cache=True, fastmath={"reassoc", "contract"})
 def _march_row(r, rows, patch, lattice, axis, profiles, g_first, g_weights, abel_weights, out):
     """March along the patch for row r: the stick zone, then the temperature and shear at every sliding point,
     solved point by point from the leading edge; writes the row's outputs.
@@ -116,7 +118,7 @@ def _march_row(r, rows, patch, lattice, axis, profiles, g_first, g_weights, abel
     g_weights : ndarray (N + 1, 4)
         Its interpolation weights.
     abel_weights : ndarray (N,)
-        The Abel weights of a shear value at each distance (:func:`_combined_abel_weights`).
+        The Abel weights of a shear value at each distance, reversed (:func:`_combined_abel_weights`).
     out : MarchOutputs
         Row r is filled.
     """
@@ -160,18 +162,24 @@ def _march_row(r, rows, patch, lattice, axis, profiles, g_first, g_weights, abel
     # the arrays out of the tuples once, not at every point (numba counts references at every access)
     values, value_offset, n_temperature = lattice.values, lattice.value_offset, lattice.n_temperature
     y_fine, cap, dT_fine, h_y, mu_max = axis.y_fine, axis.cap, axis.dT_fine, axis.h, axis.mu_max[c]
+    slope = np.nan
     for k in range(1, n_slide):
         known, own_weight = _abel_known_part(k, y, shear, abel, abel_weights, sqrt_h, edge_point, h_first)
         # the temperature at point k solves T = T0 + lam (known + own_weight g mu(T))
         j = k + first_node - (1 if edge_point else 0)  # the patch node of point k
         base = T0 + lam * known
         coef = lam * own_weight * g_slide[k]
-        # first guess: the temperature extrapolated linearly from the two points before (it rises smoothly along the
-        # patch), which saves the root search about one friction evaluation per point
-        guess = 2.0 * T_slide[k - 1] - T_slide[k - 2] if k >= 2 else T_slide[k - 1]
-        T, mu = _node_temperature(base, coef, guess, T0, mu_max, c, iv, w_speed, mv, g_first[j],
-                                  g_weights[j], mg, values, value_offset, n_temperature, y_fine, cap, dT_fine, h_y,
-                                  w_temperature, contracted, n_min)
+        # first guess: the temperature extrapolated from the points before (it rises smoothly along the patch;
+        # quadratically from the third point on), which saves the root search about one friction evaluation per point
+        if k >= 3:
+            guess = 3.0 * (T_slide[k - 1] - T_slide[k - 2]) + T_slide[k - 3]
+        elif k == 2:
+            guess = 2.0 * T_slide[1] - T_slide[0]
+        else:
+            guess = T_slide[0]
+        T, mu, slope = _node_temperature(base, coef, guess, slope, T0, mu_max, c, iv, w_speed, mv, g_first[j],
+                                         g_weights[j], mg, values, value_offset, n_temperature, y_fine, cap, dT_fine,
+                                         h_y, w_temperature, contracted, n_min)
         x = _x_at(y_fine, c, T - T0, cap, dT_fine, h_y)
         use = _table_use(x, h_y, y_top)
         if use > top_use:
@@ -454,10 +462,10 @@ def _abel_known_part(k, y, shear, abel, abel_weights, sqrt_h, edge_point, h_firs
     the part of the points before k (known) and the weight of the unknown shear at k itself; the shear is linear
     between points, the kernel integrated exactly (:func:`_segment_weights`).
 
-    Each shear value before k enters through the two segments it ends, with the weight
-    ``abel_weights[k - m]`` (:func:`_combined_abel_weights`); the first point of the uniform run only through the
-    segment it starts. The sum, N^2 / 2 terms per row and most of the march's time, runs in four independent
-    partial sums (a single one waits on the latency of every addition).
+    Each shear value m before k enters through the two segments it ends, with the weight of distance k - m
+    (:func:`_combined_abel_weights`); the first point of the uniform run only through the segment it starts. The
+    sum, N^2 / 2 terms per row and a third of the march's time, is a dot product of two forward runs of memory
+    (the weights held reversed), which the compiler vectorizes.
 
     Parameters
     ----------
@@ -470,7 +478,7 @@ def _abel_known_part(k, y, shear, abel, abel_weights, sqrt_h, edge_point, h_firs
     abel : ndarray (2, N)
         The unit Abel weights of the uniform spacing (:class:`~persson.slip.heating_arrays.Patch`).
     abel_weights : ndarray (N,)
-        Their sums per shear value (:func:`_combined_abel_weights`).
+        Their sums per shear value, reversed: distance d at N - 1 - d (:func:`_combined_abel_weights`).
     sqrt_h : float
         sqrt of the node spacing.
     edge_point : bool
@@ -493,26 +501,23 @@ def _abel_known_part(k, y, shear, abel, abel_weights, sqrt_h, edge_point, h_firs
         start = 1
     # the uniform segments start .. k: shear[start] ends none of them, shear[m > start] ends segment m - 1
     s0 = abel[0, k - start] * shear[start]
-    s1 = 0.0
-    s2 = 0.0
-    s3 = 0.0
-    m = start + 1
-    while m + 3 < k:
-        s0 += abel_weights[k - m] * shear[m]
-        s1 += abel_weights[k - m - 1] * shear[m + 1]
-        s2 += abel_weights[k - m - 2] * shear[m + 2]
-        s3 += abel_weights[k - m - 3] * shear[m + 3]
-        m += 4
-    while m < k:
-        s0 += abel_weights[k - m] * shear[m]
-        m += 1
-    return known + sqrt_h * ((s0 + s1) + (s2 + s3)), sqrt_h * abel[1, 1]
+    # the weights are held reversed (distance d at N - 1 - d): the shear values start + 1 .. k - 1 meet the weights
+    # N - k + start .. N - 2, both runs forward in memory, a dot product the compiler vectorizes (the march's
+    # fastmath "reassoc" lets it split the sum)
+    N = abel_weights.shape[0]
+    a0 = N - k + start
+    b0 = start + 1
+    acc = 0.0
+    for m in range(k - start - 1):
+        acc += abel_weights[a0 + m] * shear[b0 + m]
+    return known + sqrt_h * (s0 + acc), sqrt_h * abel[1, 1]
 
 
 @njit(cache=True)
 def _combined_abel_weights(abel):
     """The weight of a shear value at distance d before the point evaluated, from both segments it ends and
-    starts: ``abel[0, d] + abel[1, d + 1]`` (the second term absent at the last distance).
+    starts: ``abel[0, d] + abel[1, d + 1]`` (the second term absent at the last distance), held in reverse order
+    (distance d at N - 1 - d), as :func:`_abel_known_part` reads them.
 
     Parameters
     ----------
@@ -522,20 +527,27 @@ def _combined_abel_weights(abel):
     Returns
     -------
     ndarray (N,)
+        Element N - 1 - d: the weight at distance d (0 at d = 0).
     """
     N = abel.shape[1]
     w = np.zeros(N)
     for d in range(1, N):
-        w[d] = abel[0, d] + (abel[1, d + 1] if d + 1 < N else 0.0)
+        w[N - 1 - d] = abel[0, d] + (abel[1, d + 1] if d + 1 < N else 0.0)
     return w
 
 
 @njit(cache=True, inline="always")
-def _node_temperature(base, coef, T_prev, T0, mu_max, c, iv, w_speed, mv, ig, w_pressure, mg, values, value_offset,
-                      n_temperature, y_fine, cap, dT_fine, h, w_temperature, contracted, n_min):
+def _node_temperature(base, coef, T_prev, slope, T0, mu_max, c, iv, w_speed, mv, ig, w_pressure, mg, values,
+                      value_offset, n_temperature, y_fine, cap, dT_fine, h, w_temperature, contracted, n_min):
     """The temperature at a sliding point: the root of F(T) = T - base - coef mu(T), by the secant method from
     the previous point's temperature, with bisection on [base, base + 1.5 coef mu_max] where the secant fails;
     and the friction there (the last evaluation of the root search, not repeated by the caller).
+
+    The secant's second point is a Newton step from the first guess with the slope of mu(T) that the point before
+    ended with (mu(T) varies smoothly along the patch; F' = 1 - coef mu'), which saves about one friction
+    evaluation per point against a fixed-point step; without a usable slope (the first point, after a bisection, an
+    F' outside 0.2-5), the fixed-point step T = base + coef mu(guess). Either way the root is found to the same
+    tolerance, |F| <= 1e-10 (1 + |T|).
 
     Parameters
     ----------
@@ -545,6 +557,8 @@ def _node_temperature(base, coef, T_prev, T0, mu_max, c, iv, w_speed, mv, ig, w_
         Lambda times the weight of the point's own shear times p / sigma0 there, K.
     T_prev : float
         The first guess, deg C (extrapolated from the points before).
+    slope : float
+        d mu / dT the point before ended with, 1/K (NaN: none).
     T0 : float
         Background temperature of the sweep, deg C.
     mu_max : float
@@ -580,8 +594,8 @@ def _node_temperature(base, coef, T_prev, T0, mu_max, c, iv, w_speed, mv, ig, w_
 
     Returns
     -------
-    (float, float)
-        The temperature, deg C, and mu there.
+    (float, float, float)
+        The temperature, deg C, mu there, and d mu / dT from the last secant step, 1/K (NaN after a bisection).
     """
     Ta = T_prev if T_prev > base else base
     ma = _mu_row(iv, w_speed, mv, ig, w_pressure, mg, _x_at(y_fine, c, Ta - T0, cap, dT_fine, h), values,
@@ -589,17 +603,20 @@ def _node_temperature(base, coef, T_prev, T0, mu_max, c, iv, w_speed, mv, ig, w_
     Fa = Ta - base - coef * ma
     Tb = base + coef * ma
     if abs(Fa) <= 1e-10 * (1.0 + abs(Ta)):
-        return Ta, ma
+        return Ta, ma, slope
+    d = 1.0 - coef * slope  # F' with the previous point's slope (NaN fails both tests)
+    if 0.2 < d < 5.0:
+        Tb = Ta - Fa / d
     for _ in range(40):
         mb = _mu_row(iv, w_speed, mv, ig, w_pressure, mg, _x_at(y_fine, c, Tb - T0, cap, dT_fine, h), values,
                     value_offset, n_temperature, w_temperature, contracted, n_min)
         Fb = Tb - base - coef * mb
         if abs(Fb) <= 1e-10 * (1.0 + abs(Tb)):
-            return Tb, mb
+            return Tb, mb, (mb - ma) / (Tb - Ta) if Tb != Ta else slope
         if Fb == Fa:
             break
         Tn = Tb - Fb * (Tb - Ta) / (Fb - Fa)
-        Ta, Fa = Tb, Fb
+        Ta, Fa, ma = Tb, Fb, mb
         Tb = Tn
     # bisection on F, F(base) <= 0 <= F(base + coef mu_max)
     lo = base
@@ -616,7 +633,7 @@ def _node_temperature(base, coef, T_prev, T0, mu_max, c, iv, w_speed, mv, ig, w_
             break
     T = 0.5 * (lo + hi)
     return T, _mu_row(iv, w_speed, mv, ig, w_pressure, mg, _x_at(y_fine, c, T - T0, cap, dT_fine, h), values,
-                     value_offset, n_temperature, w_temperature, contracted, n_min)
+                     value_offset, n_temperature, w_temperature, contracted, n_min), np.nan
 
 
 @njit(cache=True, inline="always")
