@@ -682,6 +682,46 @@ def test_a_row_on_a_speed_node_reads_that_node_alone():
     assert hk._speed_stencil(lattice, 0, 0.5 * (log_v[2] + log_v[3]), w1) == (1, 4)
 
 
+def test_the_root_search_at_a_patch_point_meets_its_tolerance_whatever_slope_it_is_handed():
+    """T = base + coef mu(T) at a patch point, mu(T) interpolated in the table: the secant's second point is a Newton
+    step with the slope of mu(T) handed on from the point before. Whatever that slope (the right one, none, a wrong
+    one, one that would make the step diverge), the search ends on the root to its tolerance |F| <= 1e-10 (1 + |T|),
+    the same root to that tolerance, and hands on the slope of mu there."""
+    from persson.slip import heating_kernels as hk
+    from persson.slip.heating_arrays import FrictionLattice
+
+    n_u, ng, h, dT_fine, cap = 40, 2, 1.0 / 3.0, 0.25, 250.0
+    dT = dT_fine * np.arange(2 * 1001 - 1)
+    y_fine = (dT / 40.0)[None, :]                       # y = (T - T0) / 40 K: 7.5 nodes per 100 K
+    T_nodes = 40.0 * h * np.arange(n_u)
+    mu_T = 0.9 * np.exp(-T_nodes / 120.0) + 0.1        # friction falling with temperature
+    values = np.concatenate([mu_T * f for f in (1.0, 0.8)])
+    lattice = FrictionLattice(log_speed=np.zeros(1), v_offset=np.array([0, 1], dtype=np.int64),
+                              g_nodes=np.array([0.5, 1.5]), values=values,
+                              value_offset=np.array([0, ng * n_u], dtype=np.int64),
+                              n_temperature=np.array([n_u], dtype=np.int64))
+    wv, wg, wu = np.array([1.0, 0, 0, 0]), np.array([0.75, 0.25, 0, 0]), np.empty(4)
+    contracted, n_min = hk._speed_contracted(lattice, 0, wv, 1)
+    T0 = 20.0
+
+    def mu(T):
+        x = hk._x_at(y_fine, 0, T - T0, cap, dT_fine, h)
+        return hk._mu_row(0, wv, 1, 0, wg, 2, x, values, lattice.value_offset, lattice.n_temperature, wu,
+                          contracted, n_min)
+
+    for base, coef in ((25.0, 30.0), (60.0, 150.0), (20.5, 2.0)):
+        roots = []
+        for slope in (np.nan, (mu(base + 1e-3) - mu(base)) / 1e-3, 0.0, -0.5, 10.0):
+            T, m, s_out = hk._node_temperature(base, coef, base + 3.0, slope, T0, 1.0, 0, 0, wv, 1, 0, wg, 2,
+                                               values, lattice.value_offset, lattice.n_temperature, y_fine, cap,
+                                               dT_fine, h, wu, contracted, n_min)
+            assert abs(T - base - coef * mu(T)) <= 1e-10 * (1.0 + abs(T))
+            assert m == mu(T)
+            assert s_out == pytest.approx((mu(T + 1e-4) - mu(T - 1e-4)) / 2e-4, rel=1e-2, abs=1e-7)
+            roots.append(T)
+        assert np.ptp(roots) <= 1e-9 * (1.0 + abs(roots[0]))
+
+
 def test_a_locked_wheel_at_a_few_speeds_matches_a_direct_iteration_with_a_table_sized_per_speed():
     """Locked-wheel rows at four speeds: the table's speed nodes are the rows' speeds, each row reads its own node,
     and each node reaches the temperatures of its own row only (a slow wheel's patch barely warms; the fast one's
