@@ -80,12 +80,33 @@ def _march_all(rows, patch, lattice, axis, profiles, out, first, stride):
         The first row of this share.
     stride : int
         Step between the rows of this share (the number of shares).
+
+    Returns
+    -------
+    int
+        The total size of the share's own arrays (the pressure stencils, the Abel weights and the rows' scratch
+        arrays, allocated once here). The rows use borrowed views of them (:func:`persson.engine.borrow.borrowed`):
+        numba counted the references of an array allocated in the kernel with an atomic operation at every patch
+        point it was passed on at, 60 % of the march's time (sampled with ``perf``). Reading the arrays' sizes after
+        the loop keeps them alive until every row is done.
     """
     rows, patch, lattice, axis, out = borrowed((rows, patch, lattice, axis, out))
     g_first, g_weights = _pressure_stencils(patch.g, lattice.g_nodes)
     abel_weights = _combined_abel_weights(patch.abel)
+    N = patch.xi.size
+    nu_max = 1
+    for v in range(lattice.n_temperature.size):
+        if lattice.n_temperature[v] > nu_max:
+            nu_max = lattice.n_temperature[v]
+    scratch = (np.empty(4), np.empty(4), np.empty(N), np.empty(N + 1), np.empty(N + 1), np.empty(N + 1),
+               np.empty(N + 1), np.empty(lattice.g_nodes.size * nu_max))
+    b_first, b_weights, b_abel, b_scratch = borrowed((g_first, g_weights, abel_weights, scratch))
     for r in range(first, rows.sweep.size, stride):
-        _march_row(r, rows, patch, lattice, axis, profiles, g_first, g_weights, abel_weights, out)
+        _march_row(r, rows, patch, lattice, axis, profiles, b_first, b_weights, b_abel, b_scratch, out)
+    kept = g_first.size + g_weights.size + abel_weights.size
+    for a in scratch:
+        kept += a.size
+    return kept
 
 
 #: The march over a share of the rows; releases the GIL, so that :func:`march` runs the shares on several threads.
@@ -95,7 +116,7 @@ _march_kernel = njit(cache=True, nogil=True)(_march_all)
 #: The march may reassociate and fuse its sums (the Abel sum then runs in vector registers); no other fast-math
 #: liberty: NaN and infinity keep their meaning (an infinite stick slope marks a locked wheel).
 @njit(cache=True, fastmath={"reassoc", "contract"})
-def _march_row(r, rows, patch, lattice, axis, profiles, g_first, g_weights, abel_weights, out):
+def _march_row(r, rows, patch, lattice, axis, profiles, g_first, g_weights, abel_weights, scratch, out):
     """March along the patch for row r: the stick zone, then the temperature and shear at every sliding point,
     solved point by point from the leading edge; writes the row's outputs.
 
@@ -119,6 +140,10 @@ def _march_row(r, rows, patch, lattice, axis, profiles, g_first, g_weights, abel
         Its interpolation weights.
     abel_weights : ndarray (N,)
         The Abel weights of a shear value at each distance, reversed (:func:`_combined_abel_weights`).
+    scratch : tuple of ndarray
+        Work arrays of the row (:func:`_march_all`): the speed and temperature weights (4,), the friction at T0 at
+        the patch nodes (N,), the sliding points' y, p / sigma0, shear and temperature (N + 1,), and the row's
+        speed-contracted table (n_g times the most temperature nodes of a speed node).
     out : MarchOutputs
         Row r is filled.
     """
@@ -126,16 +151,14 @@ def _march_row(r, rows, patch, lattice, axis, profiles, g_first, g_weights, abel
     g = patch.g
     N = xi.size
     h = xi[1] - xi[0]
-    w_speed = np.empty(4)
-    w_temperature = np.empty(4)
-    mu_T0 = np.empty(N)
+    w_speed, w_temperature, mu_T0, y, g_slide, shear, T_slide, contracted = scratch
     c = rows.sweep[r]
     a = rows.stick_slope[r]
     T0 = axis.T0[c]
     iv, mv = _speed_stencil(lattice, c, rows.log_speed[r], w_speed)
     mg = min(4, lattice.g_nodes.size)
     y_top = _table_top(lattice.n_temperature, iv, mv, axis.h)
-    contracted, n_min = _speed_contracted(lattice, iv, w_speed, mv)
+    n_min = _speed_contract_into(lattice, iv, w_speed, mv, contracted)
     _stick_limit(iv, w_speed, mv, g_first, g_weights, mg, lattice, mu_T0)
     pure = not np.isfinite(a)
     i, t = _stick_edge(mu_T0, g, xi, a, pure)
@@ -147,10 +170,6 @@ def _march_row(r, rows, patch, lattice, axis, profiles, g_first, g_weights, abel
         return
     xc = 0.0 if pure else xi[i - 1] + t * h
     # the sliding points: x_c when it lies between nodes, then the nodes behind it
-    y = np.empty(N + 1)
-    g_slide = np.empty(N + 1)
-    shear = np.empty(N + 1)
-    T_slide = np.empty(N + 1)
     n_slide, first_node, edge_point = _slide_points(i, t, xc, pure, iv, w_speed, mv, mg, lattice, w_temperature,
                                                     mu_T0, xi, g, y, g_slide, shear)
     T_slide[0] = T0
@@ -1017,13 +1036,26 @@ def _speed_contracted(lattice, iv, wv, mv):
         The contracted table (n_g * n_min,) and n_min, the fewest temperature nodes in the stencil.
     """
     n_temperature = lattice.n_temperature
+    n_min = n_temperature[iv]
+    for a in range(1, mv):
+        if n_temperature[iv + a] < n_min:
+            n_min = n_temperature[iv + a]
+    out = np.zeros(lattice.g_nodes.size * n_min)
+    return out, _speed_contract_into(lattice, iv, wv, mv, out)
+
+
+@njit(cache=True)
+def _speed_contract_into(lattice, iv, wv, mv, out):
+    """:func:`_speed_contracted` written into ``out`` (at least n_g times the stencil's fewest temperature nodes
+    long; the entries past them are left alone); returns n_min."""
+    n_temperature = lattice.n_temperature
     values = lattice.values
     n_min = n_temperature[iv]
     for a in range(1, mv):
         if n_temperature[iv + a] < n_min:
             n_min = n_temperature[iv + a]
     ng = lattice.g_nodes.size
-    out = np.zeros(ng * n_min)
+    out[:ng * n_min] = 0.0
     for a in range(mv):
         node = iv + a
         n_u = n_temperature[node]
@@ -1031,7 +1063,7 @@ def _speed_contracted(lattice, iv, wv, mv):
         for b in range(ng):
             for k in range(n_min):
                 out[b * n_min + k] += wv[a] * values[base + b * n_u + k]
-    return out, n_min
+    return n_min
 
 
 @njit(cache=True, inline="always")
