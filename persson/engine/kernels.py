@@ -669,7 +669,7 @@ def contact_and_friction(iv, nodes, rule, law, K, out):
 
 @njit(cache=True)
 def _solve_speed(iv, nodes, rule, speeds, angular, shape, law, coarse, coarse_rule, coarser, coarser_rule, out,
-                 mu_coarse, mu_coarser):
+                 mu_coarse, mu_coarser, work):
     """One speed at its background temperature: G(q), P(q), d mu/d ln q and the cumulative hysteresis friction
     on the nodes, and the friction on the two sub-grids of the error estimate.
 
@@ -701,9 +701,11 @@ def _solve_speed(iv, nodes, rule, speeds, angular, shape, law, coarse, coarse_ru
         Row iv is filled.
     mu_coarse, mu_coarser : ndarray (n_speed,)
         Element iv is filled with mu on ``coarse`` and on ``coarser`` (left alone without sub-grids).
+    work : ndarray (6, n_q)
+        Work rows (borrowed, :func:`_friction_all`): K, then the sub-grids' (:func:`_coarse_mu`).
     """
     nq = nodes.q.shape[0]
-    K = np.empty(nq)
+    K = work[0]
     scale_factors(nodes.lq10, speeds.lv10[iv], nodes.q4C, speeds.shift[iv], speeds.vshift[iv], speeds.f[iv],
                   speeds.g[iv], angular, shape, iv, speeds.scale[iv], K, out.dG[iv], out.ratio[iv], out.loss[iv])
     cumulative_weighted(K, rule, out.G[iv])
@@ -711,12 +713,12 @@ def _solve_speed(iv, nodes, rule, speeds, angular, shape, law, coarse, coarse_ru
     R = out.ratio[iv]
     out.mu[iv] = out.cum[iv, nq - 1]
     if coarse.shape[0] > 0:
-        mu_coarse[iv] = _coarse_mu(nodes.q, K, R, law, coarse, coarse_rule)
-        mu_coarser[iv] = _coarse_mu(nodes.q, K, R, law, coarser, coarser_rule)
+        mu_coarse[iv] = _coarse_mu(nodes.q, K, R, law, coarse, coarse_rule, work)
+        mu_coarser[iv] = _coarse_mu(nodes.q, K, R, law, coarser, coarser_rule, work)
 
 
 @njit(cache=True)
-def _coarse_mu(q, K, R, law, index, rule):
+def _coarse_mu(q, K, R, law, index, rule, work):
     """The hysteresis friction on a sub-grid of the nodes: the same rules with a larger step.
 
     Parameters
@@ -733,6 +735,8 @@ def _coarse_mu(q, K, R, law, index, rule):
         The nodes of the sub-grid.
     rule : QuadratureRule
         The quadrature on the sub-grid.
+    work : ndarray (6, n_q)
+        Rows 1-5 hold the sub-grid's q, K, R, G and cumulative friction (row 0, K on the nodes, is left alone).
 
     Returns
     -------
@@ -741,16 +745,16 @@ def _coarse_mu(q, K, R, law, index, rule):
     """
     idx = index
     m = idx.shape[0]
-    qc = np.empty(m)
-    Kc = np.empty(m)
-    Rc = np.empty(m)
+    qc = work[1, :m]
+    Kc = work[2, :m]
+    Rc = work[3, :m]
     for k in range(m):
         qc[k] = q[idx[k]]
         Kc[k] = K[idx[k]]
         Rc[k] = R[idx[k]]
-    Gc = np.empty(m)
+    Gc = work[4, :m]
     cumulative_weighted(Kc, rule, Gc)
-    cc = np.empty(m)
+    cc = work[5, :m]
     friction_cumulative(Gc, Kc, Rc, qc, rule, law, cc)
     return cc[m - 1]
 
@@ -790,13 +794,24 @@ def _friction_all(nodes, rule, speeds, angular, shape, law, coarse, coarse_rule,
         The first speed of this share.
     stride : int
         Step between the speeds of this share (the number of shares).
+
+    Returns
+    -------
+    int
+        The size of the share's work array, allocated once here and handed to every speed as a borrowed view
+        (:mod:`persson.engine.borrow`: numba counted the references of the arrays a speed allocated with an atomic
+        operation at every interval of the quadrature, 15 % of the kernel's time); reading it after the loop keeps
+        it alive until every speed is done.
     """
     (nodes, rule, speeds, angular, shape, law, coarse, coarse_rule, coarser, coarser_rule, out, mu_coarse,
      mu_coarser) = borrowed((nodes, rule, speeds, angular, shape, law, coarse, coarse_rule, coarser, coarser_rule,
                              out, mu_coarse, mu_coarser))
+    work = np.empty((6, nodes.q.shape[0]))
+    lent = borrowed(work)
     for iv in range(first, speeds.lv10.shape[0], stride):
         _solve_speed(iv, nodes, rule, speeds, angular, shape, law, coarse, coarse_rule, coarser, coarser_rule, out,
-                     mu_coarse, mu_coarser)
+                     mu_coarse, mu_coarser, lent)
+    return work.size
 
 
 #: Hysteresis friction and contact area of a share of the speeds (see :func:`_friction_all`); releases the GIL, so
@@ -857,13 +872,31 @@ def _flash_all(nodes, rule, speeds, angular, shape, law, temperature, heat, iter
         The first speed of this share.
     stride : int
         Step between the speeds of this share (the number of shares).
+
+    Returns
+    -------
+    int
+        The total size of the share's work arrays, allocated once here and handed to every speed as borrowed views
+        (:mod:`persson.engine.borrow`: numba counted the references of the arrays a speed allocated with an atomic
+        operation at every step of the iteration it passed them on at); reading them after the loop keeps them alive
+        until every speed is done.
     """
     (nodes, rule, speeds, angular, shape, law, temperature, heat, iteration, out, T_out, it_out,
      res_out) = borrowed((nodes, rule, speeds, angular, shape, law, temperature, heat, iteration, out, T_out, it_out,
                           res_out))
+    nq = nodes.q.shape[0]
+    vectors = np.empty((5, nq))   # the profile, the map's image, K, the last residual, the previous profile
+    H = np.empty((nq, nq))
+    factors = np.empty((4, nq))
+    nodes_first = np.empty(nq, dtype=np.int64)
+    weights = np.empty((nq, 3))
+    history = np.empty((2, _ANDERSON_DEPTH, nq))
+    lent = borrowed((H, vectors[0], vectors[1], vectors[2], factors, nodes_first, weights, vectors[3], vectors[4],
+                     history[0], history[1]))
     for iv in range(first, speeds.lv10.shape[0], stride):
         _flash_speed(iv, nodes, rule, speeds, angular, shape, law, temperature, heat, iteration, out, T_out, it_out,
-                     res_out)
+                     res_out, lent)
+    return vectors.size + H.size + factors.size + nodes_first.size + weights.size + history.size
 
 
 #: Flash-temperature solver for a share of the speeds (see :func:`_flash_all`); releases the GIL, so that
@@ -873,7 +906,7 @@ flash_kernel = njit(cache=True, nogil=True)(_flash_all)
 
 @njit(cache=True)
 def _flash_speed(iv, nodes, rule, speeds, angular, shape, law, temperature, heat, iteration, out, T_out, it_out,
-                 res_out):
+                 res_out, work):
     """Self-consistent flash temperature for one speed on the nodes.
 
     Fixed-point iteration from the starting profile, converged when max |T_new - T| < ``iteration.tol``,
@@ -922,21 +955,21 @@ def _flash_speed(iv, nodes, rule, speeds, angular, shape, law, temperature, heat
         Element iv is filled with max |g(T) - T|, K: at convergence that of the last iterate (the profile
         returned is g of it); otherwise that of the profile returned itself (one more evaluation of the map, no
         step taken), so that the residual reported with an unconverged speed belongs to its profile.
+    work : tuple of ndarray
+        Work arrays of the speed, borrowed (:func:`_flash_all`): the heat matrix (n_q, n_q), the profile and the
+        map's image, K, the integrands' factors (4, n_q), the node weights' first nodes and weights (n_q, 3), the
+        last residual, the previous profile and the Anderson history (two of (depth, n_q)); set here for each
+        speed where the iteration reads them before it writes them.
     """
     nq = nodes.q.shape[0]
     max_iter = iteration.max_iter
     T0 = speeds.T0[iv]
-    H = heat_matrix(nodes.q, heat.erfcx[iv], heat.S1, heat.S2, heat.a_t0[iv], heat.D)
-    T = speeds.T_start[iv].copy()
-    T_new = np.empty(nq)
-    K = np.empty(nq)
-    factors = np.empty((4, nq))
-    first = np.empty(nq, dtype=np.int64)
-    weights = np.empty((nq, 3))
-    r_prev = np.zeros(nq)
-    T_prev = np.empty(nq)
-    dT = np.zeros((_ANDERSON_DEPTH, nq))
-    dR = np.zeros((_ANDERSON_DEPTH, nq))
+    H, T, T_new, K, factors, first, weights, r_prev, T_prev, dT, dR = work
+    _heat_matrix_into(nodes.q, heat.erfcx[iv], heat.S1, heat.S2, heat.a_t0[iv], heat.D, H)
+    T[:] = speeds.T_start[iv]
+    r_prev[:] = 0.0
+    dT[:] = 0.0
+    dR[:] = 0.0
     # steps in the Anderson history; -1: no previous step to difference against (an int64, not the literal -1:
     # numba would compile _anderson_step once more for the literal's own type)
     n_hist = np.int64(-1)
@@ -1050,7 +1083,24 @@ def heat_matrix(q, erfcx_q, S1, S2, a_t0, D):
         g(q_i, q_j) 2 q_j, s/m; zero for j > i + 1.
     """
     nq = q.shape[0]
-    H = np.zeros((nq, nq))
+    H = np.empty((nq, nq))
+    _heat_matrix_into(q, erfcx_q, S1, S2, a_t0, D, H)
+    return H
+
+
+@njit(cache=True)
+def _heat_matrix_into(q, erfcx_q, S1, S2, a_t0, D, H):
+    """:func:`heat_matrix` written into ``H``, every element (zeros above the first superdiagonal).
+
+    Parameters
+    ----------
+    q, erfcx_q, S1, S2, a_t0, D
+        As for :func:`heat_matrix`.
+    H : ndarray (n_q, n_q)
+        Filled with the matrix.
+    """
+    nq = q.shape[0]
+    H[:, :] = 0.0
     c0 = 2.0 / math.pi * math.sqrt(math.pi * a_t0) / D
     for i in range(nq):
         for j in range(min(i + 2, nq)):
@@ -1058,7 +1108,6 @@ def heat_matrix(q, erfcx_q, S1, S2, a_t0, D):
                 H[i, j] = heat_kernel(q[i], q[j], a_t0, D, erfcx_q[i], erfcx_q[j]) * 2.0 * q[j]
             else:
                 H[i, j] = c0 + ((1.0 - erfcx_q[j]) * S1[i, j] + (1.0 - erfcx_q[i]) * S2[i, j]) / D
-    return H
 
 
 @njit(cache=True)

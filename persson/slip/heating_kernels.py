@@ -1046,8 +1046,21 @@ def _speed_contracted(lattice, iv, wv, mv):
 
 @njit(cache=True)
 def _speed_contract_into(lattice, iv, wv, mv, out):
-    """:func:`_speed_contracted` written into ``out`` (at least n_g times the stencil's fewest temperature nodes
-    long; the entries past them are left alone); returns n_min."""
+    """:func:`_speed_contracted` written into ``out``.
+
+    Parameters
+    ----------
+    lattice, iv, wv, mv
+        As for :func:`_speed_contracted`.
+    out : ndarray
+        At least n_g times the stencil's fewest temperature nodes long; its first n_g * n_min entries are filled,
+        the others left alone.
+
+    Returns
+    -------
+    int
+        n_min, the fewest temperature nodes in the stencil.
+    """
     n_temperature = lattice.n_temperature
     values = lattice.values
     n_min = n_temperature[iv]
