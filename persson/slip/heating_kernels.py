@@ -113,9 +113,7 @@ def _march_all(rows, patch, lattice, axis, profiles, out, first, stride):
 _march_kernel = njit(cache=True, nogil=True)(_march_all)
 
 
-#: The march may reassociate and fuse its sums (the Abel sum then runs in vector registers); no other fast-math
-#: liberty: NaN and infinity keep their meaning (an infinite stick slope marks a locked wheel).
-@njit(cache=True, fastmath={"reassoc", "contract"})
+@njit(cache=True)
 def _march_row(r, rows, patch, lattice, axis, profiles, g_first, g_weights, abel_weights, scratch, out):
     """March along the patch for row r: the stick zone, then the temperature and shear at every sliding point,
     solved point by point from the leading edge; writes the row's outputs.
@@ -484,7 +482,7 @@ def _abel_known_part(k, y, shear, abel, abel_weights, sqrt_h, edge_point, h_firs
     Each shear value m before k enters through the two segments it ends, with the weight of distance k - m
     (:func:`_combined_abel_weights`); the first point of the uniform run only through the segment it starts. The
     sum, N^2 / 2 terms per row and a third of the march's time, is a dot product of two forward runs of memory
-    (the weights held reversed), which the compiler vectorizes.
+    (the weights held reversed), BLAS's ``ddot``.
 
     Parameters
     ----------
@@ -521,14 +519,14 @@ def _abel_known_part(k, y, shear, abel, abel_weights, sqrt_h, edge_point, h_firs
     # the uniform segments start .. k: shear[start] ends none of them, shear[m > start] ends segment m - 1
     s0 = abel[0, k - start] * shear[start]
     # the weights are held reversed (distance d at N - 1 - d): the shear values start + 1 .. k - 1 meet the weights
-    # N - k + start .. N - 2, both runs forward in memory, a dot product the compiler vectorizes (the march's
-    # fastmath "reassoc" lets it split the sum)
+    # N - k + start .. N - 2, both runs forward in memory, a dot product (BLAS). Not fast-math in the march: numba
+    # compiles a function's callees with its fast-math flags and caches them so, and the interpolations the march
+    # calls would then round differently wherever they were called from after it
     N = abel_weights.shape[0]
     a0 = N - k + start
     b0 = start + 1
-    acc = 0.0
-    for m in range(k - start - 1):
-        acc += abel_weights[a0 + m] * shear[b0 + m]
+    n = k - start - 1
+    acc = np.dot(abel_weights[a0:a0 + n], shear[b0:b0 + n]) if n > 0 else 0.0
     return known + sqrt_h * (s0 + acc), sqrt_h * abel[1, 1]
 
 
