@@ -106,3 +106,41 @@ def test_every_argument_bundle_documents_its_fields_in_order(module):
     assert bundles
     for cls in bundles:
         assert documented_parameters(cls.__doc__) == list(cls._fields), cls.__name__
+
+
+def test_a_helper_of_a_fast_math_kernel_serves_no_other_kernel():
+    """numba compiles a kernel's callees with the kernel's fast-math flags and keeps (and caches) that compilation as
+    the callee's own: a helper shared by a fast-math kernel and another caller would round differently in the other
+    caller depending on which of the two compiled it first. So the helpers a fast-math kernel calls are its own.
+    (The patch march once carried "reassoc"; the T0 slice and the full interpolation it shares with other kernels
+    then differed in the last bit wherever the march had been compiled first.)"""
+    found = kernels()
+
+    def direct(func):
+        module = importlib.import_module(func.__module__)
+        return {f"{func.__module__}.{n}" for n in func.__code__.co_names
+                if hasattr(getattr(module, n, None), "py_func")}
+
+    def callees(func):   # transitively: a callee's callees are compiled with the same flags
+        seen, todo = set(), list(direct(func))
+        while todo:
+            helper = todo.pop()
+            if helper not in seen and helper in found:
+                seen.add(helper)
+                todo += direct(found[helper])
+        return seen
+
+    shared = {}
+    fast = []
+    for name, func in found.items():
+        dispatcher = getattr(importlib.import_module(func.__module__), func.__name__, None)
+        if not (getattr(dispatcher, "targetoptions", {}) or {}).get("fastmath"):
+            continue
+        fast.append(name)
+        for helper in callees(func):
+            others = [other for other, f in found.items() if other != name and helper in direct(f)
+                      and other not in callees(func)]
+            if others:
+                shared[helper] = others
+    assert "persson.tread.kernels.march" in fast            # the check sees the flags where they are set
+    assert shared == {}
