@@ -481,7 +481,7 @@ def _abel_known_part(k, y, shear, abel, abel_weights, sqrt_h, edge_point, h_firs
 
     Each shear value m before k enters through the two segments it ends, with the weight of distance k - m
     (:func:`_combined_abel_weights`); the first point of the uniform run only through the segment it starts. The
-    sum, N^2 / 2 terms per row and a third of the march's time, is a dot product of two forward runs of memory
+    sum, N^2 / 2 terms per row (a seventh of the march's time), is a dot product of two forward runs of memory
     (the weights held reversed), BLAS's ``ddot``.
 
     Parameters
@@ -1033,13 +1033,10 @@ def _speed_contracted(lattice, iv, wv, mv):
     (ndarray, int)
         The contracted table (n_g * n_min,) and n_min, the fewest temperature nodes in the stencil.
     """
-    n_temperature = lattice.n_temperature
-    n_min = n_temperature[iv]
-    for a in range(1, mv):
-        if n_temperature[iv + a] < n_min:
-            n_min = n_temperature[iv + a]
-    out = np.zeros(lattice.g_nodes.size * n_min)
-    return out, _speed_contract_into(lattice, iv, wv, mv, out)
+    ng = lattice.g_nodes.size
+    out = np.zeros(ng * np.max(lattice.n_temperature[iv:iv + mv]))
+    n_min = _speed_contract_into(lattice, iv, wv, mv, out)
+    return out[:ng * n_min], n_min
 
 
 @njit(cache=True)
